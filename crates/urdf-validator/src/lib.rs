@@ -1,0 +1,168 @@
+//! urdf-validator: physics-aware validation of URDF robot descriptions.
+//!
+//! Pipeline: [`parse`] the XML into a typed [`robot::Robot`] that keeps source spans, build the kinematic
+//! [`model::Model`], run the [`checks`], and assemble one [`report::Report`]. Renderers (text, JSON) are
+//! views of the report.
+//!
+//! ```no_run
+//! let options = urdf_validator::Options::default();
+//! let validation = urdf_validator::validate(std::path::Path::new("robot.urdf"), &options)?;
+//! println!("{}", validation.report.overall_status.label());
+//! # Ok::<(), urdf_validator::parse::LoadError>(())
+//! ```
+
+pub mod checks;
+pub mod finding;
+pub mod link_physics;
+pub mod model;
+pub mod parse;
+pub mod report;
+pub mod resolve;
+pub mod robot;
+pub mod rules;
+pub mod source;
+pub mod suggest;
+pub mod timestamp;
+
+use std::path::Path;
+
+use finding::{Finding, Severity};
+use model::Model;
+use parse::LoadError;
+use report::{FindingReport, Report, SchemaSection, Status};
+use resolve::PackageResolver;
+use robot::Robot;
+use source::SourceText;
+
+/// This library's version, written into every report.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// What a validation run needs besides the file.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Where `package://` URIs are looked up.
+    pub resolver: PackageResolver,
+}
+
+/// The result of validating one file: the report plus what renderers need to show source snippets.
+#[derive(Debug)]
+pub struct Validation {
+    /// The report.
+    pub report: Report,
+    /// The source texts findings point into.
+    pub sources: Vec<SourceText>,
+}
+
+impl Validation {
+    /// The text of `line` in `file`, if that file is one of the sources.
+    pub fn source_line(&self, file: &str, line: u32) -> Option<&str> {
+        self.sources
+            .iter()
+            .find(|s| s.path().display().to_string() == file)
+            .map(|s| s.line_text(line))
+    }
+}
+
+/// Validate the URDF at `path`.
+pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
+    let text = parse::read_text(path)?;
+    validate_text(text, path, options)
+}
+
+/// Validate URDF `text` that was read from `path` (used for positions, relative meshes and the report).
+pub fn validate_text(
+    text: String,
+    path: &Path,
+    options: &Options,
+) -> Result<Validation, LoadError> {
+    let (robot, mut findings) = parse::parse_urdf(&text, path)?;
+    let (model, tree_findings) = Model::build(&robot);
+    findings.extend(tree_findings);
+    let is_robot = !findings.iter().any(|f| f.rule == &rules::NOT_A_ROBOT);
+    if is_robot {
+        let urdf_dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let ctx = checks::CheckContext {
+            urdf_dir,
+            resolver: &options.resolver,
+        };
+        findings.extend(checks::run(&robot, &model, &ctx));
+    }
+    let source = SourceText::new(path, text);
+    let report = build_report(path, &robot, &model, &findings, &source);
+    Ok(Validation {
+        report,
+        sources: vec![source],
+    })
+}
+
+fn messages(findings: &[Finding], severity: Severity) -> Vec<String> {
+    findings
+        .iter()
+        .filter(|f| f.severity() == severity)
+        .map(|f| f.message.clone())
+        .collect()
+}
+
+fn build_report(
+    path: &Path,
+    robot: &Robot,
+    model: &Model,
+    findings: &[Finding],
+    source: &SourceText,
+) -> Report {
+    let critical_issues = messages(findings, Severity::Critical);
+    let warnings = messages(findings, Severity::Warn);
+    let schema_status = if !critical_issues.is_empty() {
+        Status::Fail
+    } else if !warnings.is_empty() {
+        Status::Warn
+    } else {
+        Status::Pass
+    };
+    let links = link_physics::link_reports(robot, model);
+    let physics = link_physics::summarize(&links);
+    Report {
+        urdf_path: path.display().to_string(),
+        robot_name: robot
+            .name
+            .as_ref()
+            .map(|n| n.value.clone())
+            .unwrap_or_default(),
+        timestamp: timestamp::now(),
+        validator_version: VERSION.to_string(),
+        overall_status: schema_status,
+        confidence_level: link_physics::confidence_level(&physics),
+        critical_issues: critical_issues.clone(),
+        warnings: warnings.clone(),
+        unknowns: Vec::new(),
+        schema: SchemaSection {
+            status: schema_status,
+            critical_issues,
+            warnings,
+            infos: messages(findings, Severity::Info),
+        },
+        physics,
+        links,
+        findings: findings.iter().map(|f| finding_report(f, source)).collect(),
+    }
+}
+
+fn finding_report(finding: &Finding, source: &SourceText) -> FindingReport {
+    let start = finding.span.map(|s| source.location(s));
+    let end = finding.span.map(|s| source.line_col(s.end as usize));
+    FindingReport {
+        rule: finding.rule.code.to_string(),
+        name: finding.rule.name.to_string(),
+        severity: finding.severity(),
+        message: finding.message.clone(),
+        file: Some(source.path().display().to_string()),
+        line: start.as_ref().map(|l| l.line),
+        column: start.as_ref().map(|l| l.column),
+        end_line: end.map(|e| e.0),
+        end_column: end.map(|e| e.1),
+        help: finding.help.clone(),
+    }
+}

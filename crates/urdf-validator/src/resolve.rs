@@ -1,0 +1,804 @@
+//! Resolution of mesh and resource URIs (`package://`, `file://`, plain
+//! paths) to files on disk, without a ROS installation.
+//!
+//! Package lookup order: explicit `--package-path` entries, then
+//! `ROS_PACKAGE_PATH`, then `AMENT_PREFIX_PATH`, then the ancestors of the
+//! URDF's directory.
+
+use std::collections::HashMap;
+use std::path::{Component, Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// Maximum depth of the recursive search below a `ROS_PACKAGE_PATH` entry.
+const ROS_SEARCH_DEPTH: usize = 4;
+/// Maximum number of directories visited when walking up from the URDF.
+const MAX_WALK_UP: usize = 64;
+
+/// Where to look for ROS packages, collected once per run.
+#[derive(Debug, Clone, Default)]
+pub struct PackageResolver {
+    explicit: Vec<PathBuf>,
+    ros_paths: Vec<PathBuf>,
+    ament_prefixes: Vec<PathBuf>,
+    /// Package name -> candidate package roots from the explicit,
+    /// `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH` sources (in order).
+    cache: Arc<Mutex<HashMap<String, Vec<PathBuf>>>>,
+}
+
+/// Outcome of resolving one URI.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Resolution {
+    /// The file exists at this path.
+    Found(PathBuf),
+    /// The URI is well-formed but no file exists; `searched` lists every
+    /// candidate path tried, in order (for the user message "looked in ...").
+    /// For `package://` URIs it is empty when the package itself was not
+    /// found anywhere.
+    NotFound {
+        /// Candidate file paths tried, in search order, without duplicates.
+        searched: Vec<PathBuf>,
+    },
+    /// A scheme we cannot resolve offline (http://, https://, model://, etc.)
+    /// or a malformed URI; the String says why in one short sentence.
+    Unsupported(String),
+}
+
+impl PackageResolver {
+    /// Explicit `--package-path DIR` entries (in order) plus the
+    /// `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH` values given
+    /// (colon-separated strings, may be None).
+    pub fn new(
+        package_paths: Vec<PathBuf>,
+        ros_package_path: Option<&str>,
+        ament_prefix_path: Option<&str>,
+    ) -> Self {
+        Self {
+            explicit: package_paths
+                .into_iter()
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect(),
+            ros_paths: split_path_list(ros_package_path),
+            ament_prefixes: split_path_list(ament_prefix_path),
+            cache: Arc::default(),
+        }
+    }
+
+    /// Same, reading the two environment variables from the process environment.
+    pub fn from_env(package_paths: Vec<PathBuf>) -> Self {
+        let ros = std::env::var("ROS_PACKAGE_PATH").ok();
+        let ament = std::env::var("AMENT_PREFIX_PATH").ok();
+        Self::new(package_paths, ros.as_deref(), ament.as_deref())
+    }
+
+    /// Resolve a URI as it appears in a `<mesh filename="...">` (or any
+    /// resource attribute), for a URDF living in `urdf_dir`.
+    pub fn resolve(&self, uri: &str, urdf_dir: &Path) -> Resolution {
+        let uri = uri.trim();
+        if uri.is_empty() {
+            return Resolution::Unsupported("the URI is empty".to_string());
+        }
+        let Some((scheme, rest)) = split_scheme(uri) else {
+            return resolve_file(absolute_or_relative(Path::new(uri), urdf_dir));
+        };
+        if scheme.eq_ignore_ascii_case("package") {
+            self.resolve_package(rest, urdf_dir)
+        } else if scheme.eq_ignore_ascii_case("file") {
+            resolve_file_uri(rest, urdf_dir)
+        } else {
+            Resolution::Unsupported(format!("URI scheme '{scheme}' cannot be resolved offline"))
+        }
+    }
+
+    /// Resolve just a package name to its directory (used by xacro
+    /// `$(find pkg)`), with the same search order as [`Self::resolve`];
+    /// None when not found.
+    pub fn find_package(&self, package: &str, start_dir: &Path) -> Option<PathBuf> {
+        self.find_package_searched(package, start_dir).0
+    }
+
+    /// Like [`Self::find_package`], also returning every candidate package
+    /// directory tried, in order and without duplicates.
+    pub fn find_package_searched(
+        &self,
+        package: &str,
+        start_dir: &Path,
+    ) -> (Option<PathBuf>, Vec<PathBuf>) {
+        let mut searched = Vec::new();
+        if !valid_package_name(package) {
+            return (None, searched);
+        }
+        for root in self.package_roots(package, start_dir) {
+            if searched.contains(&root) {
+                continue;
+            }
+            let found = root.is_dir();
+            searched.push(root.clone());
+            if found {
+                return (Some(root), searched);
+            }
+        }
+        (None, searched)
+    }
+
+    /// Resolve the part of a `package://` URI after the scheme.
+    fn resolve_package(&self, rest: &str, urdf_dir: &Path) -> Resolution {
+        let (package, file) = rest.split_once('/').unwrap_or((rest, ""));
+        if package.is_empty() {
+            return Resolution::Unsupported("package:// URI has no package name".to_string());
+        }
+        if !valid_package_name(package) {
+            return Resolution::Unsupported(format!("'{package}' is not a valid package name"));
+        }
+        let file = file.trim_start_matches('/');
+        if file.is_empty() {
+            return Resolution::Unsupported(format!(
+                "package://{package} URI names no file inside the package"
+            ));
+        }
+        let mut searched = Vec::new();
+        for root in self.package_roots(package, urdf_dir) {
+            let candidate = root.join(file);
+            if searched.contains(&candidate) {
+                continue;
+            }
+            if candidate.is_file() {
+                return Resolution::Found(candidate);
+            }
+            searched.push(candidate);
+        }
+        Resolution::NotFound { searched }
+    }
+
+    /// All candidate roots for `package`, in search order: the cached
+    /// environment-based roots followed by the walk-up roots from `start_dir`.
+    fn package_roots(&self, package: &str, start_dir: &Path) -> Vec<PathBuf> {
+        let mut roots = self.configured_roots(package);
+        roots.extend(walk_up_roots(package, start_dir));
+        roots
+    }
+
+    /// Roots from (a) explicit paths, (b) `ROS_PACKAGE_PATH`,
+    /// (c) `AMENT_PREFIX_PATH`; cached per package name.
+    fn configured_roots(&self, package: &str) -> Vec<PathBuf> {
+        if let Some(roots) = self.lock_cache().get(package) {
+            return roots.clone();
+        }
+        let mut roots = Vec::new();
+        for dir in &self.explicit {
+            push_unique(&mut roots, dir.join(package));
+            if dir_basename_is(dir, package) || package_xml_name(dir).as_deref() == Some(package) {
+                push_unique(&mut roots, dir.clone());
+            }
+        }
+        for entry in &self.ros_paths {
+            if dir_basename_is(entry, package) && has_package_xml(entry) {
+                push_unique(&mut roots, entry.clone());
+            }
+            let direct = entry.join(package);
+            if has_package_xml(&direct) {
+                push_unique(&mut roots, direct);
+            }
+            let mut found = Vec::new();
+            search_ros_tree(entry, package, ROS_SEARCH_DEPTH, &mut found);
+            for dir in found {
+                push_unique(&mut roots, dir);
+            }
+        }
+        for prefix in &self.ament_prefixes {
+            push_unique(&mut roots, prefix.join("share").join(package));
+        }
+        self.lock_cache().insert(package.to_string(), roots.clone());
+        roots
+    }
+
+    /// Lock the cache, recovering from a poisoned mutex (the map is always
+    /// left consistent).
+    fn lock_cache(&self) -> std::sync::MutexGuard<'_, HashMap<String, Vec<PathBuf>>> {
+        self.cache.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// Split `scheme://rest`; None when `uri` has no valid URI scheme.
+fn split_scheme(uri: &str) -> Option<(&str, &str)> {
+    let (scheme, rest) = uri.split_once("://")?;
+    let mut chars = scheme.chars();
+    let first_ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic());
+    let rest_ok = chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
+    (first_ok && rest_ok).then_some((scheme, rest))
+}
+
+/// Resolve the part of a `file://` URI after the scheme.
+fn resolve_file_uri(rest: &str, urdf_dir: &Path) -> Resolution {
+    let rest = match rest.strip_prefix("localhost") {
+        Some(path) if path.starts_with('/') => path,
+        _ => rest,
+    };
+    if rest.is_empty() {
+        return Resolution::Unsupported("file:// URI has no path".to_string());
+    }
+    let decoded = percent_decode(rest);
+    resolve_file(absolute_or_relative(Path::new(&decoded), urdf_dir))
+}
+
+/// `path` as is when absolute, otherwise joined onto `base`.
+fn absolute_or_relative(path: &Path, base: &Path) -> PathBuf {
+    if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        base.join(path)
+    }
+}
+
+/// Found when `path` is an existing file, otherwise NotFound listing it.
+fn resolve_file(path: PathBuf) -> Resolution {
+    if path.is_file() {
+        Resolution::Found(path)
+    } else {
+        Resolution::NotFound {
+            searched: vec![path],
+        }
+    }
+}
+
+/// Decode `%XX` escapes; malformed escapes are kept literally.
+fn percent_decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hi = bytes.get(i + 1).and_then(|b| (*b as char).to_digit(16));
+            let lo = bytes.get(i + 2).and_then(|b| (*b as char).to_digit(16));
+            if let (Some(hi), Some(lo)) = (hi, lo) {
+                // Two hex digits always fit in a byte.
+                out.push((hi * 16 + lo) as u8);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(bytes[i]);
+        i += 1;
+    }
+    String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
+/// Split a `PATH`-style list, dropping empty entries.
+fn split_path_list(value: Option<&str>) -> Vec<PathBuf> {
+    value
+        .map(|v| {
+            std::env::split_paths(v)
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// A package name usable as a single path component.
+fn valid_package_name(name: &str) -> bool {
+    !name.is_empty() && name != "." && name != ".." && !name.contains(['/', '\\', '\0'])
+}
+
+fn push_unique(list: &mut Vec<PathBuf>, path: PathBuf) {
+    if !list.contains(&path) {
+        list.push(path);
+    }
+}
+
+fn has_package_xml(dir: &Path) -> bool {
+    dir.join("package.xml").is_file()
+}
+
+/// Whether the last component of `dir` (made absolute, so `.` works) is `name`.
+fn dir_basename_is(dir: &Path, name: &str) -> bool {
+    let abs = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+    normalize_lexically(&abs)
+        .file_name()
+        .is_some_and(|n| n == name)
+}
+
+/// The `<name>` declared in `dir/package.xml`, if readable.
+fn package_xml_name(dir: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(dir.join("package.xml")).ok()?;
+    let text = strip_xml_comments(&text);
+    let mut rest = text.as_str();
+    while let Some(pos) = rest.find("<name") {
+        rest = &rest[pos + "<name".len()..];
+        let opens_tag = rest
+            .chars()
+            .next()
+            .is_some_and(|c| c == '>' || c.is_whitespace());
+        if !opens_tag {
+            continue;
+        }
+        let body = &rest[rest.find('>')? + 1..];
+        let end = body.find("</name")?;
+        return Some(body[..end].trim().to_string());
+    }
+    None
+}
+
+fn strip_xml_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find("<!--") {
+        out.push_str(&rest[..start]);
+        match rest[start..].find("-->") {
+            Some(end) => rest = &rest[start + end + "-->".len()..],
+            None => return out,
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Recursively collect packages named `package` below `dir` (ROS 1 crawl):
+/// hidden directories are skipped and package directories are not descended
+/// into. A package matches by folder name or by its `package.xml` `<name>`.
+fn search_ros_tree(dir: &Path, package: &str, depth: usize, found: &mut Vec<PathBuf>) {
+    if depth == 0 {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut children: Vec<PathBuf> = entries
+        .filter_map(Result::ok)
+        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
+        .map(|e| e.path())
+        .filter(|p| p.is_dir())
+        .collect();
+    children.sort();
+    for child in children {
+        if has_package_xml(&child) {
+            let matches = child.file_name().is_some_and(|n| n == package)
+                || package_xml_name(&child).as_deref() == Some(package);
+            if matches {
+                found.push(child);
+            }
+        } else {
+            search_ros_tree(&child, package, depth - 1, found);
+        }
+    }
+}
+
+/// Package roots found by walking up from `start_dir`: `A/package` holding a
+/// `package.xml`, and `A` itself when named `package` with a `package.xml`.
+fn walk_up_roots(package: &str, start_dir: &Path) -> Vec<PathBuf> {
+    let start = if start_dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        start_dir
+    };
+    let abs = std::path::absolute(start).unwrap_or_else(|_| start.to_path_buf());
+    let base = normalize_lexically(&abs);
+    let mut roots = Vec::new();
+    for ancestor in base.ancestors().take(MAX_WALK_UP) {
+        if ancestor.as_os_str().is_empty() {
+            break;
+        }
+        let child = ancestor.join(package);
+        if has_package_xml(&child) {
+            push_unique(&mut roots, child);
+        }
+        if ancestor.file_name().is_some_and(|n| n == package) && has_package_xml(ancestor) {
+            push_unique(&mut roots, ancestor.to_path_buf());
+        }
+    }
+    roots
+}
+
+/// Drop `.` components and fold `..` lexically (no symlink resolution).
+fn normalize_lexically(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for component in path.components() {
+        match component {
+            Component::CurDir => {}
+            Component::ParentDir => match out.components().next_back() {
+                Some(Component::Normal(_)) => {
+                    out.pop();
+                }
+                Some(Component::RootDir | Component::Prefix(_)) => {}
+                _ => out.push(".."),
+            },
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fs;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+
+    /// A unique temporary directory removed on drop.
+    struct TempTree(PathBuf);
+
+    impl TempTree {
+        fn new() -> Self {
+            let n = COUNTER.fetch_add(1, Ordering::SeqCst);
+            let dir = std::env::temp_dir().join(format!(
+                "urdf_resolve_test_{}_{}",
+                std::process::id(),
+                n
+            ));
+            let _ = fs::remove_dir_all(&dir);
+            fs::create_dir_all(&dir).unwrap();
+            TempTree(dir)
+        }
+
+        fn path(&self, rel: &str) -> PathBuf {
+            self.0.join(rel)
+        }
+
+        /// Create a file (and its parents) with some content.
+        fn file(&self, rel: &str) -> PathBuf {
+            let p = self.path(rel);
+            fs::create_dir_all(p.parent().unwrap()).unwrap();
+            fs::write(&p, "x").unwrap();
+            p
+        }
+
+        /// Create `rel/package.xml` declaring `name`.
+        fn package(&self, rel: &str, name: &str) -> PathBuf {
+            let dir = self.path(rel);
+            fs::create_dir_all(&dir).unwrap();
+            fs::write(
+                dir.join("package.xml"),
+                format!(
+                    "<?xml version=\"1.0\"?>\n<!-- <name>wrong</name> -->\n\
+                     <package format=\"2\">\n  <name>{name}</name>\n</package>\n"
+                ),
+            )
+            .unwrap();
+            dir
+        }
+
+        fn dir(&self, rel: &str) -> PathBuf {
+            let p = self.path(rel);
+            fs::create_dir_all(&p).unwrap();
+            p
+        }
+    }
+
+    impl Drop for TempTree {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    fn empty_resolver() -> PackageResolver {
+        PackageResolver::new(Vec::new(), None, None)
+    }
+
+    #[test]
+    fn explicit_path_without_package_xml() {
+        let t = TempTree::new();
+        let mesh = t.file("vendor/my_pkg/meshes/a.stl");
+        let urdf_dir = t.dir("elsewhere");
+        let r = PackageResolver::new(vec![t.path("vendor")], None, None);
+        assert_eq!(
+            r.resolve("package://my_pkg/meshes/a.stl", &urdf_dir),
+            Resolution::Found(mesh)
+        );
+        assert_eq!(
+            r.find_package("my_pkg", &urdf_dir),
+            Some(t.path("vendor/my_pkg"))
+        );
+    }
+
+    #[test]
+    fn explicit_path_is_the_package_itself() {
+        let t = TempTree::new();
+        // Folder name differs from the declared package name.
+        t.package("checkout", "real_name");
+        let mesh = t.file("checkout/meshes/a.stl");
+        let r = PackageResolver::new(vec![t.path("checkout")], None, None);
+        assert_eq!(
+            r.resolve("package://real_name/meshes/a.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+        // By basename, even without package.xml.
+        let mesh2 = t.file("bare_pkg/m.dae");
+        let r = PackageResolver::new(vec![t.path("bare_pkg")], None, None);
+        assert_eq!(
+            r.resolve("package://bare_pkg/m.dae", &t.dir("x")),
+            Resolution::Found(mesh2)
+        );
+    }
+
+    #[test]
+    fn ros_package_path_direct_and_recursive() {
+        let t = TempTree::new();
+        t.package("ws/src/direct_pkg", "direct_pkg");
+        let direct = t.file("ws/src/direct_pkg/meshes/d.stl");
+        t.package("ws/src/group/sub/deep_pkg", "deep_pkg");
+        let deep = t.file("ws/src/group/sub/deep_pkg/meshes/e.stl");
+        // Hidden directories are skipped.
+        t.package("ws/src/.hidden/hidden_pkg", "hidden_pkg");
+        t.file("ws/src/.hidden/hidden_pkg/h.stl");
+        // Too deep (depth 5 below the entry).
+        t.package("ws/src/a/b/c/d/too_deep", "too_deep");
+        t.file("ws/src/a/b/c/d/too_deep/t.stl");
+
+        let entry = t.path("ws/src");
+        let rpp = format!("{}:{}", t.path("nonexistent").display(), entry.display());
+        let r = PackageResolver::new(Vec::new(), Some(&rpp), None);
+        let urdf_dir = t.dir("other");
+        assert_eq!(
+            r.resolve("package://direct_pkg/meshes/d.stl", &urdf_dir),
+            Resolution::Found(direct)
+        );
+        assert_eq!(
+            r.resolve("package://deep_pkg/meshes/e.stl", &urdf_dir),
+            Resolution::Found(deep)
+        );
+        // Cached second lookup gives the same answer.
+        assert_eq!(
+            r.find_package("deep_pkg", &urdf_dir),
+            Some(t.path("ws/src/group/sub/deep_pkg"))
+        );
+        assert_eq!(
+            r.resolve("package://hidden_pkg/h.stl", &urdf_dir),
+            Resolution::NotFound { searched: vec![] }
+        );
+        assert_eq!(
+            r.resolve("package://too_deep/t.stl", &urdf_dir),
+            Resolution::NotFound { searched: vec![] }
+        );
+    }
+
+    #[test]
+    fn ros_package_path_entry_is_the_package() {
+        let t = TempTree::new();
+        let pkg = t.package("solo_pkg", "solo_pkg");
+        let mesh = t.file("solo_pkg/m.stl");
+        let rpp = pkg.display().to_string();
+        let r = PackageResolver::new(Vec::new(), Some(&rpp), None);
+        assert_eq!(
+            r.resolve("package://solo_pkg/m.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn ament_prefix_path() {
+        let t = TempTree::new();
+        let mesh = t.file("install/share/amt_pkg/meshes/m.stl");
+        let app = format!("{}:", t.path("install").display());
+        let r = PackageResolver::new(Vec::new(), None, Some(&app));
+        assert_eq!(
+            r.resolve("package://amt_pkg/meshes/m.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn walk_up_finds_sibling_package() {
+        let t = TempTree::new();
+        t.package("repo/robot_description", "robot_description");
+        let mesh = t.file("repo/robot_description/meshes/base.stl");
+        let urdf_dir = t.dir("repo/robot_bringup/urdf/deeper");
+        assert_eq!(
+            empty_resolver().resolve("package://robot_description/meshes/base.stl", &urdf_dir),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn walk_up_finds_enclosing_package() {
+        let t = TempTree::new();
+        t.package("my_robot", "my_robot");
+        let mesh = t.file("my_robot/meshes/base.stl");
+        let urdf_dir = t.dir("my_robot/urdf");
+        assert_eq!(
+            empty_resolver().resolve("package://my_robot/meshes/base.stl", &urdf_dir),
+            Resolution::Found(mesh)
+        );
+        // `..` in urdf_dir does not break the walk.
+        let dotted = urdf_dir.join("../urdf");
+        assert_eq!(
+            empty_resolver().find_package("my_robot", &dotted),
+            Some(t.path("my_robot"))
+        );
+    }
+
+    #[test]
+    fn package_found_but_file_missing_lists_all_candidates() {
+        let t = TempTree::new();
+        t.file("vendor/pkg_m/other.stl");
+        t.package("repo/pkg_m", "pkg_m");
+        let urdf_dir = t.dir("repo/urdf");
+        let r = PackageResolver::new(
+            vec![t.path("vendor")],
+            None,
+            Some(&t.path("prefix").display().to_string()),
+        );
+        let got = r.resolve("package://pkg_m/meshes/missing.stl", &urdf_dir);
+        let walk_candidate = std::path::absolute(t.path("repo/pkg_m/meshes/missing.stl")).unwrap();
+        assert_eq!(
+            got,
+            Resolution::NotFound {
+                searched: vec![
+                    t.path("vendor/pkg_m/meshes/missing.stl"),
+                    t.path("prefix/share/pkg_m/meshes/missing.stl"),
+                    walk_candidate,
+                ]
+            }
+        );
+    }
+
+    #[test]
+    fn later_copy_of_package_has_the_file() {
+        let t = TempTree::new();
+        t.file("first/pkg_c/meshes/unrelated.stl");
+        let mesh = t.file("second/pkg_c/meshes/m.stl");
+        let r = PackageResolver::new(vec![t.path("first"), t.path("second")], None, None);
+        assert_eq!(
+            r.resolve("package://pkg_c/meshes/m.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn explicit_path_wins_over_walk_up() {
+        let t = TempTree::new();
+        t.package("repo/ord_pkg", "ord_pkg");
+        t.file("repo/ord_pkg/m.stl");
+        let explicit = t.file("vendor/ord_pkg/m.stl");
+        let urdf_dir = t.dir("repo/urdf");
+        let r = PackageResolver::new(vec![t.path("vendor")], None, None);
+        assert_eq!(
+            r.resolve("package://ord_pkg/m.stl", &urdf_dir),
+            Resolution::Found(explicit)
+        );
+    }
+
+    #[test]
+    fn file_uri_absolute_and_percent_decoded() {
+        let t = TempTree::new();
+        let mesh = t.file("with space/m.stl");
+        let uri = format!("file://{}", mesh.display()).replace(' ', "%20");
+        assert_eq!(
+            empty_resolver().resolve(&uri, &t.dir("x")),
+            Resolution::Found(mesh.clone())
+        );
+        let localhost = format!("file://localhost{}", mesh.display());
+        assert_eq!(
+            empty_resolver().resolve(&localhost, &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn file_uri_relative() {
+        let t = TempTree::new();
+        let mesh = t.file("urdf/meshes/m.stl");
+        assert_eq!(
+            empty_resolver().resolve("file://meshes/m.stl", &t.path("urdf")),
+            Resolution::Found(t.path("urdf").join("meshes/m.stl"))
+        );
+        assert!(mesh.is_file());
+    }
+
+    #[test]
+    fn bare_relative_and_absolute_paths() {
+        let t = TempTree::new();
+        t.file("robot/meshes/m.stl");
+        let urdf_dir = t.dir("robot/urdf");
+        assert_eq!(
+            empty_resolver().resolve("../meshes/m.stl", &urdf_dir),
+            Resolution::Found(urdf_dir.join("../meshes/m.stl"))
+        );
+        let abs = t.path("robot/meshes/m.stl");
+        assert_eq!(
+            empty_resolver().resolve(&abs.display().to_string(), &t.dir("x")),
+            Resolution::Found(abs)
+        );
+        assert_eq!(
+            empty_resolver().resolve("meshes/none.stl", &urdf_dir),
+            Resolution::NotFound {
+                searched: vec![urdf_dir.join("meshes/none.stl")]
+            }
+        );
+    }
+
+    #[test]
+    fn remote_schemes_are_unsupported() {
+        let r = empty_resolver();
+        let dir = Path::new("/nonexistent");
+        for (uri, scheme) in [
+            ("http://example.com/m.stl", "http"),
+            ("https://example.com/m.stl", "https"),
+            ("model://robot/meshes/m.stl", "model"),
+        ] {
+            assert_eq!(
+                r.resolve(uri, dir),
+                Resolution::Unsupported(format!(
+                    "URI scheme '{scheme}' cannot be resolved offline"
+                ))
+            );
+        }
+    }
+
+    #[test]
+    fn malformed_and_odd_inputs_do_not_panic() {
+        let r = PackageResolver::new(vec![PathBuf::from("")], Some("::"), Some(":"));
+        let dir = Path::new("");
+        for uri in [
+            "package://",
+            "package:///x",
+            "package://../etc",
+            "package://pkg",
+            "package://pkg/",
+        ] {
+            assert!(
+                matches!(r.resolve(uri, dir), Resolution::Unsupported(_)),
+                "{uri}"
+            );
+        }
+        assert!(matches!(r.resolve("", dir), Resolution::Unsupported(_)));
+        assert!(matches!(r.resolve("   ", dir), Resolution::Unsupported(_)));
+        assert!(matches!(
+            r.resolve("file://", dir),
+            Resolution::Unsupported(_)
+        ));
+        for uri in [
+            "package://pkg//abs/../../x.stl",
+            "package://ünï/çødé/🤖.stl",
+            "file:///%zz%4",
+            "file:///%ff%fe",
+            "://x",
+            "1abc://x",
+            "../../../../..",
+            "\0",
+            "%",
+        ] {
+            let _ = r.resolve(uri, dir);
+            let _ = r.resolve(uri, Path::new("/"));
+        }
+        assert_eq!(r.find_package("", dir), None);
+        assert_eq!(r.find_package("..", dir), None);
+    }
+
+    #[test]
+    fn double_slash_after_package_does_not_escape() {
+        let t = TempTree::new();
+        let mesh = t.file("vendor/pkg_s/meshes/m.stl");
+        let r = PackageResolver::new(vec![t.path("vendor")], None, None);
+        assert_eq!(
+            r.resolve("package://pkg_s//meshes/m.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+    }
+
+    #[test]
+    fn resolver_is_send_sync_clone() {
+        fn check<T: Send + Sync + Clone>() {}
+        check::<PackageResolver>();
+    }
+
+    #[test]
+    fn real_turtlebot3_data() {
+        let relative = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/robots");
+        let robots = [relative, PathBuf::from("/work/shared/robots")]
+            .into_iter()
+            .find(|p| p.is_dir());
+        let Some(robots) = robots else {
+            eprintln!("skipping: ../shared/robots is absent");
+            return;
+        };
+        let urdf_dir = robots.join("turtlebot3/turtlebot3_description/urdf");
+        let got = empty_resolver().resolve(
+            "package://turtlebot3_description/meshes/bases/burger_base.stl",
+            &urdf_dir,
+        );
+        match got {
+            Resolution::Found(p) => assert!(p.ends_with("meshes/bases/burger_base.stl")),
+            other => panic!("expected Found, got {other:?}"),
+        }
+    }
+}

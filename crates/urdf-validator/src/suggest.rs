@@ -1,0 +1,63 @@
+//! "Did you mean" suggestions for misspelt names.
+
+/// Edit distance between two strings (Levenshtein, by characters).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (diagonal + usize::from(ca != cb))
+                .min(above + 1)
+                .min(row[j] + 1);
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+/// Up to three names closest to `wanted`, closest first, within a distance that scales with its length.
+pub fn closest<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let limit = (wanted.chars().count() / 3).max(2);
+    let mut scored: Vec<(usize, &str)> = candidates
+        .map(|c| (edit_distance(wanted, c), c))
+        .filter(|&(d, c)| d <= limit || c.contains(wanted) || wanted.contains(c))
+        .collect();
+    scored.sort();
+    scored.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+/// A help sentence: "did you mean 'a' or 'b'?", or a plain note when nothing is close.
+pub fn did_you_mean<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> String {
+    let names = closest(wanted, candidates);
+    match names.as_slice() {
+        [] => "no similarly named item exists".to_string(),
+        [one] => format!("did you mean '{one}'?"),
+        many => {
+            let quoted: Vec<String> = many.iter().map(|n| format!("'{n}'")).collect();
+            format!("did you mean one of {}?", quoted.join(", "))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_and_suggestions() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let names = ["base_link", "arm_link_1", "arm_link_2", "gripper"];
+        assert_eq!(
+            closest("base_lnk", names.iter().copied()),
+            vec!["base_link"]
+        );
+        assert_eq!(
+            did_you_mean("zzzzzz", names.iter().copied()),
+            "no similarly named item exists"
+        );
+    }
+}
