@@ -1,1 +1,153 @@
-fn main() {}
+//! `urdf_validate`: validate URDF files, write one JSON report each, exit 0 / 1 / 2.
+
+mod args;
+mod inputs;
+mod outputs;
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use clap::Parser;
+use rayon::prelude::*;
+use urdf_validator::render::{render_text, TextOptions};
+use urdf_validator::resolve::PackageResolver;
+use urdf_validator::{rules, Options};
+
+use args::{Args, ColorChoice, Format};
+use outputs::Outcome;
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match args.color {
+        ColorChoice::Auto => {}
+        ColorChoice::Always => anstream::ColorChoice::Always.write_global(),
+        ColorChoice::Never => anstream::ColorChoice::Never.write_global(),
+    }
+    ExitCode::from(run(args))
+}
+
+fn run(args: Args) -> u8 {
+    if let Some(code) = &args.explain {
+        return explain(code);
+    }
+    if args.list_rules {
+        for rule in rules::ALL {
+            println!(
+                "{}  {:<32} {:<8} {}",
+                rule.code,
+                rule.name,
+                rule.severity.label(),
+                rule.what
+            );
+        }
+        return 0;
+    }
+    if args.list_rules_markdown {
+        print!("{}", rules::reference_markdown());
+        return 0;
+    }
+    if args.json_schema {
+        print!("{}", urdf_validator::report::json_schema());
+        return 0;
+    }
+    if args.inputs.is_empty() {
+        eprintln!(
+            "error: no input given (expected one or more URDF files or directories; see --help)"
+        );
+        return 2;
+    }
+    if let Some(jobs) = args.jobs {
+        // Only fails when a global pool already exists, which cannot happen this early.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build_global();
+    }
+    let (files, input_errors) = inputs::expand(&args.inputs);
+    let options = Options {
+        resolver: PackageResolver::from_env(args.package_path.clone()),
+    };
+    let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
+    let outcomes: Vec<Outcome> = files
+        .par_iter()
+        .zip(report_paths.par_iter())
+        .map(|(file, report_path)| {
+            outputs::validate_one(file, report_path.as_deref(), &options, args.no_write)
+        })
+        .collect();
+    print_outcomes(&args, &outcomes, &input_errors);
+    let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
+    if input_errors.is_empty() {
+        worst
+    } else {
+        2
+    }
+}
+
+fn explain(code: &str) -> u8 {
+    match rules::find(code) {
+        Some(rule) => {
+            print!("{}", rules::explain(rule));
+            0
+        }
+        None => {
+            let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
+            eprintln!(
+                "error: no rule '{code}' ({}); `urdf_validate --list-rules` lists them all",
+                urdf_validator::suggest::did_you_mean(code, names)
+            );
+            2
+        }
+    }
+}
+
+fn print_outcomes(args: &Args, outcomes: &[Outcome], input_errors: &[String]) {
+    let mut stdout = anstream::stdout().lock();
+    let mut stderr = anstream::stderr().lock();
+    for error in input_errors {
+        let _ = writeln!(stderr, "error: {error}");
+    }
+    match args.format {
+        Format::Json => {
+            let reports: Vec<&urdf_validator::report::Report> = outcomes
+                .iter()
+                .filter_map(|o| o.validation.as_ref().ok())
+                .map(|v| &v.report)
+                .collect();
+            let text = match reports.as_slice() {
+                [one] if args.inputs.len() == 1 && outcomes.len() == 1 => {
+                    serde_json::to_string_pretty(one)
+                }
+                many => serde_json::to_string_pretty(many),
+            };
+            let _ = writeln!(stdout, "{}", text.unwrap_or_default());
+            for outcome in outcomes {
+                if let Err(error) = &outcome.validation {
+                    let _ = writeln!(stderr, "error: {error}");
+                }
+            }
+        }
+        Format::Text => {
+            for outcome in outcomes {
+                match &outcome.validation {
+                    Ok(validation) if !args.quiet => {
+                        let options = TextOptions {
+                            verbose: args.verbose,
+                            report_path: outcome.written.clone(),
+                        };
+                        let _ = write!(stdout, "{}", render_text(validation, &options));
+                    }
+                    Ok(_) => {}
+                    Err(error) => {
+                        let _ = writeln!(stderr, "error: {error}");
+                    }
+                }
+                if let Some(error) = &outcome.write_error {
+                    let _ = writeln!(stderr, "error: {error}");
+                }
+            }
+            if outcomes.len() > 1 || args.quiet {
+                let _ = write!(stdout, "{}", outputs::summary_table(outcomes));
+            }
+        }
+    }
+}

@@ -16,6 +16,7 @@ pub mod finding;
 pub mod link_physics;
 pub mod model;
 pub mod parse;
+pub mod render;
 pub mod report;
 pub mod resolve;
 pub mod robot;

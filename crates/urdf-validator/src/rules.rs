@@ -236,8 +236,8 @@ rules! {
         fix: "Add a `<collision>` (a simplified shape or convex mesh) if the part can touch anything.",
     }
     INVALID_GEOMETRY_SIZE = "U503" "invalid-geometry-size" Warn {
-        what: "A box size, cylinder or sphere dimension, or mesh scale is zero or negative.",
-        why: "Degenerate shapes break collision detection; negative scales mirror meshes inside out.",
+        what: "A box size, cylinder or sphere dimension is zero or negative, or a mesh scale has a zero component.",
+        why: "Degenerate shapes break collision detection and mass estimates. (Negative mesh scales, the usual way to mirror a part, are accepted.)",
         fix: "Use positive dimensions in metres.",
     }
 }

@@ -105,7 +105,8 @@ fn check_tensor(inertia: &Inertia, owner: &str, moving_with_mass: bool) -> Optio
             &rules::INERTIA_NOT_POSITIVE_DEFINITE,
             inertia.span,
             format!(
-                "{owner} has non-positive-definite inertia tensor (min eigenvalue: {a:.6}) — physically impossible"
+                "{owner} has non-positive-definite inertia tensor (min eigenvalue: {}) — physically impossible",
+                short_number(a)
             ),
         ));
     }
@@ -120,6 +121,15 @@ fn check_tensor(inertia: &Inertia, owner: &str, moving_with_mass: bool) -> Optio
             ),
         )
     })
+}
+
+/// Six decimals for ordinary values and exact zero; scientific notation for tiny non-zero ones.
+fn short_number(value: f64) -> String {
+    if value == 0.0 || value.abs() >= 1e-4 {
+        format!("{value:.6}")
+    } else {
+        format!("{value:.3e}")
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,166 @@
+//! Running one file, writing its report, and the summary table of a batch.
+
+use std::collections::HashMap;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+use urdf_validator::parse::LoadError;
+use urdf_validator::report::Status;
+use urdf_validator::{validate, Options, Validation};
+
+/// What happened to one input.
+pub struct Outcome {
+    /// The input.
+    pub file: PathBuf,
+    /// The validation, or why the file could not be loaded.
+    pub validation: Result<Validation, LoadError>,
+    /// Where the JSON report was written.
+    pub written: Option<String>,
+    /// Why the JSON report could not be written.
+    pub write_error: Option<String>,
+}
+
+impl Outcome {
+    /// 0 PASS, 1 WARN, 2 FAIL / UNKNOWN / unreadable / report not written.
+    pub fn exit_code(&self) -> u8 {
+        match (&self.validation, &self.write_error) {
+            (Ok(v), None) => v.report.overall_status.exit_code() as u8,
+            _ => 2,
+        }
+    }
+}
+
+/// `robot.urdf` → `robot`, `robot.urdf.xacro` → `robot`.
+fn stem(file: &Path) -> String {
+    let name = file
+        .file_name()
+        .map_or_else(|| "robot".to_string(), |n| n.to_string_lossy().into_owned());
+    let name = name.strip_suffix(".xacro").unwrap_or(&name);
+    let name = name.strip_suffix(".urdf").unwrap_or(name);
+    name.to_string()
+}
+
+/// The report path of each file: `<stem>_validation.json` beside it or in `output_dir`. Two inputs that
+/// would share a report file in `output_dir` get `_2`, `_3`, ... in input order.
+pub fn report_paths(files: &[PathBuf], output_dir: Option<&Path>) -> Vec<Option<PathBuf>> {
+    let mut used: HashMap<PathBuf, usize> = HashMap::new();
+    files
+        .iter()
+        .map(|file| {
+            let dir = output_dir
+                .map(Path::to_path_buf)
+                .unwrap_or_else(|| file.parent().unwrap_or(Path::new("")).to_path_buf());
+            let base = stem(file);
+            let count = used.entry(dir.join(&base)).or_insert(0);
+            *count += 1;
+            let name = if *count == 1 {
+                format!("{base}_validation.json")
+            } else {
+                format!("{base}_{count}_validation.json")
+            };
+            Some(dir.join(name))
+        })
+        .collect()
+}
+
+/// Validate one file and write its report unless `no_write`.
+pub fn validate_one(
+    file: &Path,
+    report_path: Option<&Path>,
+    options: &Options,
+    no_write: bool,
+) -> Outcome {
+    let validation = validate(file, options);
+    let mut outcome = Outcome {
+        file: file.to_path_buf(),
+        validation,
+        written: None,
+        write_error: None,
+    };
+    if let (Ok(validation), Some(path), false) = (&outcome.validation, report_path, no_write) {
+        match write_report(validation, path) {
+            Ok(()) => outcome.written = Some(path.display().to_string()),
+            Err(error) => {
+                outcome.write_error =
+                    Some(format!("{}: cannot write report: {error}", path.display()))
+            }
+        }
+    }
+    outcome
+}
+
+fn write_report(validation: &Validation, path: &Path) -> std::io::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)?;
+    }
+    let json = serde_json::to_string_pretty(&validation.report).map_err(std::io::Error::other)?;
+    std::fs::write(path, json + "\n")
+}
+
+/// The table printed after a batch.
+pub fn summary_table(outcomes: &[Outcome]) -> String {
+    let mut out = String::new();
+    let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
+    let _ = writeln!(
+        out,
+        "\nSummary: {} file(s), exit code {worst}",
+        outcomes.len()
+    );
+    let _ = writeln!(
+        out,
+        "  {:<8} {:<7} {:>5} {:>5} {:>5}  FILE",
+        "STATUS", "CONF", "CRIT", "WARN", "INFO"
+    );
+    for outcome in outcomes {
+        let file = outcome.file.display();
+        match &outcome.validation {
+            Ok(v) => {
+                let r = &v.report;
+                let status = if outcome.write_error.is_some() {
+                    "ERROR"
+                } else {
+                    r.overall_status.label()
+                };
+                let _ = writeln!(
+                    out,
+                    "  {:<8} {:<7} {:>5} {:>5} {:>5}  {file}",
+                    status,
+                    r.confidence_level.label(),
+                    r.schema.critical_issues.len(),
+                    r.schema.warnings.len(),
+                    r.schema.infos.len()
+                );
+            }
+            Err(_) => {
+                let _ = writeln!(
+                    out,
+                    "  {:<8} {:<7} {:>5} {:>5} {:>5}  {file}",
+                    "ERROR", "-", "-", "-", "-"
+                );
+            }
+        }
+    }
+    let count = |s: Status| {
+        outcomes
+            .iter()
+            .filter(|o| {
+                o.validation
+                    .as_ref()
+                    .is_ok_and(|v| v.report.overall_status == s)
+            })
+            .count()
+    };
+    let errors = outcomes
+        .iter()
+        .filter(|o| o.validation.is_err() || o.write_error.is_some())
+        .count();
+    let _ = writeln!(
+        out,
+        "  {} PASS · {} WARN · {} FAIL · {} UNKNOWN · {errors} ERROR",
+        count(Status::Pass),
+        count(Status::Warn),
+        count(Status::Fail),
+        count(Status::Unknown)
+    );
+    out
+}

@@ -1,0 +1,262 @@
+//! Terminal view of a report: the spec's boxed layout, findings with rustc-style source snippets, similar
+//! notices grouped. Output carries ANSI styles; the caller's stream strips them when colour is off.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+use anstyle::{AnsiColor, Style};
+
+use crate::finding::Severity;
+use crate::report::{FindingReport, Report, Status};
+use crate::Validation;
+
+/// How much to show.
+#[derive(Clone, Debug, Default)]
+pub struct TextOptions {
+    /// List every finding, with a snippet for each CRITICAL and WARN.
+    pub verbose: bool,
+    /// Where the JSON report was written, for the closing line.
+    pub report_path: Option<String>,
+}
+
+/// Findings of one rule beyond this many are grouped into one line (unless verbose).
+const LIST_LIMIT_INFO: usize = 4;
+/// CRITICAL/WARN findings of one rule shown with a snippet before the rest are grouped (unless verbose).
+const LIST_LIMIT_PROBLEMS: usize = 12;
+
+const BOLD: Style = Style::new().bold();
+const DIM: Style = Style::new().dimmed();
+const GREEN: Style = AnsiColor::Green.on_default().bold();
+const YELLOW: Style = AnsiColor::Yellow.on_default().bold();
+const RED: Style = AnsiColor::Red.on_default().bold();
+const BLUE: Style = AnsiColor::Blue.on_default().bold();
+const CYAN: Style = AnsiColor::Cyan.on_default();
+
+fn paint(style: Style, text: &str) -> String {
+    format!("{style}{text}{style:#}")
+}
+
+fn status_style(status: Status) -> Style {
+    match status {
+        Status::Pass => GREEN,
+        Status::Warn => YELLOW,
+        Status::Fail | Status::Unknown => RED,
+        Status::NotApplicable => DIM,
+    }
+}
+
+fn severity_style(severity: Severity) -> Style {
+    match severity {
+        Severity::Critical => RED,
+        Severity::Warn => YELLOW,
+        Severity::Info => BLUE,
+    }
+}
+
+/// The full text of one validation.
+pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
+    let report = &validation.report;
+    let mut out = String::new();
+    header(&mut out, report);
+    schema_section(&mut out, validation, options);
+    physics_line(&mut out, report);
+    let overall = report.overall_status;
+    let _ = writeln!(
+        out,
+        "{}  {}  confidence: {}",
+        paint(BOLD, "[OVERALL]"),
+        paint(status_style(overall), overall.label()),
+        report.confidence_level.label()
+    );
+    if let Some(path) = &options.report_path {
+        let _ = writeln!(out, "Full report: {path}");
+    }
+    out
+}
+
+fn header(out: &mut String, report: &Report) {
+    let name = std::path::Path::new(&report.urdf_path)
+        .file_name()
+        .map_or(report.urdf_path.clone(), |n| {
+            n.to_string_lossy().into_owned()
+        });
+    let title = format!("  urdf_validate — {name}");
+    let width = title.chars().count().max(52) + 2;
+    let _ = writeln!(out, "╔{}╗", "═".repeat(width));
+    let _ = writeln!(
+        out,
+        "║{title}{}║",
+        " ".repeat(width - title.chars().count())
+    );
+    let _ = writeln!(out, "╚{}╝", "═".repeat(width));
+}
+
+fn schema_section(out: &mut String, validation: &Validation, options: &TextOptions) {
+    let report = &validation.report;
+    let schema = &report.schema;
+    let problems = schema.critical_issues.len() + schema.warnings.len();
+    let total = problems + schema.infos.len();
+    let verdict = match schema.status {
+        Status::Pass if schema.infos.is_empty() => paint(GREEN, "✓ PASS"),
+        Status::Pass => format!("{} ({} infos)", paint(GREEN, "✓ PASS"), schema.infos.len()),
+        Status::Warn => format!("{} — {total} issues", paint(YELLOW, "⚠ WARN")),
+        _ => format!("{} — {total} issues", paint(RED, "✗ FAIL")),
+    };
+    let _ = writeln!(out, "{}  {verdict}", paint(BOLD, "[SCHEMA]"));
+
+    for severity in [Severity::Critical, Severity::Warn, Severity::Info] {
+        let mut grouped: Vec<String> = Vec::new();
+        let mut by_rule: BTreeMap<(&str, &str), Vec<&FindingReport>> = BTreeMap::new();
+        for finding in report.findings.iter().filter(|f| f.severity == severity) {
+            by_rule
+                .entry((finding.rule.as_str(), finding.name.as_str()))
+                .or_default()
+                .push(finding);
+        }
+        for ((_, name), findings) in by_rule {
+            let limit = match (options.verbose, severity) {
+                (true, _) => usize::MAX,
+                (false, Severity::Info) => LIST_LIMIT_INFO,
+                (false, _) => LIST_LIMIT_PROBLEMS,
+            };
+            let shown = if findings.len() > limit && severity == Severity::Info {
+                0
+            } else {
+                findings.len().min(limit)
+            };
+            for finding in &findings[..shown] {
+                finding_lines(
+                    out,
+                    validation,
+                    finding,
+                    severity != Severity::Info || options.verbose,
+                );
+            }
+            let rest = findings.len() - shown;
+            if rest > 0 {
+                let more = if shown > 0 { "more " } else { "" };
+                let noun = if name == "mesh-not-found" {
+                    "mesh resolution".to_string()
+                } else {
+                    name.to_string()
+                };
+                grouped.push(format!("{rest} {more}{noun} {}", plural(severity, rest)));
+            }
+        }
+        if !grouped.is_empty() {
+            let padded = format!("{:<11}", format!("[{}]", severity.label()));
+            let _ = writeln!(
+                out,
+                "  {}({} — --verbose lists all)",
+                paint(severity_style(severity), &padded),
+                grouped.join(" + ")
+            );
+        }
+    }
+}
+
+fn plural(severity: Severity, count: usize) -> &'static str {
+    match (severity, count) {
+        (Severity::Info, 1) => "notice",
+        (Severity::Info, _) => "notices",
+        (Severity::Warn, 1) => "warning",
+        (Severity::Warn, _) => "warnings",
+        (Severity::Critical, 1) => "error",
+        (Severity::Critical, _) => "errors",
+    }
+}
+
+fn finding_lines(
+    out: &mut String,
+    validation: &Validation,
+    finding: &FindingReport,
+    snippet: bool,
+) {
+    let label = format!("[{}]", finding.severity.label());
+    let padded = format!("{label:<11}");
+    let _ = writeln!(
+        out,
+        "  {}{}",
+        paint(severity_style(finding.severity), &padded),
+        finding.message
+    );
+    if !snippet {
+        return;
+    }
+    let (Some(file), Some(line), Some(column)) = (&finding.file, finding.line, finding.column)
+    else {
+        return;
+    };
+    let gutter = line.to_string().len();
+    let pad = " ".repeat(gutter);
+    let _ = writeln!(
+        out,
+        "  {pad}{} {file}:{line}:{column}  {}",
+        paint(CYAN, "-->"),
+        paint(DIM, &format!("{} {}", finding.rule, finding.name))
+    );
+    if let Some(text) = validation.source_line(file, line) {
+        let text = text.replace('\t', " ");
+        let start = (column as usize).saturating_sub(1);
+        let end = match (finding.end_line, finding.end_column) {
+            (Some(end_line), Some(end_column)) if end_line == line => {
+                (end_column as usize).saturating_sub(1)
+            }
+            _ => text.chars().count(),
+        };
+        let width = end.saturating_sub(start).clamp(1, 80);
+        let _ = writeln!(out, "  {pad} {}", paint(CYAN, "|"));
+        let _ = writeln!(
+            out,
+            "  {} {} {}",
+            paint(CYAN, &line.to_string()),
+            paint(CYAN, "|"),
+            truncate(&text, 160)
+        );
+        let _ = writeln!(
+            out,
+            "  {pad} {} {}{}",
+            paint(CYAN, "|"),
+            " ".repeat(start.min(160)),
+            paint(severity_style(finding.severity), &"^".repeat(width))
+        );
+    }
+    if let Some(help) = &finding.help {
+        let _ = writeln!(
+            out,
+            "  {pad} {} {}",
+            paint(CYAN, "="),
+            paint(BOLD, &format!("help: {help}"))
+        );
+    }
+}
+
+fn truncate(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        text.to_string()
+    } else {
+        text.chars().take(max).collect::<String>() + "…"
+    }
+}
+
+fn physics_line(out: &mut String, report: &Report) {
+    let p = &report.physics;
+    let frames = match p.frames {
+        0 => String::new(),
+        1 => " (1 frame)".to_string(),
+        n => format!(" ({n} frames)"),
+    };
+    let body = if p.links > 0 && p.mass_missing == 0 && p.inertia_missing == 0 && p.mass_exact > 0 {
+        format!(
+            "{} {} links{frames} — all mass & inertia declared",
+            paint(GREEN, "✓"),
+            p.links
+        )
+    } else {
+        format!(
+            "{} links{frames} — mass: {} exact, {} missing · inertia: {} exact, {} missing",
+            p.links, p.mass_exact, p.mass_missing, p.inertia_exact, p.inertia_missing
+        )
+    };
+    let _ = writeln!(out, "{}  {body}", paint(BOLD, "[PHYSICS]"));
+}
