@@ -1,0 +1,226 @@
+//! End-to-end tests of the `urdf_validate` binary: exit codes, files written, error lines, colour.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn temp_dir() -> PathBuf {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "urdf_validate_cli_{}_{}",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::SeqCst)
+    ));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(args)
+        .env_remove("NO_COLOR")
+        .env_remove("CLICOLOR_FORCE")
+        .output()
+        .expect("runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+const GOOD: &str = r#"<robot name="good">
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+  </link>
+</robot>
+"#;
+
+const WARNING: &str = r#"<robot name="warn">
+  <link name="base"/>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/></joint>
+  <link name="arm"/>
+</robot>
+"#;
+
+fn write(dir: &Path, name: &str, content: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, content).expect("write");
+    path
+}
+
+#[test]
+fn example_robot_passes() {
+    let out = temp_dir();
+    let example = repo_root().join("examples/robots/mobile_manipulator.urdf");
+    let result = run(&[
+        example.to_str().unwrap(),
+        "--output-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        result.status.code(),
+        Some(0),
+        "{}{}",
+        text(&result.stdout),
+        text(&result.stderr)
+    );
+    assert!(out.join("mobile_manipulator_validation.json").is_file());
+}
+
+#[test]
+fn exit_codes_follow_the_status_and_a_batch_takes_the_worst() {
+    let dir = temp_dir();
+    let good = write(&dir, "good.urdf", GOOD);
+    let warn = write(&dir, "warn.urdf", WARNING);
+    assert_eq!(
+        run(&[good.to_str().unwrap(), "--no-write"]).status.code(),
+        Some(0)
+    );
+    assert_eq!(
+        run(&[warn.to_str().unwrap(), "--no-write"]).status.code(),
+        Some(1)
+    );
+    let batch = run(&[dir.to_str().unwrap(), "--no-write"]);
+    assert_eq!(batch.status.code(), Some(1));
+    let stdout = text(&batch.stdout);
+    assert!(stdout.contains("Summary: 2 file(s)"), "{stdout}");
+    assert!(stdout.contains("1 PASS · 1 WARN"), "{stdout}");
+}
+
+#[test]
+fn report_is_written_beside_the_input_as_strict_json() {
+    let dir = temp_dir();
+    let good = write(&dir, "good.urdf", GOOD);
+    let result = run(&[good.to_str().unwrap()]);
+    assert_eq!(result.status.code(), Some(0));
+    let report_path = dir.join("good_validation.json");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report_path).expect("report written"))
+            .expect("JSON");
+    assert_eq!(report["robot_name"], "good");
+    assert_eq!(report["overall_status"], "PASS");
+    assert!(text(&result.stdout).contains(&format!("Full report: {}", report_path.display())));
+}
+
+#[test]
+fn json_format_prints_the_report_on_stdout() {
+    let dir = temp_dir();
+    let warn = write(&dir, "warn.urdf", WARNING);
+    let result = run(&[warn.to_str().unwrap(), "--format", "json", "--no-write"]);
+    let report: serde_json::Value = serde_json::from_slice(&result.stdout).expect("stdout is JSON");
+    assert_eq!(report["overall_status"], "WARN");
+    let finding = &report["findings"].as_array().expect("findings")[0];
+    assert_eq!(finding["rule"], "U201");
+    assert_eq!(finding["line"], 4);
+}
+
+#[test]
+fn malformed_xml_exits_2_with_one_located_line() {
+    let dir = temp_dir();
+    let broken = write(
+        &dir,
+        "broken.urdf",
+        "<robot name=\"x\">\n  <link name=\"a\">\n</robot>\n",
+    );
+    let result = run(&[broken.to_str().unwrap()]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = text(&result.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("broken.urdf:3:"), "{stderr}");
+    assert!(stderr.contains("expected"), "{stderr}");
+    assert!(!stderr.contains("panicked"));
+    assert!(!dir.join("broken_validation.json").exists());
+}
+
+#[test]
+fn missing_and_binary_inputs_exit_2_without_panicking() {
+    let dir = temp_dir();
+    let junk = dir.join("junk.urdf");
+    std::fs::write(&junk, [0xff_u8, 0xfe, 0x00, 0x12]).expect("write");
+    for input in [dir.join("absent.urdf"), junk] {
+        let result = run(&[input.to_str().unwrap(), "--no-write"]);
+        assert_eq!(result.status.code(), Some(2));
+        let stderr = text(&result.stderr);
+        assert!(
+            stderr.contains(input.file_name().unwrap().to_str().unwrap()),
+            "{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+#[test]
+fn explain_prints_the_rule_doc() {
+    let result = run(&["--explain", "U205"]);
+    assert_eq!(result.status.code(), Some(0));
+    let stdout = text(&result.stdout);
+    assert!(
+        stdout.contains("inertia-not-positive-definite") && stdout.contains("How to fix"),
+        "{stdout}"
+    );
+    let by_name = run(&["--explain", "missing-inertial"]);
+    assert!(text(&by_name.stdout).starts_with("U201"));
+    let unknown = run(&["--explain", "U2O5"]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(text(&unknown.stderr).contains("did you mean"));
+}
+
+#[test]
+fn colour_only_when_asked_or_on_a_terminal() {
+    let dir = temp_dir();
+    let warn = write(&dir, "warn.urdf", WARNING);
+    let piped = run(&[warn.to_str().unwrap(), "--no-write"]);
+    assert!(
+        !text(&piped.stdout).contains('\x1b'),
+        "piped output must be plain"
+    );
+    let forced = run(&[warn.to_str().unwrap(), "--no-write", "--color", "always"]);
+    assert!(text(&forced.stdout).contains('\x1b'));
+    let never = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args([warn.to_str().unwrap(), "--no-write"])
+        .env("NO_COLOR", "1")
+        .env("CLICOLOR_FORCE", "1")
+        .output()
+        .expect("runs");
+    assert!(
+        !text(&never.stdout).contains('\x1b'),
+        "NO_COLOR wins over CLICOLOR_FORCE"
+    );
+}
+
+#[test]
+fn warnings_show_a_source_snippet() {
+    let dir = temp_dir();
+    let warn = write(&dir, "warn.urdf", WARNING);
+    let stdout = text(&run(&[warn.to_str().unwrap(), "--no-write"]).stdout);
+    assert!(
+        stdout.contains(&format!("--> {}:4:3", warn.display())),
+        "{stdout}"
+    );
+    assert!(stdout.contains("4 |   <link name=\"arm\"/>"), "{stdout}");
+}
+
+#[test]
+fn same_stem_in_one_output_dir_does_not_overwrite() {
+    let (a, b, out) = (temp_dir(), temp_dir(), temp_dir());
+    let first = write(&a, "robot.urdf", GOOD);
+    let second = write(&b, "robot.urdf", WARNING);
+    run(&[
+        first.to_str().unwrap(),
+        second.to_str().unwrap(),
+        "--output-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert!(out.join("robot_validation.json").is_file());
+    assert!(out.join("robot_2_validation.json").is_file());
+}

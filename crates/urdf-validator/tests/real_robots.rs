@@ -1,0 +1,215 @@
+//! The validator on real robot descriptions: the reference robots in `../shared/robots` and the
+//! example-robot-data corpus (installed by `scripts/setup-test-env.sh`).
+//!
+//! Outside CI a missing data set skips its tests with a message; under `CI=true` a missing data set fails,
+//! so no check is quietly skipped there.
+
+use std::path::{Path, PathBuf};
+
+use urdf_validator::report::{FindingReport, Report};
+use urdf_validator::{validate, Options};
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A data set directory, from `var` or `default`; `None` (with a message) when absent outside CI.
+fn data_dir(var: &str, default: Option<PathBuf>, what: &str) -> Option<PathBuf> {
+    let dir = std::env::var_os(var).map(PathBuf::from).or(default);
+    match dir {
+        Some(dir) if dir.is_dir() => Some(dir),
+        _ if std::env::var_os("CI").is_some() => {
+            panic!(
+                "{what} is absent under CI (set {var}, or run scripts/test.sh which installs it)"
+            )
+        }
+        _ => {
+            eprintln!("skipping: {what} is absent (set {var}, or run scripts/test.sh)");
+            None
+        }
+    }
+}
+
+fn shared_robots() -> Option<PathBuf> {
+    data_dir(
+        "URDF_VALIDATOR_SHARED_ROBOTS",
+        Some(repo_root().join("../shared/robots")),
+        "../shared/robots",
+    )
+}
+
+/// example-robot-data's robots folder inside the test venv.
+fn corpus() -> Option<PathBuf> {
+    let default = std::fs::read_dir(repo_root().join(".venv/lib"))
+        .ok()
+        .and_then(|entries| {
+            entries
+                .flatten()
+                .map(|e| {
+                    e.path()
+                        .join("site-packages/cmeel.prefix/share/example-robot-data/robots")
+                })
+                .find(|p| p.is_dir())
+        });
+    data_dir(
+        "URDF_VALIDATOR_CORPUS",
+        default,
+        "the example-robot-data corpus",
+    )
+}
+
+fn urdfs_below(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "urdf") {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+fn report(path: &Path) -> Report {
+    match validate(path, &Options::default()) {
+        Ok(validation) => validation.report,
+        Err(error) => panic!("{} failed to load: {error}", path.display()),
+    }
+}
+
+fn with_rule<'a>(report: &'a Report, code: &str) -> Vec<&'a FindingReport> {
+    report.findings.iter().filter(|f| f.rule == code).collect()
+}
+
+/// The report as JSON, re-read by serde_json (which rejects NaN and Infinity).
+fn assert_strict_json(report: &Report, path: &Path) {
+    let text = serde_json::to_string(report).expect("serialises");
+    assert!(
+        !text.contains("NaN") && !text.contains("Infinity"),
+        "{}: non-finite number in JSON",
+        path.display()
+    );
+    let value: serde_json::Value = serde_json::from_str(&text).expect("strict JSON");
+    for key in [
+        "urdf_path",
+        "robot_name",
+        "overall_status",
+        "confidence_level",
+        "schema",
+        "links",
+        "findings",
+    ] {
+        assert!(
+            value.get(key).is_some(),
+            "{}: report lacks '{key}'",
+            path.display()
+        );
+    }
+}
+
+#[test]
+fn every_shared_robot_validates_to_strict_json() {
+    let Some(robots) = shared_robots() else {
+        return;
+    };
+    let files = urdfs_below(&robots);
+    assert!(
+        files.len() >= 8,
+        "expected the reference robots, found {files:?}"
+    );
+    for file in files {
+        assert_strict_json(&report(&file), &file);
+    }
+}
+
+#[test]
+fn fetch_finger_links_have_singular_inertia() {
+    let Some(robots) = shared_robots() else {
+        return;
+    };
+    let report = report(&robots.join("fetch/fetch_description/robots/fetch.urdf"));
+    let mut flagged: Vec<&str> = with_rule(&report, "U205")
+        .iter()
+        .map(|f| f.message.split('\'').nth(1).unwrap_or_default())
+        .collect();
+    flagged.sort_unstable();
+    assert_eq!(flagged, ["l_gripper_finger_link", "r_gripper_finger_link"]);
+    assert!(with_rule(&report, "U205").iter().all(|f| f.line.is_some()));
+    assert_eq!(report.overall_status.label(), "WARN");
+}
+
+#[test]
+fn turtlebot3_wheels_lack_limits_and_its_meshes_resolve() {
+    let Some(robots) = shared_robots() else {
+        return;
+    };
+    let report =
+        report(&robots.join("turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf"));
+    let joints: Vec<&str> = with_rule(&report, "U303")
+        .iter()
+        .map(|f| f.message.split('\'').nth(1).unwrap_or_default())
+        .collect();
+    assert_eq!(joints, ["wheel_left_joint", "wheel_right_joint"]);
+    assert!(
+        with_rule(&report, "U501").is_empty(),
+        "package:// meshes should resolve by walking up to package.xml"
+    );
+    assert_eq!(report.overall_status.label(), "PASS");
+    assert_eq!(
+        report.physics.frames, 2,
+        "base_footprint and imu_link are frames"
+    );
+}
+
+#[test]
+fn pr2_package_meshes_resolve() {
+    let Some(robots) = shared_robots() else {
+        return;
+    };
+    let report = report(&robots.join("pr2/pr2_description/robots/pr2.urdf"));
+    assert!(with_rule(&report, "U501").is_empty());
+    assert_eq!(report.physics.links, 88);
+    assert_eq!(with_rule(&report, "U105").len(), 1, "more than 50 links");
+}
+
+#[test]
+fn every_corpus_urdf_validates_to_strict_json() {
+    let Some(corpus) = corpus() else { return };
+    let files = urdfs_below(&corpus);
+    assert_eq!(files.len(), 69, "example-robot-data should ship 69 URDFs");
+    for file in &files {
+        assert_strict_json(&report(file), file);
+    }
+}
+
+#[test]
+fn files_the_python_tool_cannot_parse_validate_here() {
+    let Some(corpus) = corpus() else { return };
+    for relative in [
+        "pr2_description/urdf/pr2.urdf",
+        "icub_description/robots/icub.urdf",
+        "icub_description/robots/icub_reduced.urdf",
+        "romeo_description/urdf/romeo_laas_small.urdf",
+    ] {
+        let report = report(&corpus.join(relative));
+        assert!(report.links.len() > 10, "{relative}: links were parsed");
+        assert!(
+            report.schema.critical_issues.is_empty(),
+            "{relative}: {:?}",
+            report.schema.critical_issues
+        );
+    }
+}
+
+#[test]
+fn empty_ur3_stub_is_critical_not_a_crash() {
+    let Some(corpus) = corpus() else { return };
+    let report = report(&corpus.join("ur_description/urdf/ur3.urdf"));
+    assert_eq!(with_rule(&report, "U009").len(), 1, "no links");
+    assert_eq!(report.overall_status.exit_code(), 2);
+}
