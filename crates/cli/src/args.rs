@@ -63,6 +63,10 @@ pub struct Args {
     /// Print the JSON Schema of the report and exit.
     #[arg(long)]
     pub json_schema: bool,
+
+    /// Print the report reference (docs/json_schema.md) and exit.
+    #[arg(long, hide = true)]
+    pub json_schema_markdown: bool,
 }
 
 /// Output format on stdout.

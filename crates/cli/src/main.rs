@@ -46,6 +46,10 @@ fn run(args: Args) -> u8 {
         print!("{}", rules::reference_markdown());
         return 0;
     }
+    if args.json_schema_markdown {
+        print!("{}", urdf_validator::schema_doc::json_schema_markdown());
+        return 0;
+    }
     if args.json_schema {
         print!("{}", urdf_validator::report::json_schema());
         return 0;

@@ -21,6 +21,7 @@ pub mod report;
 pub mod resolve;
 pub mod robot;
 pub mod rules;
+pub mod schema_doc;
 pub mod source;
 pub mod suggest;
 pub mod timestamp;

@@ -340,9 +340,7 @@ impl Parser {
     }
 
     fn link(&mut self, node: Node) -> Option<Link> {
-        let Some(name) = self.required_string(node, "name", "link") else {
-            return None;
-        };
+        let name = self.required_string(node, "name", "link")?;
         let owner = format!("Link '{}'", name.value);
         self.check_attributes(node, &["name", "type"], &owner);
         self.check_children(node, &["inertial", "visual", "collision"], &owner);
