@@ -38,6 +38,11 @@ pub enum LoadError {
         /// The file.
         path: PathBuf,
     },
+    /// A xacro source: the native expander is not implemented yet.
+    Xacro {
+        /// The file.
+        path: PathBuf,
+    },
     /// The text is not well-formed XML.
     Xml {
         /// The file.
@@ -63,6 +68,12 @@ impl fmt::Display for LoadError {
             LoadError::NotUtf8 { path } => {
                 write!(f, "{}: not UTF-8 text (expected a URDF XML document)", path.display())
             }
+            LoadError::Xacro { path } => write!(
+                f,
+                "{}: xacro input is not supported yet (expected a URDF; expand it first, e.g. `xacro {} > robot.urdf`)",
+                path.display(),
+                path.display()
+            ),
             LoadError::Xml { path, line, column, message } => write!(
                 f,
                 "{}:{line}:{column}: not well-formed XML: {message} (expected a URDF XML document)",
@@ -76,6 +87,9 @@ impl std::error::Error for LoadError {}
 
 /// Read a file's text with the size limit applied.
 pub fn read_text(path: &Path) -> Result<String, LoadError> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xacro")) {
+        return Err(LoadError::Xacro { path: path.to_path_buf() });
+    }
     let io = |error| LoadError::Io {
         path: path.to_path_buf(),
         error,
