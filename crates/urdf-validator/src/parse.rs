@@ -87,8 +87,13 @@ impl std::error::Error for LoadError {}
 
 /// Read a file's text with the size limit applied.
 pub fn read_text(path: &Path) -> Result<String, LoadError> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xacro")) {
-        return Err(LoadError::Xacro { path: path.to_path_buf() });
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xacro"))
+    {
+        return Err(LoadError::Xacro {
+            path: path.to_path_buf(),
+        });
     }
     let io = |error| LoadError::Io {
         path: path.to_path_buf(),

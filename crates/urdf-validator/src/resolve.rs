@@ -23,7 +23,12 @@ pub struct PackageResolver {
     /// Package name -> candidate package roots from the explicit,
     /// `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH` sources (in order).
     cache: Arc<Mutex<HashMap<String, Vec<PathBuf>>>>,
+    /// (package name, start folder) -> package roots found by walking up;
+    /// every mesh of a URDF asks the same question.
+    walk_cache: Arc<Mutex<WalkCache>>,
 }
+
+type WalkCache = HashMap<(String, PathBuf), Vec<PathBuf>>;
 
 /// Outcome of resolving one URI.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -60,6 +65,7 @@ impl PackageResolver {
             ros_paths: split_path_list(ros_package_path),
             ament_prefixes: split_path_list(ament_prefix_path),
             cache: Arc::default(),
+            walk_cache: Arc::default(),
         }
     }
 
@@ -153,7 +159,14 @@ impl PackageResolver {
     /// environment-based roots followed by the walk-up roots from `start_dir`.
     fn package_roots(&self, package: &str, start_dir: &Path) -> Vec<PathBuf> {
         let mut roots = self.configured_roots(package);
-        roots.extend(walk_up_roots(package, start_dir));
+        let key = (package.to_string(), start_dir.to_path_buf());
+        let cached = lock(&self.walk_cache).get(&key).cloned();
+        let walked = cached.unwrap_or_else(|| {
+            let walked = walk_up_roots(package, start_dir);
+            lock(&self.walk_cache).insert(key, walked.clone());
+            walked
+        });
+        roots.extend(walked);
         roots
     }
 
@@ -194,8 +207,13 @@ impl PackageResolver {
     /// Lock the cache, recovering from a poisoned mutex (the map is always
     /// left consistent).
     fn lock_cache(&self) -> std::sync::MutexGuard<'_, HashMap<String, Vec<PathBuf>>> {
-        self.cache.lock().unwrap_or_else(|e| e.into_inner())
+        lock(&self.cache)
     }
+}
+
+/// Lock a cache, recovering from a poisoned mutex (caches are always left consistent).
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Split `scheme://rest`; None when `uri` has no valid URI scheme.

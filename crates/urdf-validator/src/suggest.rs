@@ -20,10 +20,20 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
 
 /// Up to three names closest to `wanted`, closest first, within a distance that scales with its length.
 pub fn closest<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
-    let limit = (wanted.chars().count() / 3).max(2);
+    let wanted_len = wanted.chars().count();
+    let limit = (wanted_len / 3).max(2);
     let mut scored: Vec<(usize, &str)> = candidates
-        .map(|c| (edit_distance(wanted, c), c))
-        .filter(|&(d, c)| d <= limit || c.contains(wanted) || wanted.contains(c))
+        .filter_map(|c| {
+            if c.contains(wanted) || wanted.contains(c) {
+                return Some((edit_distance(wanted, c), c));
+            }
+            // The distance is at least the length difference: skip hopeless candidates cheaply.
+            if c.chars().count().abs_diff(wanted_len) > limit {
+                return None;
+            }
+            let distance = edit_distance(wanted, c);
+            (distance <= limit).then_some((distance, c))
+        })
         .collect();
     scored.sort();
     scored.into_iter().take(3).map(|(_, c)| c).collect()
