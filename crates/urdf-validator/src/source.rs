@@ -86,10 +86,9 @@ impl SourceText {
         let byte = byte.min(self.text.len());
         let line = self.line_index(byte);
         let start = self.line_starts.get(line).copied().unwrap_or(0);
-        let column = self
-            .text
-            .get(start..byte)
-            .map_or(byte - start, |s| s.chars().count());
+        let column = self.text.get(start..byte).map_or(byte - start, |s| {
+            s.trim_start_matches('\u{feff}').chars().count()
+        });
         (to_u32(line + 1), to_u32(column + 1))
     }
 

@@ -93,8 +93,9 @@ fn degenerate(geometry: &Geometry) -> Option<String> {
         Geometry::Sphere { radius } if bad(*radius) => {
             Some(format!("sphere radius {radius} must be > 0"))
         }
-        Geometry::Mesh { scale, .. } if scale.iter().any(|&v| bad(v)) => Some(format!(
-            "mesh scale {} {} {} has a component ≤ 0",
+        // Negative scales are the usual way to mirror a mesh; only zero collapses it.
+        Geometry::Mesh { scale, .. } if scale.contains(&0.0) => Some(format!(
+            "mesh scale {} {} {} has a zero component",
             scale[0], scale[1], scale[2]
         )),
         _ => None,

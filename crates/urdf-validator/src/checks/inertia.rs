@@ -123,9 +123,9 @@ fn check_tensor(inertia: &Inertia, owner: &str, moving_with_mass: bool) -> Optio
     })
 }
 
-/// Six decimals for ordinary values and exact zero; scientific notation for tiny non-zero ones.
+/// Six decimals for ordinary values and exact zero; scientific notation for tiny or huge ones.
 fn short_number(value: f64) -> String {
-    if value == 0.0 || value.abs() >= 1e-4 {
+    if value == 0.0 || (1e-4..1e6).contains(&value.abs()) {
         format!("{value:.6}")
     } else {
         format!("{value:.3e}")

@@ -102,7 +102,12 @@ fn check_limit(
         }
     }
     if !follower {
-        if let Some(effort) = limit.effort.as_ref().filter(|e| e.value <= 0.0) {
+        // Non-finite values are reported once, by the parser.
+        if let Some(effort) = limit
+            .effort
+            .as_ref()
+            .filter(|e| e.value <= 0.0 && e.value.is_finite())
+        {
             findings.push(Finding::new(
                 &rules::NON_POSITIVE_EFFORT,
                 effort.span,
@@ -112,7 +117,11 @@ fn check_limit(
                 ),
             ));
         }
-        if let Some(velocity) = limit.velocity.as_ref().filter(|v| v.value <= 0.0) {
+        if let Some(velocity) = limit
+            .velocity
+            .as_ref()
+            .filter(|v| v.value <= 0.0 && v.value.is_finite())
+        {
             findings.push(Finding::new(
                 &rules::NON_POSITIVE_VELOCITY,
                 velocity.span,
@@ -141,6 +150,9 @@ fn check_limit(
         .as_ref()
         .or(limit.upper.as_ref())
         .map_or(limit.span, |s| s.span);
+    if !(lower.is_finite() && upper.is_finite()) {
+        return; // Reported once, by the parser.
+    }
     if lower > upper {
         findings.push(Finding::new(
             &rules::INVERTED_LIMITS,

@@ -72,10 +72,19 @@ pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
             );
         }
     }
+    // urdfdom adds a material defined inline in any visual to the robot's materials.
+    let inline = robot
+        .links
+        .iter()
+        .flat_map(|l| &l.visuals)
+        .filter_map(|v| v.material.as_ref())
+        .filter(|m| m.defines_appearance)
+        .filter_map(|m| m.name.as_deref());
     let defined: HashSet<&str> = robot
         .materials
         .iter()
         .map(|m| m.name.value.as_str())
+        .chain(inline)
         .collect();
     for link in &robot.links {
         for material in link.visuals.iter().filter_map(|v| v.material.as_ref()) {

@@ -1,0 +1,2806 @@
+//! One triggering and one clean document per rule of the registry, plus the behaviours around them
+//! (frames, statuses, confidence, malformed input, non-finite numbers, loops, mimics, references, meshes).
+//!
+//! Every document is an inline raw string whose first line is line 1; expected positions are 1-based
+//! (line, column) of the span start, and each expectation names the text found there so that a miscounted
+//! expectation fails as a test bug rather than as a library bug.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use urdf_validator::finding::Severity;
+use urdf_validator::parse::LoadError;
+use urdf_validator::report::{ConfidenceLevel, FindingReport, Report, Status};
+use urdf_validator::{rules, validate, validate_text, Options, Validation};
+
+// -------------------------------------------------------------------------------------------------
+// Helpers
+// -------------------------------------------------------------------------------------------------
+
+const FILE: &str = "t.urdf";
+
+fn run_at(urdf: &str, path: &Path) -> Validation {
+    validate_text(urdf.to_string(), path, &Options::default()).unwrap_or_else(|e| {
+        panic!("expected a parsed document, got LoadError: {e}\n--- input ---\n{urdf}")
+    })
+}
+
+fn run(urdf: &str) -> Validation {
+    run_at(urdf, Path::new(FILE))
+}
+
+fn report(urdf: &str) -> Report {
+    run(urdf).report
+}
+
+fn findings(urdf: &str) -> Vec<FindingReport> {
+    report(urdf).findings
+}
+
+fn with_code<'a>(findings: &'a [FindingReport], code: &str) -> Vec<&'a FindingReport> {
+    findings.iter().filter(|f| f.rule == code).collect()
+}
+
+fn lines_of(findings: &[FindingReport], code: &str) -> Vec<u32> {
+    with_code(findings, code)
+        .iter()
+        .map(|f| f.line.unwrap_or(0))
+        .collect()
+}
+
+fn positions_of(findings: &[FindingReport], code: &str) -> Vec<(u32, u32)> {
+    with_code(findings, code)
+        .iter()
+        .map(|f| (f.line.unwrap_or(0), f.column.unwrap_or(0)))
+        .collect()
+}
+
+fn the_one<'a>(findings: &'a [FindingReport], code: &str) -> &'a FindingReport {
+    let hits = with_code(findings, code);
+    assert_eq!(
+        hits.len(),
+        1,
+        "{code}: expected exactly one finding\n{}",
+        describe(findings)
+    );
+    hits[0]
+}
+
+/// All findings, one per line, for failure messages.
+fn describe(findings: &[FindingReport]) -> String {
+    let mut out = String::from("findings:\n");
+    for f in findings {
+        out.push_str(&format!(
+            "  {} {:?} {}:{} {} (help: {:?})\n",
+            f.rule,
+            f.severity,
+            f.line.unwrap_or(0),
+            f.column.unwrap_or(0),
+            f.message,
+            f.help
+        ));
+    }
+    out
+}
+
+/// The text of `urdf` from 1-based (line, column), columns counted in characters.
+fn text_at(urdf: &str, line: u32, column: u32) -> String {
+    urdf.split('\n')
+        .nth(line as usize - 1)
+        .map(|l| l.chars().skip(column as usize - 1).collect())
+        .unwrap_or_default()
+}
+
+/// `code` fires exactly once, at (line, column), where the source reads `token`; name, severity and file
+/// agree with the registry.
+fn assert_fires(code: &str, urdf: &str, line: u32, column: u32, token: &str) {
+    let rule = rules::find(code).unwrap_or_else(|| panic!("{code} is not in the registry"));
+    assert!(
+        text_at(urdf, line, column).starts_with(token),
+        "test bug for {code}: the text at {line}:{column} is {:?}, not {token:?}",
+        text_at(urdf, line, column)
+    );
+    let all = findings(urdf);
+    assert_eq!(
+        positions_of(&all, code),
+        vec![(line, column)],
+        "{code} ({}) should fire once at {line}:{column} ({token:?})\n{}",
+        rule.name,
+        describe(&all)
+    );
+    let hit = the_one(&all, code);
+    assert_eq!(hit.name, rule.name, "{code}: rule name");
+    assert_eq!(hit.severity, rule.severity, "{code}: severity");
+    assert_eq!(hit.file.as_deref(), Some(FILE), "{code}: file");
+    assert!(!hit.message.is_empty(), "{code}: empty message");
+}
+
+/// `code` does not fire on `urdf` (which must still parse).
+fn assert_absent(code: &str, urdf: &str) {
+    let all = findings(urdf);
+    assert!(
+        lines_of(&all, code).is_empty(),
+        "{code} fired on the clean document\n{}",
+        describe(&all)
+    );
+}
+
+/// A chain of `n` bare links joined by fixed joints.
+fn chain_of_links(n: usize) -> String {
+    let mut out = String::from("<robot name=\"big\">\n");
+    for i in 0..n {
+        out.push_str(&format!("  <link name=\"l{i}\"/>\n"));
+    }
+    for i in 1..n {
+        out.push_str(&format!(
+            "  <joint name=\"j{i}\" type=\"fixed\">\n    <parent link=\"l{}\"/>\n    <child link=\"l{i}\"/>\n  </joint>\n",
+            i - 1
+        ));
+    }
+    out.push_str("</robot>\n");
+    out
+}
+
+/// A fresh directory under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir =
+            std::env::temp_dir().join(format!("urdf-validator-rules-{}-{tag}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).expect("create temp dir");
+        TempDir(dir)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// The process-independent LoadError checks: an XML error whose Display is `t.urdf:LINE:COL: ...`.
+fn assert_xml_load_error(input: &str) {
+    let error = match validate_text(input.to_string(), Path::new(FILE), &Options::default()) {
+        Err(e) => e,
+        Ok(v) => panic!(
+            "{input:?} should not parse\n{}",
+            describe(&v.report.findings)
+        ),
+    };
+    let shown = error.to_string();
+    let LoadError::Xml { line, column, .. } = &error else {
+        panic!("{input:?}: expected LoadError::Xml, got {error:?}");
+    };
+    assert!(*line >= 1 && *column >= 1, "{input:?}: {shown}");
+    let rest = shown
+        .strip_prefix("t.urdf:")
+        .unwrap_or_else(|| panic!("{input:?}: Display lacks 't.urdf:': {shown}"));
+    let mut parts = rest.splitn(3, ':');
+    let shown_line: u32 = parts
+        .next()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{input:?}: no line in {shown}"));
+    let shown_column: u32 = parts
+        .next()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{input:?}: no column in {shown}"));
+    assert_eq!((shown_line, shown_column), (*line, *column), "{shown}");
+    assert!(!shown.contains('\n'), "one line: {shown}");
+}
+
+// -------------------------------------------------------------------------------------------------
+// One triggering and one clean document per rule
+// -------------------------------------------------------------------------------------------------
+
+/// `mod $module { fires, clean }`: `fires` asserts the code fires once at (line, column) over `token`,
+/// `clean` asserts it is absent from the near-identical fixed document.
+macro_rules! rule_case {
+    (
+        $module:ident, $code:literal,
+        fires: $fires:expr,
+        at: ($line:expr, $column:expr, $token:expr),
+        clean: $clean:expr $(,)?
+    ) => {
+        mod $module {
+            use super::*;
+
+            pub const CODE: &str = $code;
+
+            #[test]
+            fn fires() {
+                assert_fires(CODE, &$fires, $line, $column, $token);
+            }
+
+            #[test]
+            fn clean() {
+                assert_absent(CODE, &$clean);
+            }
+        }
+    };
+}
+
+/// Every rule with a case below; the guard test checks it against the registry.
+const COVERED: &[&str] = &[
+    u001_not_a_robot::CODE,
+    u002_missing_attribute::CODE,
+    u003_invalid_number::CODE,
+    u004_non_finite_value::CODE,
+    u005_unknown_element::CODE,
+    u006_unknown_attribute::CODE,
+    u007_unknown_joint_type::CODE,
+    u008_missing_geometry::CODE,
+    u009_no_links::CODE,
+    u101_duplicate_name::CODE,
+    u102_undefined_link::CODE,
+    u103_kinematic_loop::CODE,
+    u104_multiple_roots::CODE,
+    u105_too_many_links::CODE,
+    u201_missing_inertial::CODE,
+    u202_negative_mass::CODE,
+    u203_zero_mass::CODE,
+    u204_zero_inertia::CODE,
+    u205_inertia_not_positive_definite::CODE,
+    u206_inertia_triangle_inequality::CODE,
+    u207_massless_geometry::CODE,
+    u301_missing_limit::CODE,
+    u302_incomplete_limit::CODE,
+    u303_missing_effort_velocity::CODE,
+    u304_inverted_limits::CODE,
+    u305_empty_joint_range::CODE,
+    u306_non_positive_effort::CODE,
+    u307_non_positive_velocity::CODE,
+    u308_continuous_joint_limits::CODE,
+    u309_zero_axis::CODE,
+    u310_non_unit_axis::CODE,
+    u311_mimic_undefined_joint::CODE,
+    u312_mimic_cycle::CODE,
+    u313_floating_joint::CODE,
+    u401_transmission_undefined_joint::CODE,
+    u402_gazebo_undefined_reference::CODE,
+    u403_ros2_control_undefined_joint::CODE,
+    u404_undefined_material::CODE,
+    u501_mesh_not_found::CODE,
+    u502_visual_without_collision::CODE,
+    u503_invalid_geometry_size::CODE,
+];
+
+#[test]
+fn every_rule_in_the_registry_has_a_case() {
+    let missing: Vec<&str> = rules::ALL
+        .iter()
+        .map(|r| r.code)
+        .filter(|code| !COVERED.contains(code))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "rules without a trigger/clean case in tests/rules.rs: {missing:?}"
+    );
+    for code in COVERED {
+        assert!(
+            rules::find(code).is_some(),
+            "{code} is listed in COVERED but not in rules::ALL"
+        );
+    }
+    let mut sorted = COVERED.to_vec();
+    sorted.dedup();
+    assert_eq!(sorted.len(), COVERED.len(), "COVERED lists a code twice");
+}
+
+rule_case! {
+    u001_not_a_robot, "U001",
+    fires: r#"<?xml version="1.0"?>
+<sdf version="1.6">
+  <model name="m"/>
+</sdf>
+"#,
+    at: (2, 1, "<sdf"),
+    clean: r#"<?xml version="1.0"?>
+<robot name="m">
+  <link name="base"/>
+</robot>
+"#,
+}
+
+rule_case! {
+    u002_missing_attribute, "U002",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+    at: (5, 9, "<box/>"),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u003_invalid_number, "U003",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+    at: (5, 20, "1 1\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u004_non_finite_value, "U004",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="nan"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#,
+    at: (4, 20, "nan\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u005_unknown_element, "U005",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+  </link>
+</robot>
+"#,
+    at: (3, 5, "<inertia"),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u006_unknown_attribute, "U006",
+    fires: r#"<robot name="r">
+  <link name="base" mass="1"/>
+</robot>
+"#,
+    at: (2, 21, "mass=\"1\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+</robot>
+"#,
+}
+
+rule_case! {
+    u007_unknown_joint_type, "U007",
+    fires: r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="j" type="hinge">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+</robot>
+"#,
+    at: (4, 25, "hinge\""),
+    clean: r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="j" type="fixed">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u008_missing_geometry, "U008",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <visual>
+    </visual>
+  </link>
+</robot>
+"#,
+    at: (3, 5, "<visual>"),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+    </visual>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u009_no_links, "U009",
+    fires: r#"<?xml version="1.0"?>
+<robot name="empty">
+</robot>
+"#,
+    at: (2, 1, "<robot"),
+    clean: r#"<?xml version="1.0"?>
+<robot name="empty">
+  <link name="base"/>
+</robot>
+"#,
+}
+
+rule_case! {
+    u101_duplicate_name, "U101",
+    fires: r#"<robot name="r">
+  <link name="a"/>
+  <link name="a"/>
+</robot>
+"#,
+    at: (3, 15, "a\""),
+    clean: r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+</robot>
+"#,
+}
+
+rule_case! {
+    u102_undefined_link, "U102",
+    fires: r#"<robot name="r">
+  <link name="base_link"/>
+  <link name="arm_link"/>
+  <joint name="j" type="fixed">
+    <parent link="base_link"/>
+    <child link="arm_lnk"/>
+  </joint>
+</robot>
+"#,
+    at: (6, 18, "arm_lnk\""),
+    clean: r#"<robot name="r">
+  <link name="base_link"/>
+  <link name="arm_link"/>
+  <joint name="j" type="fixed">
+    <parent link="base_link"/>
+    <child link="arm_link"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u103_kinematic_loop, "U103",
+    fires: r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <link name="c"/>
+  <joint name="j1" type="fixed">
+    <parent link="a"/>
+    <child link="c"/>
+  </joint>
+  <joint name="j2" type="fixed">
+    <parent link="b"/>
+    <child link="c"/>
+  </joint>
+</robot>
+"#,
+    at: (9, 3, "<joint name=\"j2\""),
+    clean: r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <link name="c"/>
+  <joint name="j1" type="fixed">
+    <parent link="a"/>
+    <child link="c"/>
+  </joint>
+  <joint name="j2" type="fixed">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u104_multiple_roots, "U104",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <link name="orphan"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"#,
+    at: (4, 15, "orphan\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <link name="orphan"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+  <joint name="j2" type="fixed">
+    <parent link="base"/>
+    <child link="orphan"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u105_too_many_links, "U105",
+    fires: chain_of_links(51),
+    at: (1, 1, "<robot name=\"big\""),
+    clean: chain_of_links(50),
+}
+
+rule_case! {
+    u201_missing_inertial, "U201",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (3, 3, "<link name=\"arm\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u202_negative_mass, "U202",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="-1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#,
+    at: (4, 20, "-1\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u203_zero_mass, "U203",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (5, 20, "0\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u204_zero_inertia, "U204",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (6, 7, "<inertia"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u205_inertia_not_positive_definite, "U205",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="0"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (6, 7, "<inertia"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u206_inertia_triangle_inequality, "U206",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (6, 7, "<inertia"),
+    // 1 + 1 = 2: a thin plate, exactly on the boundary.
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="2"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u207_massless_geometry, "U207",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+    at: (2, 3, "<link name=\"base\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u301_missing_limit, "U301",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+</robot>
+"#,
+    at: (4, 3, "<joint name=\"j\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u302_incomplete_limit, "U302",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 5, "<limit"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u303_missing_effort_velocity, "U303",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="wheel"/>
+  <joint name="j" type="continuous">
+    <parent link="base"/>
+    <child link="wheel"/>
+    <axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"#,
+    at: (4, 3, "<joint name=\"j\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="wheel"/>
+  <joint name="j" type="continuous">
+    <parent link="base"/>
+    <child link="wheel"/>
+    <axis xyz="0 1 0"/>
+    <limit effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u304_inverted_limits, "U304",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="1" upper="-1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 19, "1\" upper"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u305_empty_joint_range, "U305",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="prismatic">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="0.5" upper="0.5" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 19, "0.5\" upper"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="prismatic">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-0.5" upper="0.5" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u306_non_positive_effort, "U306",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="0" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 41, "0\" velocity"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u307_non_positive_velocity, "U307",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="0"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 55, "0\"/>"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u308_continuous_joint_limits, "U308",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="wheel"/>
+  <joint name="j" type="continuous">
+    <parent link="base"/>
+    <child link="wheel"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (8, 19, "-1\" upper"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="wheel"/>
+  <joint name="j" type="continuous">
+    <parent link="base"/>
+    <child link="wheel"/>
+    <axis xyz="0 1 0"/>
+    <limit effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u309_zero_axis, "U309",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (7, 16, "0 0 0\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u310_non_unit_axis, "U310",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+    at: (7, 16, "0 0 2\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u311_mimic_undefined_joint, "U311",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="leader" type="revolute">
+    <parent link="base"/>
+    <child link="a"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <joint name="follower" type="revolute">
+    <parent link="a"/>
+    <child link="b"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <mimic joint="leadr" multiplier="2"/>
+  </joint>
+</robot>
+"#,
+    at: (14, 19, "leadr\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="leader" type="revolute">
+    <parent link="base"/>
+    <child link="a"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <joint name="follower" type="revolute">
+    <parent link="a"/>
+    <child link="b"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <mimic joint="leader" multiplier="2"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u312_mimic_cycle, "U312",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="leader" type="revolute">
+    <parent link="base"/>
+    <child link="a"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <joint name="follower" type="revolute">
+    <parent link="a"/>
+    <child link="b"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <mimic joint="follower" multiplier="2"/>
+  </joint>
+</robot>
+"#,
+    at: (14, 5, "<mimic"),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="leader" type="revolute">
+    <parent link="base"/>
+    <child link="a"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <joint name="follower" type="revolute">
+    <parent link="a"/>
+    <child link="b"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <mimic joint="leader" multiplier="2"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u313_floating_joint, "U313",
+    fires: r#"<robot name="r">
+  <link name="world"/>
+  <link name="body"/>
+  <joint name="j" type="floating">
+    <parent link="world"/>
+    <child link="body"/>
+  </joint>
+</robot>
+"#,
+    at: (4, 25, "floating\""),
+    clean: r#"<robot name="r">
+  <link name="world"/>
+  <link name="body"/>
+  <joint name="j" type="fixed">
+    <parent link="world"/>
+    <child link="body"/>
+  </joint>
+</robot>
+"#,
+}
+
+rule_case! {
+    u401_transmission_undefined_joint, "U401",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="k">
+      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="m">
+      <mechanicalReduction>1</mechanicalReduction>
+    </actuator>
+  </transmission>
+</robot>
+"#,
+    at: (10, 18, "k\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j">
+      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="m">
+      <mechanicalReduction>1</mechanicalReduction>
+    </actuator>
+  </transmission>
+</robot>
+"#,
+}
+
+rule_case! {
+    u402_gazebo_undefined_reference, "U402",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <gazebo reference="bsae">
+    <material>Gazebo/Grey</material>
+  </gazebo>
+</robot>
+"#,
+    at: (3, 22, "bsae\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <gazebo reference="base">
+    <material>Gazebo/Grey</material>
+  </gazebo>
+</robot>
+"#,
+}
+
+rule_case! {
+    u403_ros2_control_undefined_joint, "U403",
+    fires: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+  <ros2_control name="hw" type="system">
+    <hardware>
+      <plugin>mock_components/GenericSystem</plugin>
+    </hardware>
+    <joint name="k">
+      <command_interface name="position"/>
+    </joint>
+  </ros2_control>
+</robot>
+"#,
+    at: (12, 18, "k\""),
+    clean: r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+  <ros2_control name="hw" type="system">
+    <hardware>
+      <plugin>mock_components/GenericSystem</plugin>
+    </hardware>
+    <joint name="j">
+      <command_interface name="position"/>
+    </joint>
+  </ros2_control>
+</robot>
+"#,
+}
+
+rule_case! {
+    u404_undefined_material, "U404",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+      <material name="steel"/>
+    </visual>
+  </link>
+</robot>
+"#,
+    at: (7, 7, "<material name=\"steel\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+      <material name="steel"/>
+    </visual>
+  </link>
+  <material name="steel">
+    <color rgba="0.5 0.5 0.5 1"/>
+  </material>
+</robot>
+"#,
+}
+
+/// Written out by hand: the clean document needs a mesh file next to it.
+mod u501_mesh_not_found {
+    use super::*;
+
+    pub const CODE: &str = "U501";
+
+    const FIRES: &str = r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <mesh filename="package://nopkg/m.stl"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#;
+
+    const CLEAN: &str = r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <mesh filename="m.stl"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#;
+
+    #[test]
+    fn fires() {
+        assert_fires(CODE, FIRES, 5, 25, "package://nopkg/m.stl\"");
+    }
+
+    #[test]
+    fn clean() {
+        let dir = TempDir::new("u501-clean");
+        fs::write(dir.path().join("m.stl"), b"solid m\nendsolid m\n").unwrap();
+        let validation = run_at(CLEAN, &dir.path().join("robot.urdf"));
+        let all = validation.report.findings;
+        assert!(
+            lines_of(&all, CODE).is_empty(),
+            "{CODE} fired although m.stl exists next to the URDF\n{}",
+            describe(&all)
+        );
+    }
+}
+
+rule_case! {
+    u502_visual_without_collision, "U502",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </visual>
+  </link>
+</robot>
+"#,
+    at: (2, 3, "<link name=\"base\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </visual>
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+}
+
+rule_case! {
+    u503_invalid_geometry_size, "U503",
+    fires: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 0 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+    at: (5, 9, "<box size=\"1 0 1\""),
+    clean: r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <box size="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#,
+}
+
+// -------------------------------------------------------------------------------------------------
+// Frames and missing inertials
+// -------------------------------------------------------------------------------------------------
+
+/// A complete, finding-free arm: base and arm with mass, inertia and collision, a limited revolute joint.
+const CLEAN_ARM: &str = r#"<robot name="arm">
+  <link name="base">
+    <inertial>
+      <mass value="5"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <collision>
+      <geometry><box size="0.2 0.2 0.1"/></geometry>
+    </collision>
+  </link>
+  <link name="arm">
+    <inertial>
+      <origin xyz="0 0 0.25"/>
+      <mass value="1"/>
+      <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"/>
+    </inertial>
+    <collision>
+      <geometry><cylinder radius="0.03" length="0.5"/></geometry>
+    </collision>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-1.5" upper="1.5" effort="20" velocity="2"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+fn the_clean_arm_has_no_findings_and_passes() {
+    let r = report(CLEAN_ARM);
+    assert!(r.findings.is_empty(), "{}", describe(&r.findings));
+    assert_eq!(r.overall_status, Status::Pass);
+    assert_eq!(r.confidence_level, ConfidenceLevel::High);
+    assert_eq!(r.robot_name, "arm");
+    assert_eq!(r.urdf_path, FILE);
+}
+
+#[test]
+fn a_pure_frame_link_is_not_missing_inertial_and_counts_as_a_frame() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="tool0"/>
+  <joint name="flange" type="fixed">
+    <parent link="base"/>
+    <child link="tool0"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    assert!(
+        lines_of(&r.findings, "U201").is_empty(),
+        "{}",
+        describe(&r.findings)
+    );
+    assert!(
+        lines_of(&r.findings, "U207").is_empty(),
+        "{}",
+        describe(&r.findings)
+    );
+    assert_eq!(r.physics.links, 2);
+    assert_eq!(r.physics.frames, 1, "tool0 is a frame: {:?}", r.physics);
+    assert_eq!(r.physics.mass_missing, 0, "{:?}", r.physics);
+    assert_eq!(r.physics.mass_exact, 1, "{:?}", r.physics);
+    let tool0 = r.links.iter().find(|l| l.name == "tool0").unwrap();
+    assert!(tool0.frame);
+    assert!(!r.links.iter().find(|l| l.name == "base").unwrap().frame);
+    // Frames do not drag the confidence down.
+    assert_eq!(r.confidence_level, ConfidenceLevel::High);
+}
+
+#[test]
+fn a_link_without_inertial_on_a_revolute_joint_is_u201_warn() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    let hit = the_one(&r.findings, "U201");
+    assert_eq!(hit.severity, Severity::Warn);
+    assert_eq!(hit.line, Some(3));
+    assert!(hit.message.contains("'arm'"), "{}", hit.message);
+    // A moving bare link is a body with missing mass, not a frame.
+    assert_eq!(
+        r.physics.frames, 1,
+        "only the root is a frame: {:?}",
+        r.physics
+    );
+    assert_eq!(r.physics.mass_missing, 1, "{:?}", r.physics);
+    assert!(!r.links.iter().find(|l| l.name == "arm").unwrap().frame);
+    assert_eq!(r.overall_status, Status::Warn);
+}
+
+#[test]
+fn zero_mass_and_zero_inertia_on_a_fixed_link_are_not_flagged() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
+    </inertial>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(lines_of(&f, "U203").is_empty(), "{}", describe(&f));
+    assert!(lines_of(&f, "U204").is_empty(), "{}", describe(&f));
+    assert!(lines_of(&f, "U205").is_empty(), "{}", describe(&f));
+}
+
+// -------------------------------------------------------------------------------------------------
+// Statuses, exit codes and confidence
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn a_critical_finding_fails_with_exit_code_2() {
+    let urdf = CLEAN_ARM.replace(r#"<mass value="1"/>"#, r#"<mass value="-1"/>"#);
+    let r = report(&urdf);
+    assert!(
+        r.findings.iter().any(|f| f.severity == Severity::Critical),
+        "{}",
+        describe(&r.findings)
+    );
+    assert_eq!(r.schema.status, Status::Fail);
+    assert_eq!(r.overall_status, Status::Fail);
+    assert_eq!(r.overall_status.exit_code(), 2);
+    assert!(
+        r.critical_issues
+            .iter()
+            .any(|m| m.contains("negative mass")),
+        "{:?}",
+        r.critical_issues
+    );
+    assert_eq!(r.critical_issues, r.schema.critical_issues);
+}
+
+#[test]
+fn only_warn_findings_warn_with_exit_code_1() {
+    let urdf = CLEAN_ARM.replace(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 2 0"/>"#);
+    let r = report(&urdf);
+    assert!(!r.findings.is_empty());
+    assert!(
+        r.findings.iter().all(|f| f.severity == Severity::Warn),
+        "{}",
+        describe(&r.findings)
+    );
+    assert_eq!(r.schema.status, Status::Warn);
+    assert_eq!(r.overall_status, Status::Warn);
+    assert_eq!(r.overall_status.exit_code(), 1);
+    assert!(r.critical_issues.is_empty());
+    assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+}
+
+#[test]
+fn only_info_findings_pass_with_exit_code_0() {
+    let urdf = CLEAN_ARM.replace(r#"<link name="arm">"#, r#"<link name="arm" colour="red">"#);
+    let r = report(&urdf);
+    assert!(!r.findings.is_empty());
+    assert!(
+        r.findings.iter().all(|f| f.severity == Severity::Info),
+        "{}",
+        describe(&r.findings)
+    );
+    assert_eq!(r.schema.status, Status::Pass);
+    assert_eq!(r.overall_status, Status::Pass);
+    assert_eq!(r.overall_status.exit_code(), 0);
+    assert!(r.critical_issues.is_empty() && r.warnings.is_empty());
+    assert_eq!(r.schema.infos.len(), 1, "{:?}", r.schema.infos);
+}
+
+#[test]
+fn exit_codes_of_every_status() {
+    assert_eq!(Status::Pass.exit_code(), 0);
+    assert_eq!(Status::NotApplicable.exit_code(), 0);
+    assert_eq!(Status::Warn.exit_code(), 1);
+    assert_eq!(Status::Fail.exit_code(), 2);
+    assert_eq!(Status::Unknown.exit_code(), 2);
+}
+
+#[test]
+fn confidence_is_high_when_every_body_declares_mass_and_inertia() {
+    let r = report(CLEAN_ARM);
+    assert_eq!(r.confidence_level, ConfidenceLevel::High, "{:?}", r.physics);
+    assert_eq!(r.physics.mass_exact, 2);
+    assert_eq!(r.physics.inertia_exact, 2);
+}
+
+#[test]
+fn confidence_is_medium_when_half_the_bodies_declare_a_mass() {
+    // base declares mass and inertia; arm (moving) declares nothing.
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    assert_eq!(r.physics.mass_exact, 1, "{:?}", r.physics);
+    assert_eq!(r.physics.mass_missing, 1, "{:?}", r.physics);
+    assert_eq!(r.confidence_level, ConfidenceLevel::Medium);
+
+    // Every body has a mass but one lacks its inertia tensor: not HIGH either.
+    let no_tensor = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+    </inertial>
+  </link>
+</robot>
+"#;
+    let r = report(no_tensor);
+    assert_eq!(r.physics.inertia_missing, 1, "{:?}", r.physics);
+    assert_eq!(r.confidence_level, ConfidenceLevel::Medium);
+}
+
+#[test]
+fn confidence_is_low_when_most_bodies_lack_a_mass() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="ja" type="continuous">
+    <parent link="base"/>
+    <child link="a"/>
+  </joint>
+  <joint name="jb" type="continuous">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    assert_eq!(r.physics.mass_exact, 1, "{:?}", r.physics);
+    assert_eq!(r.physics.mass_missing, 2, "{:?}", r.physics);
+    assert_eq!(r.confidence_level, ConfidenceLevel::Low);
+
+    // Nothing but frames: no physics data at all.
+    let r = report("<robot name=\"r\"><link name=\"world\"/></robot>");
+    assert_eq!(r.physics.frames, 1);
+    assert_eq!(r.confidence_level, ConfidenceLevel::Low);
+}
+
+// -------------------------------------------------------------------------------------------------
+// Malformed input
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn not_xml_is_a_load_error_with_a_position() {
+    assert_xml_load_error("<robot");
+}
+
+#[test]
+fn an_empty_document_is_a_load_error_with_a_position() {
+    assert_xml_load_error("");
+    assert_xml_load_error("   \n  ");
+}
+
+#[test]
+fn binary_junk_is_a_load_error_with_a_position() {
+    let bytes: Vec<u8> = (0u32..512)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+        .collect();
+    assert_xml_load_error(&String::from_utf8_lossy(&bytes));
+    assert_xml_load_error("\u{0}\u{1}\u{2}PK\u{3}\u{4}\u{fffd}\u{fffd}");
+    assert_xml_load_error("<robot name=\"r\">\u{0}</robot>");
+}
+
+#[test]
+fn an_error_on_a_later_line_reports_that_line() {
+    let error = validate_text(
+        "<robot name=\"r\">\n  <link name=\"a\">\n</robot>\n".to_string(),
+        Path::new(FILE),
+        &Options::default(),
+    )
+    .expect_err("mismatched tags");
+    let LoadError::Xml { line, .. } = error else {
+        panic!("{error:?}")
+    };
+    assert_eq!(line, 3, "{error}");
+}
+
+#[test]
+fn an_sdf_root_is_u001_not_an_error() {
+    let urdf = r#"<sdf version="1.7"><model name="m"><link name="l"/></model></sdf>"#;
+    let r = report(urdf);
+    let hit = the_one(&r.findings, "U001");
+    assert_eq!(hit.severity, Severity::Critical);
+    assert!(hit.message.contains("<sdf>"), "{}", hit.message);
+    assert_eq!((hit.line, hit.column), (Some(1), Some(1)));
+    // Nothing else is checked on a document that is not a robot.
+    assert_eq!(r.findings.len(), 1, "{}", describe(&r.findings));
+    assert_eq!(r.overall_status.exit_code(), 2);
+}
+
+#[test]
+fn an_entity_expansion_bomb_is_a_load_error() {
+    let mut text =
+        String::from("<?xml version=\"1.0\"?>\n<!DOCTYPE robot [\n<!ENTITY l0 \"lol\">\n");
+    for i in 1..10 {
+        let p = i - 1;
+        text.push_str(&format!(
+            "<!ENTITY l{i} \"{}\">\n",
+            format!("&l{p};").repeat(10)
+        ));
+    }
+    text.push_str("]>\n<robot name=\"&l9;\"><link name=\"a\"/></robot>\n");
+    assert_xml_load_error(&text);
+}
+
+#[test]
+fn a_value_from_a_dtd_entity_points_at_the_reference() {
+    let urdf = r#"<!DOCTYPE robot [<!ENTITY m "-1">]>
+<robot name="r">
+  <link name="a">
+    <inertial>
+      <mass value="&m;"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert_eq!(positions_of(&f, "U202"), vec![(5, 20)], "{}", describe(&f));
+    assert!(text_at(urdf, 5, 20).starts_with("&m;"));
+}
+
+#[test]
+fn deeply_nested_unknown_elements_do_not_overflow() {
+    let depth = 20_000;
+    let urdf = format!(
+        "<robot name=\"r\"><link name=\"a\"/>{}{}</robot>",
+        "<a>".repeat(depth),
+        "</a>".repeat(depth)
+    );
+    let f = findings(&urdf);
+    assert_eq!(lines_of(&f, "U005"), vec![1], "{}", describe(&f));
+    let urdf = format!(
+        "<robot name=\"r\"><link name=\"a\">{}{}</link></robot>",
+        "<visual>".repeat(depth),
+        "</visual>".repeat(depth)
+    );
+    let _ = findings(&urdf);
+}
+
+#[test]
+fn files_that_cannot_be_read_are_load_errors() {
+    let dir = TempDir::new("unreadable");
+    let binary = dir.path().join("t.urdf");
+    fs::write(&binary, [0xff, 0xfe, 0x00, 0x3c, 0x80, 0x81]).unwrap();
+    let error = validate(&binary, &Options::default()).expect_err("not UTF-8");
+    assert!(matches!(error, LoadError::NotUtf8 { .. }), "{error:?}");
+    assert!(error.to_string().contains("t.urdf:"), "{error}");
+
+    let absent = dir.path().join("absent.urdf");
+    let error = validate(&absent, &Options::default()).expect_err("missing file");
+    assert!(matches!(error, LoadError::Io { .. }), "{error:?}");
+    assert!(error.to_string().contains("absent.urdf:"), "{error}");
+}
+
+/// A document touching every parser path, to be cut and mutated.
+const EVERYTHING: &str = r#"<?xml version="1.0"?>
+<robot name="all" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <material name="grey"><color rgba="0.5 0.5 0.5 1"/><texture/></material>
+  <link name="base">
+    <inertial>
+      <origin xyz="0 0 0.1" rpy="0 0 0"/>
+      <mass value="2"/>
+      <inertia ixx="1" ixy="0.1" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <visual name="v">
+      <origin xyz="0 0 0"/>
+      <geometry><mesh filename="package://nopkg/m.stl" scale="1 1 1"/></geometry>
+      <material name="grey"/>
+    </visual>
+    <collision><geometry><cylinder radius="0.1" length="0.2"/></geometry></collision>
+    <collision><geometry><sphere radius="0.1"/></geometry></collision>
+  </link>
+  <link name="arm"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+  <link name="finger"/>
+  <joint name="j" type="revolute">
+    <origin xyz="0 0 1" rpy="0 0 1.57"/>
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <dynamics damping="0.1" friction="0"/>
+    <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="10" k_velocity="1"/>
+    <calibration rising="0"/>
+  </joint>
+  <joint name="f" type="prismatic">
+    <parent link="arm"/>
+    <child link="finger"/>
+    <limit lower="0" upper="0.1" effort="1" velocity="1"/>
+    <mimic joint="j" multiplier="0.1" offset="0"/>
+  </joint>
+  <transmission name="t"><type>x</type><joint name="j"/><actuator name="m"/></transmission>
+  <gazebo reference="arm"><mu1>1</mu1></gazebo>
+  <ros2_control name="hw" type="system"><joint name="j"/></ros2_control>
+  <xacro:property name="p" value="1"/>
+</robot>
+"#;
+
+#[test]
+fn every_prefix_of_a_document_loads_or_errors_without_panicking() {
+    assert!(validate_text(EVERYTHING.to_string(), Path::new(FILE), &Options::default()).is_ok());
+    for (cut, _) in EVERYTHING.char_indices() {
+        let _ = validate_text(
+            EVERYTHING[..cut].to_string(),
+            Path::new(FILE),
+            &Options::default(),
+        );
+    }
+}
+
+#[test]
+fn mutated_documents_never_panic() {
+    const JUNK: [&str; 12] = [
+        "<",
+        ">",
+        "\"",
+        "=",
+        "nan",
+        "-inf",
+        "1e400",
+        "",
+        "/",
+        "é",
+        "<link name=\"base\"/>",
+        "0",
+    ];
+    let chars: Vec<(usize, char)> = EVERYTHING.char_indices().collect();
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for _ in 0..3000 {
+        let at = chars[(next() % chars.len() as u64) as usize].0;
+        let len = (next() % 6) as usize;
+        let end = EVERYTHING[at..]
+            .char_indices()
+            .map(|(i, _)| at + i)
+            .find(|&i| i >= at + len)
+            .unwrap_or(EVERYTHING.len());
+        let junk = JUNK[(next() % JUNK.len() as u64) as usize];
+        let text = format!("{}{junk}{}", &EVERYTHING[..at], &EVERYTHING[end..]);
+        if let Ok(v) = validate_text(text, Path::new(FILE), &Options::default()) {
+            serde_json::to_string(&v.report).expect("a report always serialises");
+        }
+    }
+}
+
+// -------------------------------------------------------------------------------------------------
+// Real-world shapes that must parse quietly
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn a_texture_without_filename_parses_without_a_finding() {
+    // icub and romeo write `<texture/>` without a filename.
+    let urdf = r#"<robot name="r">
+  <material name="skin">
+    <color rgba="1 1 1 1"/>
+    <texture/>
+  </material>
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+      <material name="cover"><texture/></material>
+    </visual>
+    <collision>
+      <geometry><box size="1 1 1"/></geometry>
+    </collision>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(f.is_empty(), "{}", describe(&f));
+}
+
+const OLD_TRANSMISSION_ROBOT: &str = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <joint name="j" type="continuous">
+    <parent link="base"/>
+    <child link="arm"/>
+    <limit effort="10" velocity="1"/>
+  </joint>
+  <transmission type="pr2_mechanism_model/SimpleTransmission"><joint name="j"/><actuator name="a"/><mechanicalReduction>1</mechanicalReduction></transmission>
+</robot>
+"#;
+
+#[test]
+fn an_old_style_transmission_without_type_element_parses() {
+    let f = findings(OLD_TRANSMISSION_ROBOT);
+    assert!(f.is_empty(), "{}", describe(&f));
+}
+
+#[test]
+fn an_old_style_transmission_naming_a_missing_joint_is_u401() {
+    let urdf = OLD_TRANSMISSION_ROBOT.replace(r#"<joint name="j"/>"#, r#"<joint name="jj"/>"#);
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U401");
+    assert_eq!(hit.severity, Severity::Warn);
+    // `  <transmission type="pr2_mechanism_model/SimpleTransmission"><joint name="` is 75 characters.
+    assert_eq!(
+        (hit.line, hit.column),
+        (Some(14), Some(76)),
+        "{}",
+        describe(&f)
+    );
+    assert!(text_at(&urdf, 14, 76).starts_with("jj\""));
+    assert!(hit.message.contains("'jj'"), "{}", hit.message);
+    assert_eq!(hit.help.as_deref(), Some("did you mean 'j'?"));
+    assert_eq!(f.len(), 1, "{}", describe(&f));
+}
+
+#[test]
+fn pr2_style_named_joints_in_a_transmission_are_checked() {
+    let urdf = OLD_TRANSMISSION_ROBOT.replace(
+        r#"<joint name="j"/>"#,
+        r#"<flexJoint name="j"/><rollJoint name="roll"/>"#,
+    );
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U401");
+    assert!(hit.message.contains("'roll'"), "{}", hit.message);
+}
+
+// -------------------------------------------------------------------------------------------------
+// NaN and infinity
+// -------------------------------------------------------------------------------------------------
+
+const NON_FINITE: &str = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="nan"/>
+      <inertia ixx="inf" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+</robot>
+"#;
+
+/// The report serialises to JSON without NaN/Infinity tokens and re-parses.
+fn assert_json_is_clean(report: &Report) {
+    let json = serde_json::to_string(report).expect("serialise");
+    assert!(!json.contains("NaN"), "{json}");
+    assert!(!json.contains("Infinity"), "{json}");
+    let value: serde_json::Value = serde_json::from_str(&json).expect("re-parse");
+    assert!(value.get("findings").is_some_and(|f| f.is_array()));
+}
+
+#[test]
+fn nan_and_inf_are_u004_at_the_value_column() {
+    let r = report(NON_FINITE);
+    assert_eq!(
+        positions_of(&r.findings, "U004"),
+        vec![(4, 20), (5, 21)],
+        "{}",
+        describe(&r.findings)
+    );
+    assert!(text_at(NON_FINITE, 4, 20).starts_with("nan\""));
+    assert!(text_at(NON_FINITE, 5, 21).starts_with("inf\""));
+    assert!(r
+        .findings
+        .iter()
+        .all(|f| f.rule != "U004" || f.severity == Severity::Critical));
+    // Neither the mass nor the tensor is usable.
+    let base = &r.links[0];
+    assert_eq!(base.mass, None);
+    assert_eq!(base.inertia_tensor, None);
+    assert_eq!(r.physics.mass_missing, 1, "{:?}", r.physics);
+    // No inertia rule runs on a non-finite tensor.
+    for code in ["U204", "U205", "U206"] {
+        assert!(
+            lines_of(&r.findings, code).is_empty(),
+            "{code}\n{}",
+            describe(&r.findings)
+        );
+    }
+}
+
+#[test]
+fn non_finite_reports_serialise_to_valid_json() {
+    assert_json_is_clean(&report(NON_FINITE));
+}
+
+#[test]
+fn non_finite_values_everywhere_never_panic_and_serialise() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <inertial>
+      <origin xyz="nan inf -inf" rpy="nan 0 0"/>
+      <mass value="-inf"/>
+      <inertia ixx="nan" ixy="inf" ixz="-inf" iyy="nan" iyz="1e400" izz="-1e400"/>
+    </inertial>
+    <visual>
+      <origin xyz="inf 0 0"/>
+      <geometry><box size="nan inf -inf"/></geometry>
+      <material name="m"><color rgba="nan 0 0 1"/></material>
+    </visual>
+    <collision>
+      <geometry><mesh filename="m.stl" scale="inf nan 1"/></geometry>
+    </collision>
+    <collision>
+      <geometry><cylinder radius="inf" length="nan"/></geometry>
+    </collision>
+    <collision>
+      <geometry><sphere radius="-inf"/></geometry>
+    </collision>
+  </link>
+  <link name="arm">
+    <inertial>
+      <mass value="1e308"/>
+      <inertia ixx="1e308" ixy="1e308" ixz="1e308" iyy="1e308" iyz="1e308" izz="1e308"/>
+    </inertial>
+  </link>
+  <link name="tip">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1e-320" ixy="0" ixz="0" iyy="1e-320" iyz="0" izz="1e-320"/>
+    </inertial>
+  </link>
+  <joint name="j" type="revolute">
+    <origin xyz="nan 0 0" rpy="0 inf 0"/>
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="nan 0 1"/>
+    <limit lower="nan" upper="inf" effort="-inf" velocity="nan"/>
+    <dynamics damping="inf" friction="nan"/>
+  </joint>
+  <joint name="k" type="prismatic">
+    <parent link="arm"/>
+    <child link="tip"/>
+    <axis xyz="1e200 1e200 0"/>
+    <limit lower="-inf" upper="-inf" effort="inf" velocity="inf"/>
+    <mimic joint="j" multiplier="nan" offset="inf"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    assert!(
+        lines_of(&r.findings, "U004").len() >= 10,
+        "{}",
+        describe(&r.findings)
+    );
+    assert_json_is_clean(&r);
+}
+
+// -------------------------------------------------------------------------------------------------
+// Kinematic loops
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn a_link_with_two_parents_is_a_loop() {
+    let urdf = r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="j1" type="fixed">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+  <joint name="j2" type="fixed">
+    <parent link="a"/>
+    <child link="b"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U103");
+    assert_eq!(hit.line, Some(8));
+    assert!(
+        hit.message.contains("'b'") && hit.message.contains("'j1'") && hit.message.contains("'j2'"),
+        "{}",
+        hit.message
+    );
+}
+
+#[test]
+fn a_two_cycle_without_any_root_is_a_loop_and_does_not_panic() {
+    let urdf = r#"<robot name="r">
+  <link name="A"/>
+  <link name="B"/>
+  <joint name="ab" type="fixed">
+    <parent link="A"/>
+    <child link="B"/>
+  </joint>
+  <joint name="ba" type="fixed">
+    <parent link="B"/>
+    <child link="A"/>
+  </joint>
+</robot>
+"#;
+    let r = report(urdf);
+    let hit = the_one(&r.findings, "U103");
+    assert!(
+        hit.message.contains('A') && hit.message.contains('B'),
+        "{}",
+        hit.message
+    );
+    assert!(
+        matches!(hit.line, Some(4) | Some(8)),
+        "the finding points at a joint of the cycle\n{}",
+        describe(&r.findings)
+    );
+    assert!(lines_of(&r.findings, "U104").is_empty());
+    assert_eq!(r.overall_status, Status::Fail);
+    assert_json_is_clean(&r);
+}
+
+#[test]
+fn a_cycle_with_a_branch_hanging_below_it_is_reported_once() {
+    let urdf = r#"<robot name="r">
+  <link name="A"/>
+  <link name="B"/>
+  <link name="C"/>
+  <joint name="ab" type="fixed"><parent link="A"/><child link="B"/></joint>
+  <joint name="ba" type="fixed"><parent link="B"/><child link="A"/></joint>
+  <joint name="bc" type="fixed"><parent link="B"/><child link="C"/></joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U103");
+    assert!(
+        !hit.message.contains('C'),
+        "C is not on the cycle: {}",
+        hit.message
+    );
+}
+
+#[test]
+fn a_joint_whose_parent_is_its_child_is_a_loop() {
+    let urdf = r#"<robot name="r">
+  <link name="a"/>
+  <joint name="self" type="fixed">
+    <parent link="a"/>
+    <child link="a"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U103");
+    assert_eq!((hit.line, hit.column), (Some(3), Some(3)));
+    assert!(hit.message.contains("'self'"), "{}", hit.message);
+    assert!(lines_of(&f, "U104").is_empty(), "{}", describe(&f));
+}
+
+// -------------------------------------------------------------------------------------------------
+// Mimic joints
+// -------------------------------------------------------------------------------------------------
+
+/// Two revolute joints: `follower`'s `<mimic>` is on line 14 and names `follower_mimics`; line 9, inside
+/// `shoulder_pan`, holds `leader_mimic` (empty, or a `<mimic>` of its own).
+fn mimic_robot(follower_mimics: &str, leader_mimic: &str) -> String {
+    format!(
+        r#"<robot name="r">
+  <link name="base"/>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="shoulder_pan" type="revolute">
+    <parent link="base"/>
+    <child link="a"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    {leader_mimic}
+  </joint>
+  <joint name="follower" type="revolute">
+    <parent link="a"/>
+    <child link="b"/>
+    <mimic joint="{follower_mimics}" multiplier="-1"/>
+    <limit lower="-1" upper="1" effort="0" velocity="0"/>
+  </joint>
+</robot>
+"#
+    )
+}
+
+#[test]
+fn a_mimic_of_a_missing_joint_suggests_the_close_name() {
+    let urdf = mimic_robot("shoulder_pn", "");
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U311");
+    assert_eq!(hit.severity, Severity::Critical);
+    assert_eq!((hit.line, hit.column), (Some(14), Some(19)));
+    assert!(text_at(&urdf, 14, 19).starts_with("shoulder_pn\""));
+    assert_eq!(hit.help.as_deref(), Some("did you mean 'shoulder_pan'?"));
+}
+
+#[test]
+fn a_mimic_of_a_missing_joint_with_nothing_close_says_so() {
+    let f = findings(&mimic_robot("gripper_finger_joint", ""));
+    let hit = the_one(&f, "U311");
+    assert_eq!(hit.help.as_deref(), Some("no similarly named item exists"));
+}
+
+#[test]
+fn a_self_mimic_is_a_cycle() {
+    let f = findings(&mimic_robot("follower", ""));
+    let hit = the_one(&f, "U312");
+    assert_eq!((hit.line, hit.column), (Some(14), Some(5)));
+    assert!(
+        hit.message.contains("follower → follower"),
+        "{}",
+        hit.message
+    );
+    assert!(lines_of(&f, "U311").is_empty(), "{}", describe(&f));
+}
+
+#[test]
+fn a_two_joint_mimic_cycle_is_reported_once() {
+    let urdf = mimic_robot("shoulder_pan", r#"<mimic joint="follower"/>"#);
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U312");
+    assert_eq!(hit.line, Some(9), "{}", describe(&f));
+    assert!(
+        hit.message.contains("shoulder_pan") && hit.message.contains("follower"),
+        "{}",
+        hit.message
+    );
+}
+
+#[test]
+fn a_valid_mimic_gives_nothing_and_exempts_the_follower_from_effort_and_velocity() {
+    let f = findings(&mimic_robot("shoulder_pan", ""));
+    for code in ["U311", "U312", "U306", "U307"] {
+        assert!(lines_of(&f, code).is_empty(), "{code}\n{}", describe(&f));
+    }
+}
+
+// -------------------------------------------------------------------------------------------------
+// Roots, unknown elements, references
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn multiple_roots_name_the_disconnected_root() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <link name="camera_mount"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U104");
+    assert_eq!(hit.severity, Severity::Critical);
+    assert!(hit.message.contains("'camera_mount'"), "{}", hit.message);
+    assert!(hit.message.contains("'base'"), "{}", hit.message);
+    assert_eq!((hit.line, hit.column), (Some(4), Some(15)));
+    assert!(hit.help.as_deref().unwrap_or("").contains("joint"));
+}
+
+#[test]
+fn the_larger_tree_is_the_root_whatever_the_document_order() {
+    let urdf = r#"<robot name="r">
+  <link name="stray"/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U104");
+    assert!(hit.message.starts_with("Link 'stray'"), "{}", hit.message);
+    assert_eq!(hit.line, Some(2));
+}
+
+#[test]
+fn an_undefined_link_suggests_the_close_name() {
+    let urdf = r#"<robot name="r">
+  <link name="base_link"/>
+  <link name="arm_link"/>
+  <joint name="j" type="fixed">
+    <parent link="base_link"/>
+    <child link="arm_lnk"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U102");
+    assert_eq!(hit.help.as_deref(), Some("did you mean 'arm_link'?"));
+    assert!(
+        hit.message.contains("child link 'arm_lnk'"),
+        "{}",
+        hit.message
+    );
+}
+
+#[test]
+fn unknown_elements_and_attributes_are_info() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <colision/>
+  </link>
+  <joint name="j" type="fixed" efort="1">
+    <parent link="base"/>
+    <child link="tip"/>
+  </joint>
+  <link name="tip"/>
+</robot>
+"#;
+    let r = report(urdf);
+    let element = the_one(&r.findings, "U005");
+    assert_eq!(element.severity, Severity::Info);
+    assert_eq!((element.line, element.column), (Some(3), Some(5)));
+    assert!(
+        element.message.contains("<colision>"),
+        "{}",
+        element.message
+    );
+    let attribute = the_one(&r.findings, "U006");
+    assert_eq!(attribute.severity, Severity::Info);
+    assert_eq!((attribute.line, attribute.column), (Some(5), Some(32)));
+    assert!(text_at(urdf, 5, 32).starts_with("efort"));
+    assert!(
+        attribute.message.contains("'efort'"),
+        "{}",
+        attribute.message
+    );
+    assert_eq!(r.overall_status, Status::Pass, "{}", describe(&r.findings));
+}
+
+#[test]
+fn an_unexpanded_xacro_property_is_u005_with_xacro_help() {
+    let urdf = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="length" value="0.5"/>
+  <link name="base"/>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U005");
+    assert_eq!(hit.severity, Severity::Info);
+    assert_eq!((hit.line, hit.column), (Some(2), Some(3)));
+    assert!(hit.message.contains("xacro:property"), "{}", hit.message);
+    assert!(
+        hit.help.as_deref().unwrap_or("").contains("xacro"),
+        "{:?}",
+        hit.help
+    );
+}
+
+#[test]
+fn other_namespaced_extensions_are_not_unknown() {
+    let urdf = r#"<robot name="r" xmlns:drake="http://drake.mit.edu">
+  <drake:collision_filter_group name="g"/>
+  <link name="base" drake:thing="1"/>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(f.is_empty(), "{}", describe(&f));
+}
+
+#[test]
+fn a_gazebo_reference_may_name_a_joint_and_robot_level_gazebo_needs_none() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+  <gazebo reference="j"><disableFixedJointLumping>true</disableFixedJointLumping></gazebo>
+  <gazebo><plugin name="p" filename="libp.so"/></gazebo>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(lines_of(&f, "U402").is_empty(), "{}", describe(&f));
+}
+
+#[test]
+fn a_visual_material_with_its_own_colour_needs_no_definition() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+      <material name="red"><color rgba="1 0 0 1"/></material>
+    </visual>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(lines_of(&f, "U404").is_empty(), "{}", describe(&f));
+}
+
+/// urdfdom adds a material defined inside a visual to the model's materials, so a later visual may refer to
+/// it by name alone; the rule's own definition is "defined nowhere".
+#[test]
+fn a_material_defined_in_an_earlier_visual_is_defined() {
+    let urdf = r#"<robot name="r">
+  <link name="a">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+      <material name="red"><color rgba="1 0 0 1"/></material>
+    </visual>
+  </link>
+  <link name="b">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+      <material name="red"/>
+    </visual>
+  </link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(lines_of(&f, "U404").is_empty(), "{}", describe(&f));
+}
+
+// -------------------------------------------------------------------------------------------------
+// Limits and geometry details
+// -------------------------------------------------------------------------------------------------
+
+#[test]
+fn a_limit_without_lower_and_upper_is_an_empty_range_defaulting_to_zero() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <limit effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U305");
+    assert_eq!((hit.line, hit.column), (Some(7), Some(5)));
+    assert!(hit.message.contains("both default to 0"), "{}", hit.message);
+}
+
+#[test]
+fn a_limit_without_effort_and_velocity_gives_two_u302() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="prismatic">
+    <parent link="base"/>
+    <child link="arm"/>
+    <limit lower="0" upper="1"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert_eq!(lines_of(&f, "U302"), vec![7, 7], "{}", describe(&f));
+    let messages: Vec<&str> = with_code(&f, "U302")
+        .iter()
+        .map(|h| h.message.as_str())
+        .collect();
+    assert!(messages[0].contains("'effort'") && messages[1].contains("'velocity'"));
+}
+
+#[test]
+fn a_non_unit_axis_suggests_the_normalised_axis() {
+    let urdf = CLEAN_ARM.replace(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 3 4"/>"#);
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U310");
+    assert!(hit.message.contains("5.0000"), "{}", hit.message);
+    assert_eq!(
+        hit.help.as_deref(),
+        Some(r#"use xyz="0.000000 0.600000 0.800000""#)
+    );
+}
+
+#[test]
+fn a_planar_joint_is_u313() {
+    let urdf = r#"<robot name="r">
+  <link name="ground"/>
+  <link name="puck"/>
+  <joint name="slide" type="planar">
+    <parent link="ground"/>
+    <child link="puck"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U313");
+    assert_eq!((hit.line, hit.column), (Some(4), Some(29)));
+    assert!(text_at(urdf, 4, 29).starts_with("planar"));
+}
+
+#[test]
+fn degenerate_spheres_cylinders_and_mesh_scales_are_u503() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <collision><geometry><sphere radius="0"/></geometry></collision>
+    <collision><geometry><cylinder radius="0.1" length="-1"/></geometry></collision>
+    <collision><geometry><mesh filename="package://nopkg/a.stl" scale="1 0 1"/></geometry></collision>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert_eq!(lines_of(&f, "U503"), vec![3, 4, 5], "{}", describe(&f));
+    assert_eq!(positions_of(&f, "U503")[0], (3, 26));
+    assert!(text_at(urdf, 3, 26).starts_with("<sphere"));
+}
+
+/// The rule's documentation: "Negative mesh scales, the usual way to mirror a part, are accepted."
+#[test]
+fn a_mirrored_mesh_is_not_u503() {
+    let urdf = r#"<robot name="r">
+  <link name="base">
+    <collision><geometry><mesh filename="package://nopkg/b.stl" scale="-1 1 1"/></geometry></collision>
+  </link>
+</robot>
+"#;
+    let f = findings(urdf);
+    assert!(lines_of(&f, "U503").is_empty(), "{}", describe(&f));
+}
+
+#[test]
+fn columns_count_characters_not_bytes() {
+    // "ä" is two bytes in UTF-8 but one column.
+    let urdf = "<robot name=\"r\">\n  <link name=\"ä\"/><link name=\"ä\"/>\n</robot>\n";
+    let f = findings(urdf);
+    assert_eq!(positions_of(&f, "U101"), vec![(2, 31)], "{}", describe(&f));
+    assert!(text_at(urdf, 2, 31).starts_with("ä\""));
+}
+
+#[test]
+fn crlf_line_endings_keep_lines_and_columns() {
+    let urdf = "<robot name=\"r\">\r\n  <link name=\"base\">\r\n    <collision>\r\n      <geometry>\r\n        <box size=\"1 1\"/>\r\n      </geometry>\r\n    </collision>\r\n  </link>\r\n</robot>\r\n";
+    let f = findings(urdf);
+    assert_eq!(positions_of(&f, "U003"), vec![(5, 20)], "{}", describe(&f));
+}
+
+// -------------------------------------------------------------------------------------------------
+// Mesh resolution
+// -------------------------------------------------------------------------------------------------
+
+fn mesh_robot(filename: &str) -> String {
+    format!(
+        r#"<robot name="r">
+  <link name="base">
+    <collision>
+      <geometry>
+        <mesh filename="{filename}"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#
+    )
+}
+
+#[test]
+fn a_mesh_in_an_unknown_package_is_u501_info() {
+    let urdf = mesh_robot("package://nopkg/m.stl");
+    let r = report(&urdf);
+    let hit = the_one(&r.findings, "U501");
+    assert_eq!(hit.severity, Severity::Info);
+    assert_eq!((hit.line, hit.column), (Some(5), Some(25)));
+    assert!(
+        hit.message.contains("package://nopkg/m.stl"),
+        "{}",
+        hit.message
+    );
+    assert!(
+        hit.help.as_deref().unwrap_or("").contains("--package-path"),
+        "{:?}",
+        hit.help
+    );
+    assert_eq!(r.overall_status, Status::Pass);
+}
+
+#[test]
+fn a_relative_mesh_next_to_the_file_resolves() {
+    let dir = TempDir::new("relative-mesh");
+    fs::write(dir.path().join("m.stl"), b"solid m\nendsolid m\n").unwrap();
+    fs::create_dir_all(dir.path().join("meshes")).unwrap();
+    fs::write(dir.path().join("meshes/n.stl"), b"solid n\nendsolid n\n").unwrap();
+    let urdf = mesh_robot("m.stl").replace(
+        "</collision>",
+        "</collision>\n    <collision><geometry><mesh filename=\"meshes/n.stl\"/></geometry></collision>",
+    );
+    let path = dir.path().join("robot.urdf");
+    fs::write(&path, &urdf).unwrap();
+    let validation = validate(&path, &Options::default()).expect("loads");
+    let f = &validation.report.findings;
+    assert!(lines_of(f, "U501").is_empty(), "{}", describe(f));
+    assert_eq!(
+        validation.report.urdf_path,
+        path.display().to_string(),
+        "the report names the file as given"
+    );
+
+    // The same file with a mesh that is not there: the finding says where it looked.
+    let missing = mesh_robot("gone.stl");
+    fs::write(&path, &missing).unwrap();
+    let validation = validate(&path, &Options::default()).expect("loads");
+    let hit = the_one(&validation.report.findings, "U501");
+    assert_eq!(
+        hit.file.as_deref(),
+        Some(path.display().to_string().as_str())
+    );
+    assert!(
+        hit.help
+            .as_deref()
+            .unwrap_or("")
+            .contains(&dir.path().join("gone.stl").display().to_string()),
+        "{:?}",
+        hit.help
+    );
+}
+
+#[test]
+fn a_package_mesh_resolves_by_walking_up_to_a_package_xml() {
+    let dir = TempDir::new("package-walk-up");
+    let package = dir.path().join("my_robot");
+    fs::create_dir_all(package.join("urdf")).unwrap();
+    fs::create_dir_all(package.join("meshes")).unwrap();
+    fs::write(
+        package.join("package.xml"),
+        "<package><name>my_robot</name></package>",
+    )
+    .unwrap();
+    fs::write(package.join("meshes/m.stl"), b"solid m\nendsolid m\n").unwrap();
+    let path = package.join("urdf/robot.urdf");
+    fs::write(&path, mesh_robot("package://my_robot/meshes/m.stl")).unwrap();
+    let validation = validate(&path, &Options::default()).expect("loads");
+    let f = &validation.report.findings;
+    assert!(lines_of(f, "U501").is_empty(), "{}", describe(f));
+}
+
+#[test]
+fn an_http_mesh_is_u501_about_the_scheme() {
+    let urdf = mesh_robot("http://x/m.stl");
+    let f = findings(&urdf);
+    let hit = the_one(&f, "U501");
+    assert_eq!(hit.severity, Severity::Info);
+    assert_eq!((hit.line, hit.column), (Some(5), Some(25)));
+    assert!(
+        hit.message.contains("scheme") && hit.message.contains("'http'"),
+        "{}",
+        hit.message
+    );
+}
+
+#[test]
+fn an_absolute_file_uri_with_escapes_resolves() {
+    let dir = TempDir::new("file-uri");
+    fs::write(dir.path().join("my mesh.stl"), b"solid m\nendsolid m\n").unwrap();
+    let uri = format!("file://{}", dir.path().join("my%20mesh.stl").display());
+    let f = findings(&mesh_robot(&uri));
+    assert!(lines_of(&f, "U501").is_empty(), "{uri}\n{}", describe(&f));
+}
+
+#[test]
+fn an_explicit_package_path_resolves_package_uris() {
+    let dir = TempDir::new("package-path");
+    fs::create_dir_all(dir.path().join("pkg/meshes")).unwrap();
+    fs::write(
+        dir.path().join("pkg/meshes/m.stl"),
+        b"solid m\nendsolid m\n",
+    )
+    .unwrap();
+    let options = Options {
+        resolver: urdf_validator::resolve::PackageResolver::new(
+            vec![dir.path().to_path_buf()],
+            None,
+            None,
+        ),
+    };
+    let urdf = mesh_robot("package://pkg/meshes/m.stl");
+    let v = validate_text(urdf.clone(), Path::new(FILE), &options).expect("loads");
+    let f = &v.report.findings;
+    assert!(lines_of(f, "U501").is_empty(), "{}", describe(f));
+    // Without the path, the same file is not found.
+    assert_eq!(lines_of(&findings(&urdf), "U501"), vec![5]);
+}
+
+#[test]
+fn unresolvable_uris_are_u501_saying_why() {
+    for (uri, why) in [
+        ("model://robot/m.stl", "'model'"),
+        ("package://pkg", "names no file"),
+        ("package:///m.stl", "no package name"),
+        ("", "empty"),
+    ] {
+        let f = findings(&mesh_robot(uri));
+        let hit = the_one(&f, "U501");
+        assert!(hit.message.contains(why), "{uri:?}: {}", hit.message);
+    }
+}
+
+#[test]
+fn a_misspelt_gazebo_reference_suggests_the_link() {
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <gazebo reference="bsae"/>
+</robot>
+"#;
+    let f = findings(urdf);
+    let hit = the_one(&f, "U402");
+    assert_eq!(hit.help.as_deref(), Some("did you mean 'base'?"));
+}
+
+/// Editors do not count a UTF-8 byte-order mark as a column.
+#[test]
+fn a_byte_order_mark_does_not_shift_line_one_columns() {
+    let urdf = "\u{feff}<robot name=\"r\" x=\"1\">\n  <link name=\"a\"/>\n</robot>\n";
+    let f = findings(urdf);
+    assert_eq!(positions_of(&f, "U006"), vec![(1, 17)], "{}", describe(&f));
+}
+
+#[test]
+fn a_byte_order_mark_parses() {
+    let urdf = "\u{feff}<?xml version=\"1.0\"?>\n<robot name=\"r\" x=\"1\">\n  <link name=\"a\"/>\n</robot>\n";
+    let f = findings(urdf);
+    assert_eq!(positions_of(&f, "U006"), vec![(2, 17)], "{}", describe(&f));
+}
+
+#[test]
+fn non_finite_limits_are_reported_once_by_the_parser() {
+    let found = findings(
+        r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <limit lower="-inf" upper="-inf" effort="-inf" velocity="1"/></joint>
+</robot>
+"#,
+    );
+    assert_eq!(
+        lines_of(&found, "U004"),
+        vec![5, 5, 5],
+        "{}",
+        describe(&found)
+    );
+    for code in ["U304", "U305", "U306"] {
+        assert!(
+            with_code(&found, code).is_empty(),
+            "{code} duplicates U004: {}",
+            describe(&found)
+        );
+    }
+}
+
+#[test]
+fn huge_eigenvalues_print_in_scientific_notation() {
+    let found = findings(
+        r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="1e300" ixy="0" ixz="0" iyy="-1e300" iyz="0" izz="1e300"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
+</robot>
+"#,
+    );
+    let finding = the_one(&found, "U205");
+    assert!(finding.message.len() < 200, "{}", finding.message);
+    assert!(finding.message.contains("e300"), "{}", finding.message);
+}
