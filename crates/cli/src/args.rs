@@ -24,6 +24,39 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub package_path: Vec<PathBuf>,
 
+    /// Joint configuration for statics: zero (clamped into limits), limits (upper limits), custom
+    /// (--joint-angles), home (SRDF group_state), worst (largest torque per joint over seeded samples).
+    #[arg(long, value_enum, default_value_t = PoseArg::Zero)]
+    pub pose: PoseArg,
+
+    /// Joint values for --pose custom: "j1=0.5,j2=30deg" (radians or metres; `deg` for degrees).
+    #[arg(long, value_name = "ANGLES")]
+    pub joint_angles: Option<String>,
+
+    /// SRDF for --pose home (default: <stem>.srdf beside the URDF or in ../srdf/).
+    #[arg(long, value_name = "FILE")]
+    pub srdf: Option<PathBuf>,
+
+    /// group_state name for --pose home.
+    #[arg(long, value_name = "NAME", default_value = "home")]
+    pub state: String,
+
+    /// Samples for --pose worst.
+    #[arg(long, value_name = "N", default_value_t = 5000)]
+    pub samples: usize,
+
+    /// Seed of the sampling (same seed, same report).
+    #[arg(long, value_name = "S", default_value_t = 7)]
+    pub seed: u64,
+
+    /// Payload carried at --payload-link, kg: torques and verdicts include it.
+    #[arg(long, value_name = "KG")]
+    pub payload_mass: Option<f64>,
+
+    /// Link carrying the payload (default: the end of the longest actuated chain).
+    #[arg(long, value_name = "LINK")]
+    pub payload_link: Option<String>,
+
     /// What to print on stdout: the text report, or the JSON report(s).
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
@@ -67,6 +100,34 @@ pub struct Args {
     /// Print the report reference (docs/json_schema.md) and exit.
     #[arg(long, hide = true)]
     pub json_schema_markdown: bool,
+}
+
+/// `--pose` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PoseArg {
+    /// Every joint at 0 (clamped into its limits).
+    Zero,
+    /// Every limited joint at its upper limit.
+    Limits,
+    /// The values of --joint-angles.
+    Custom,
+    /// A group_state of an SRDF (zero when none is found).
+    Home,
+    /// Per joint, the largest gravity torque over seeded samples within the limits.
+    Worst,
+}
+
+impl From<PoseArg> for urdf_validator::pose::PoseKind {
+    fn from(pose: PoseArg) -> Self {
+        use urdf_validator::pose::PoseKind;
+        match pose {
+            PoseArg::Zero => PoseKind::Zero,
+            PoseArg::Limits => PoseKind::Limits,
+            PoseArg::Custom => PoseKind::Custom,
+            PoseArg::Home => PoseKind::Home,
+            PoseArg::Worst => PoseKind::Worst,
+        }
+    }
 }
 
 /// Output format on stdout.

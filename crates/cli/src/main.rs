@@ -9,8 +9,10 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayon::prelude::*;
+use urdf_validator::pose::PoseOptions;
 use urdf_validator::render::{render_text, TextOptions};
 use urdf_validator::resolve::PackageResolver;
+use urdf_validator::statics_section::StaticsOptions;
 use urdf_validator::{rules, Options};
 
 use args::{Args, ColorChoice, Format};
@@ -69,6 +71,18 @@ fn run(args: Args) -> u8 {
     let (files, input_errors) = inputs::expand(&args.inputs);
     let options = Options {
         resolver: PackageResolver::from_env(args.package_path.clone()),
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                kind: args.pose.into(),
+                joint_angles: args.joint_angles.clone(),
+                srdf: args.srdf.clone(),
+                state: args.state.clone(),
+                samples: args.samples,
+                seed: args.seed,
+            },
+            payload_mass: args.payload_mass,
+            payload_link: args.payload_link.clone(),
+        },
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
     let outcomes: Vec<Outcome> = files

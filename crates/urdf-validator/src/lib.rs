@@ -13,16 +13,21 @@
 
 pub mod checks;
 pub mod finding;
+pub mod kinematics;
 pub mod link_physics;
 pub mod model;
 pub mod parse;
+pub mod pose;
 pub mod render;
 pub mod report;
 pub mod resolve;
+pub mod rng;
 pub mod robot;
 pub mod rules;
 pub mod schema_doc;
 pub mod source;
+pub mod statics;
+pub mod statics_section;
 pub mod suggest;
 pub mod timestamp;
 
@@ -44,6 +49,8 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 pub struct Options {
     /// Where `package://` URIs are looked up.
     pub resolver: PackageResolver,
+    /// Pose and payload for statics.
+    pub statics: statics_section::StaticsOptions,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -92,8 +99,19 @@ pub fn validate_text(
         };
         findings.extend(checks::run(&robot, &model, &ctx));
     }
+    let statics = if is_robot {
+        let section = statics_section::analyse(&robot, &model, path, &options.statics).map_err(
+            |message| LoadError::Usage {
+                path: path.to_path_buf(),
+                message,
+            },
+        )?;
+        Some(section)
+    } else {
+        None
+    };
     let source = SourceText::new(path, text);
-    let report = build_report(path, &robot, &model, &findings, &source);
+    let report = build_report(path, &robot, &model, &findings, &source, statics);
     Ok(Validation {
         report,
         sources: vec![source],
@@ -114,6 +132,7 @@ fn build_report(
     model: &Model,
     findings: &[Finding],
     source: &SourceText,
+    statics: Option<report::StaticsSection>,
 ) -> Report {
     let critical_issues = messages(findings, Severity::Critical);
     let warnings = messages(findings, Severity::Warn);
@@ -135,7 +154,9 @@ fn build_report(
             .unwrap_or_default(),
         timestamp: timestamp::now(),
         validator_version: VERSION.to_string(),
-        overall_status: schema_status,
+        overall_status: statics
+            .as_ref()
+            .map_or(schema_status, |s| schema_status.worst(s.status)),
         confidence_level: link_physics::confidence_level(&physics),
         critical_issues: critical_issues.clone(),
         warnings: warnings.clone(),
@@ -148,6 +169,7 @@ fn build_report(
         },
         physics,
         links,
+        statics,
         findings: findings.iter().map(|f| finding_report(f, source)).collect(),
     }
 }

@@ -6,6 +6,8 @@
 
 use std::collections::HashMap;
 
+pub use crate::kinematics::{JointData, LinkMass};
+
 use crate::finding::Finding;
 use crate::robot::{JointKind, Robot};
 use crate::rules;
@@ -47,6 +49,10 @@ pub struct Model {
     pub topological_order: Vec<LinkId>,
     /// For each joint, its mimic leader when the reference is valid and acyclic.
     pub mimic: Vec<Option<MimicLink>>,
+    /// For each joint, its numbers ready for kinematics.
+    pub joint_data: Vec<JointData>,
+    /// For each link, its mass properties.
+    pub link_mass: Vec<LinkMass>,
     link_index: HashMap<String, LinkId>,
     joint_index: HashMap<String, JointId>,
 }
@@ -66,6 +72,8 @@ impl Model {
         attach_joints(robot, &mut model, &mut findings);
         find_roots(robot, &mut model, &mut findings);
         resolve_mimics(robot, &mut model, &mut findings);
+        model.joint_data = robot.joints.iter().map(JointData::from_joint).collect();
+        model.link_mass = robot.links.iter().map(LinkMass::from_link).collect();
         (model, findings)
     }
 
@@ -289,6 +297,9 @@ fn find_roots(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {
 fn resolve_mimics(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {
     for (i, joint) in robot.joints.iter().enumerate() {
         let Some(mimic) = &joint.mimic else { continue };
+        if !(mimic.multiplier.is_finite() && mimic.offset.is_finite()) {
+            continue; // Reported by the parser; the joint stays independent.
+        }
         match model.joint(&mimic.joint.value) {
             Some(leader) => {
                 model.mimic[i] = Some(MimicLink {

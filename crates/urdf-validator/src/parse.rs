@@ -43,6 +43,13 @@ pub enum LoadError {
         /// The file.
         path: PathBuf,
     },
+    /// The options do not fit this robot (an unknown joint or link name, an unreadable SRDF).
+    Usage {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, with suggestions.
+        message: String,
+    },
     /// The text is not well-formed XML.
     Xml {
         /// The file.
@@ -74,6 +81,7 @@ impl fmt::Display for LoadError {
                 path.display(),
                 path.display()
             ),
+            LoadError::Usage { path, message } => write!(f, "{}: {message}", path.display()),
             LoadError::Xml { path, line, column, message } => write!(
                 f,
                 "{}:{line}:{column}: not well-formed XML: {message} (expected a URDF XML document)",

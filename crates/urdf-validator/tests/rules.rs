@@ -2714,6 +2714,7 @@ fn an_explicit_package_path_resolves_package_uris() {
             None,
             None,
         ),
+        ..Options::default()
     };
     let urdf = mesh_robot("package://pkg/meshes/m.stl");
     let v = validate_text(urdf.clone(), Path::new(FILE), &options).expect("loads");

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Times one `urdf_validate` call over the whole example-robot-data corpus (69 URDFs), and over
+# ../shared/robots when present, with the release binary.
+#
+#   bash scripts/bench-corpus.sh
+#
+# Uses hyperfine when installed (--warmup 2 --runs 10), otherwise 10 timed runs in a bash loop.
+# A non-zero exit code of urdf_validate is expected (1 = WARN, 2 = FAIL: some corpus robots have findings);
+# only an exit code > 2 or a crash (killed by a signal) counts as a failure of the benchmark.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+runs=10
+warmup=2
+
+echo "== building the release binary" >&2
+cargo build --release -p urdf-validate-cli
+bin="${CARGO_TARGET_DIR:-$repo_root/target}/release/urdf_validate"
+[[ -x "$bin" ]] || {
+    echo "bench-corpus: $bin not found after cargo build" >&2
+    exit 1
+}
+
+echo "== ensuring the corpus" >&2
+corpus="$(bash scripts/setup-test-env.sh)"
+
+tmp="$(mktemp -d)"
+trap 'rm -rf -- "$tmp"' EXIT
+
+declare -a names=() medians=()
+
+# One checked run: exit codes 0, 1 and 2 are results; anything else (> 2, or a signal) is a failure.
+check_run() {
+    local dir="$1" out="$2" status=0
+    "$bin" "$dir" --output-dir "$out" >/dev/null 2>"$tmp/stderr" || status=$?
+    if ((status > 2)); then
+        echo "bench-corpus: urdf_validate exited $status on $dir (crash or error):" >&2
+        cat "$tmp/stderr" >&2
+        exit 1
+    fi
+    echo "$status"
+}
+
+bench() {
+    local name="$1" dir="$2" out="$tmp/reports-$1" n status median
+    mkdir -p "$out"
+    n="$(find "$dir" -name '*.urdf' | wc -l)"
+    status="$(check_run "$dir" "$out")"
+    echo
+    echo "== $name: $dir ($n URDF files; urdf_validate exit code $status)"
+    if command -v hyperfine >/dev/null 2>&1; then
+        local cmd
+        cmd="$(printf '%q ' "$bin" "$dir" --output-dir "$out")"
+        hyperfine --warmup "$warmup" --runs "$runs" -i --export-json "$tmp/$name.json" \
+            --command-name "$name" "$cmd"
+        median="$(python3 -c 'import json, sys; print("%.1f" % (json.load(open(sys.argv[1]))["results"][0]["median"] * 1000))' "$tmp/$name.json")"
+    else
+        echo "(hyperfine not installed: $runs timed runs after $warmup warm-up runs)"
+        local i start end times=()
+        for ((i = 0; i < warmup; i++)); do check_run "$dir" "$out" >/dev/null; done
+        for ((i = 1; i <= runs; i++)); do
+            start="$(date +%s%N)"
+            check_run "$dir" "$out" >/dev/null
+            end="$(date +%s%N)"
+            times+=("$(((end - start) / 1000))")
+            printf '  run %2d: %6d.%d ms\n' "$i" "$((times[-1] / 1000))" "$((times[-1] % 1000 / 100))"
+        done
+        median="$(python3 -c 'import statistics, sys; print("%.1f" % (statistics.median(int(t) for t in sys.argv[1:]) / 1000))' "${times[@]}")"
+    fi
+    names+=("$name ($n files)")
+    medians+=("$median")
+}
+
+bench corpus "$corpus"
+shared="$repo_root/../shared/robots"
+if [[ -d "$shared" ]]; then
+    bench shared-robots "$(cd "$shared" && pwd)"
+else
+    echo "(../shared/robots absent: skipped)" >&2
+fi
+
+echo
+echo "== medians (one urdf_validate call, release build)"
+for i in "${!names[@]}"; do
+    printf '  %-28s median %8s ms\n' "${names[$i]}" "${medians[$i]}"
+done

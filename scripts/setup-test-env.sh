@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Creates (once) the Python test environment `.venv` in the repo root and installs the pinned test data.
+#
+#   bash scripts/setup-test-env.sh        # prints the example-robot-data corpus path on stdout
+#
+# Idempotent: a second run with the same package list does nothing (no network). Progress goes to stderr,
+# so `corpus="$(bash scripts/setup-test-env.sh)"` captures only the path. Needs Python 3 with pip and
+# access to PyPI on first use; the validator itself never uses Python.
+#
+# Environment: PYTHON (default python3) picks the interpreter that creates the venv.
+set -euo pipefail
+
+# ---------------------------------------------------------------------------------------------------------
+# Packages installed into .venv, pinned. Append here (pinned, `name==version`) for the oracle tests
+# (Pinocchio `pin`, `mujoco`, `xacro`, ...). Changing this list makes the next run re-install.
+TEST_PACKAGES=(
+    "example-robot-data==6.0.0" # the 69-URDF test corpus (pulls cmeel 0.62.0, jrl-cmakemodules 2.1.0)
+)
+# ---------------------------------------------------------------------------------------------------------
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+venv="$repo_root/.venv"
+stamp="$venv/.urdf-validator-test-packages"
+python="${PYTHON:-python3}"
+
+log() { printf 'setup-test-env: %s\n' "$*" >&2; }
+die() {
+    printf 'setup-test-env: error: %s\n' "$*" >&2
+    exit 1
+}
+
+find_corpus() {
+    local matches
+    shopt -s nullglob
+    matches=("$venv"/lib/python3.*/site-packages/cmeel.prefix/share/example-robot-data/robots)
+    shopt -u nullglob
+    if ((${#matches[@]} > 0)) && [[ -d "${matches[0]}" ]]; then
+        printf '%s\n' "${matches[0]}"
+    fi
+}
+
+wanted="$(printf '%s\n' "${TEST_PACKAGES[@]}")"
+
+# Fast path: the venv works, holds exactly this package list, and the corpus is there.
+if [[ -x "$venv/bin/python" ]] && "$venv/bin/python" -c '' 2>/dev/null &&
+    [[ -f "$stamp" ]] && [[ "$(cat "$stamp")" == "$wanted" ]]; then
+    corpus="$(find_corpus)"
+    if [[ -n "$corpus" ]]; then
+        printf '%s\n' "$corpus"
+        exit 0
+    fi
+fi
+
+command -v "$python" >/dev/null 2>&1 ||
+    die "'$python' not found: install Python 3 (with pip), or set PYTHON=/path/to/python3"
+"$python" -c 'import sys; sys.exit(0 if sys.version_info >= (3, 8) else 1)' ||
+    die "'$python' is $("$python" --version 2>&1); Python >= 3.8 is needed"
+
+# A venv whose interpreter no longer runs (moved repo, removed Python) is rebuilt.
+if [[ -e "$venv" ]] && ! { [[ -x "$venv/bin/python" ]] && "$venv/bin/python" -c '' 2>/dev/null; }; then
+    log "$venv is broken; recreating it"
+    rm -rf -- "$venv"
+fi
+
+if [[ ! -e "$venv" ]]; then
+    log "creating $venv with $("$python" --version 2>&1)"
+    if ! "$python" -m venv "$venv" >&2; then
+        # Debian's python3 without python3-venv has no ensurepip: make the venv without pip and bootstrap
+        # pip into it with the interpreter's own pip (pip >= 22.3 understands --python).
+        log "'$python -m venv' failed (no ensurepip?); retrying without pip"
+        rm -rf -- "$venv"
+        "$python" -m venv --without-pip "$venv" >&2 ||
+            die "cannot create $venv with '$python -m venv' (on Debian: apt-get install python3-venv)"
+        "$python" -m pip --python "$venv/bin/python" install --quiet --disable-pip-version-check pip >&2 ||
+            die "cannot install pip into $venv (on Debian: apt-get install python3-venv python3-pip)"
+    fi
+fi
+
+"$venv/bin/python" -m pip --version >/dev/null 2>&1 ||
+    die "$venv has no pip; remove it and re-run, or install python3-venv"
+
+log "installing ${TEST_PACKAGES[*]} into $venv"
+if ! "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-input \
+    "${TEST_PACKAGES[@]}" >&2; then
+    die "pip install ${TEST_PACKAGES[*]} failed (is PyPI reachable?)"
+fi
+
+corpus="$(find_corpus)"
+[[ -n "$corpus" ]] ||
+    die "example-robot-data installed, but no corpus at $venv/lib/python3.*/site-packages/cmeel.prefix/share/example-robot-data/robots"
+
+printf '%s\n' "$wanted" >"$stamp"
+log "corpus: $(find "$corpus" -name '*.urdf' | wc -l) URDF files"
+printf '%s\n' "$corpus"

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Runs the whole test suite: installs the test corpus into .venv (first use only), points the tests at
+# it and at ../shared/robots, then `cargo test --workspace --all-targets`. Extra arguments go to cargo
+# test, e.g. `bash scripts/test.sh -- --nocapture` or `bash scripts/test.sh -p urdf-validator`.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+corpus="$(bash scripts/setup-test-env.sh)" || {
+    echo "test.sh: scripts/setup-test-env.sh failed; cannot install the test corpus" >&2
+    exit 1
+}
+export URDF_VALIDATOR_CORPUS="$corpus"
+echo "test.sh: URDF_VALIDATOR_CORPUS=$URDF_VALIDATOR_CORPUS" >&2
+
+shared_robots="$repo_root/../shared/robots"
+if [[ -d "$shared_robots" ]]; then
+    URDF_VALIDATOR_SHARED_ROBOTS="$(cd "$shared_robots" && pwd)"
+    export URDF_VALIDATOR_SHARED_ROBOTS
+    echo "test.sh: URDF_VALIDATOR_SHARED_ROBOTS=$URDF_VALIDATOR_SHARED_ROBOTS" >&2
+else
+    echo "test.sh: $shared_robots is absent; its tests skip (or fail under CI=true)" >&2
+fi
+
+cargo test --workspace --all-targets "$@"
