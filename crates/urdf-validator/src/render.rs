@@ -7,7 +7,7 @@ use std::fmt::Write;
 use anstyle::{AnsiColor, Style};
 
 use crate::finding::Severity;
-use crate::report::{FindingReport, Report, Status};
+use crate::report::{FindingReport, JointStatics, Report, StaticsSection, Status};
 use crate::Validation;
 
 /// How much to show.
@@ -60,6 +60,9 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     header(&mut out, report);
     schema_section(&mut out, validation, options);
     physics_line(&mut out, report);
+    if let Some(statics) = &report.statics {
+        statics_section(&mut out, statics, options.verbose);
+    }
     let overall = report.overall_status;
     let _ = writeln!(
         out,
@@ -259,4 +262,132 @@ fn physics_line(out: &mut String, report: &Report) {
         )
     };
     let _ = writeln!(out, "{}  {body}", paint(BOLD, "[PHYSICS]"));
+}
+
+fn statics_section(out: &mut String, statics: &StaticsSection, verbose: bool) {
+    let head = paint(BOLD, "[STATICS]");
+    let indent = " ".repeat(11);
+    match (statics.full_body_com, statics.total_mass) {
+        (Some([x, y, z]), Some(mass)) => {
+            let _ = writeln!(
+                out,
+                "{head}  COM [{x:.3}, {y:.3}, {z:.3}] m  height {z:.3} m  total mass {mass:.3} kg  ({})",
+                confidence_label(statics.com_confidence)
+            );
+            if let (Some(name), Some(pct)) =
+                (&statics.heaviest_link_name, statics.heaviest_link_pct)
+            {
+                let _ = writeln!(out, "{indent}Heaviest: {name} ({pct:.1}%)");
+            }
+        }
+        _ => {
+            let _ = writeln!(out, "{head}  COM unknown (missing)");
+        }
+    }
+    let mut line = format!(
+        "{head}  joints: {}",
+        paint(status_style(statics.status), statics.status.label())
+    );
+    if let Some(weakest) = &statics.weakest_joint_name {
+        line.push_str(&format!("  weakest: {weakest}"));
+    }
+    if statics.pose != "zero" {
+        line.push_str(&format!("  (pose: {}", statics.pose));
+        if let Some(samples) = statics.samples {
+            line.push_str(&format!(
+                ", {samples} samples, seed {}",
+                statics.seed.unwrap_or_default()
+            ));
+        }
+        line.push(')');
+    }
+    let _ = writeln!(out, "{line}");
+    // Rows worth reading: joints that fail, warn or cannot be assessed (all of them with --verbose). When
+    // no mass is declared at all, the reason line says it once instead of one row per joint.
+    let masses_known = statics.total_mass.is_some();
+    let shown: Vec<&JointStatics> = statics
+        .joints
+        .iter()
+        .filter(|j| {
+            verbose
+                || (masses_known
+                    && matches!(j.status, Status::Warn | Status::Fail | Status::Unknown))
+        })
+        .collect();
+    for joint in &shown {
+        joint_row(out, joint);
+    }
+    let hidden = statics
+        .joints
+        .iter()
+        .filter(|j| j.status != Status::NotApplicable)
+        .count()
+        .saturating_sub(shown.len());
+    if !shown.is_empty() && hidden > 0 {
+        let _ = writeln!(
+            out,
+            "  {}",
+            paint(
+                DIM,
+                &format!("({hidden} more joints pass — --verbose lists all)")
+            )
+        );
+    }
+    let payload_asked = statics.payload_mass.is_some();
+    if let Some(mass) = statics.payload_mass {
+        let link = statics.payload_link.as_deref().unwrap_or("?");
+        let _ = writeln!(out, "{indent}payload {mass:.3} kg at {link}");
+    }
+    if let (Some(capacity), Some(link), true) = (
+        statics.payload_capacity_kg,
+        &statics.payload_link,
+        payload_asked || verbose,
+    ) {
+        let pass = crate::statics::PASS_MARGIN;
+        let _ = writeln!(out, "{indent}payload capacity {capacity:.3} kg at {link} (every joint on its path at margin ≥ {pass}×)");
+    }
+    let unresolved = matches!(statics.status, Status::Unknown | Status::NotApplicable);
+    if let Some(reason) = statics
+        .reason
+        .as_ref()
+        .filter(|_| unresolved || payload_asked || verbose)
+    {
+        let _ = writeln!(out, "{indent}{}", paint(DIM, reason));
+    }
+    for note in &statics.notes {
+        let _ = writeln!(out, "{indent}note: {note}");
+    }
+}
+
+fn joint_row(out: &mut String, joint: &JointStatics) {
+    let required = joint
+        .required_torque_gravity
+        .map_or("?".to_string(), |t| format!("{:.1} Nm", t.abs()));
+    let declared = joint
+        .declared_effort
+        .map_or("none".to_string(), |e| format!("{e:.1} Nm"));
+    let margin = joint
+        .margin
+        .map_or("no margin".to_string(), |m| format!("{m:.2}×"));
+    let _ = writeln!(
+        out,
+        "  {:<30}req {:<12}declared {:<14}{:>10}  {}  — {}",
+        joint.name,
+        required,
+        declared,
+        margin,
+        paint(status_style(joint.status), joint.status.label()),
+        joint.summary
+    );
+}
+
+fn confidence_label(confidence: crate::report::Confidence) -> &'static str {
+    use crate::report::Confidence;
+    match confidence {
+        Confidence::Exact => "exact",
+        Confidence::Estimated => "estimated",
+        Confidence::Guessed => "guessed",
+        Confidence::Missing => "missing",
+        Confidence::Simulated => "simulated",
+    }
 }
