@@ -224,3 +224,55 @@ fn same_stem_in_one_output_dir_does_not_overwrite() {
     assert!(out.join("robot_validation.json").is_file());
     assert!(out.join("robot_2_validation.json").is_file());
 }
+
+#[test]
+fn unknown_joint_in_joint_angles_exits_2_with_a_suggestion() {
+    let dir = temp_dir();
+    let good = write(&dir, "good.urdf", GOOD);
+    let result = run(&[
+        good.to_str().unwrap(),
+        "--no-write",
+        "--pose",
+        "custom",
+        "--joint-angles",
+        "jj=0.3",
+    ]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = text(&result.stderr);
+    assert!(
+        stderr.contains("unknown joint 'jj'") && stderr.contains("did you mean 'j'"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn statics_flags_reach_the_report() {
+    let dir = temp_dir();
+    let good = write(&dir, "good.urdf", GOOD);
+    let result = run(&[
+        good.to_str().unwrap(),
+        "--no-write",
+        "--format",
+        "json",
+        "--pose",
+        "worst",
+        "--samples",
+        "200",
+        "--seed",
+        "3",
+        "--payload-mass",
+        "0.5",
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&result.stdout).expect("JSON");
+    let statics = &report["statics"];
+    assert_eq!(statics["pose"], "worst");
+    assert_eq!(statics["samples"], 200);
+    assert_eq!(statics["seed"], 3);
+    assert_eq!(statics["payload_mass"], 0.5);
+    assert_eq!(statics["payload_link"], "arm");
+    let text_out = text(&run(&[good.to_str().unwrap(), "--no-write", "--pose", "limits"]).stdout);
+    assert!(
+        text_out.contains("[STATICS]  joints: PASS") && text_out.contains("(pose: limits)"),
+        "{text_out}"
+    );
+}

@@ -49,3 +49,49 @@ fn turtlebot3(bencher: divan::Bencher) {
         "turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf",
     );
 }
+
+/// A 7-DOF serial arm written out in code: alternating z / y axes, 0.15 m links, 1.5 kg each.
+fn seven_dof_arm() -> String {
+    let mut urdf = String::from(r#"<robot name="arm7"><link name="base"/>"#);
+    let mut parent = "base".to_string();
+    for i in 1..=7 {
+        let axis = if i % 2 == 1 { "0 0 1" } else { "0 1 0" };
+        urdf.push_str(&format!(
+            r#"<joint name="j{i}" type="revolute"><parent link="{parent}"/><child link="l{i}"/>
+  <origin xyz="0 0 0.15" rpy="0 0.1 0"/><axis xyz="{axis}"/><limit lower="-2.9" upper="2.9" effort="80" velocity="2"/></joint>
+<link name="l{i}"><inertial><origin xyz="0.01 0 0.07"/><mass value="1.5"/>
+  <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.005"/></inertial></link>"#
+        ));
+        parent = format!("l{i}");
+    }
+    urdf.push_str("</robot>");
+    urdf
+}
+
+fn bench_gravity(bencher: divan::Bencher, text: &str) {
+    let (robot, _) =
+        urdf_validator::parse::parse_urdf(text, Path::new("bench.urdf")).expect("parses");
+    let (model, _) = urdf_validator::model::Model::build(&robot);
+    let mut data = urdf_validator::statics::StaticsData::new(&model);
+    let mut q = model.zero_configuration();
+    q.iter_mut()
+        .enumerate()
+        .for_each(|(i, v)| *v = 0.1 * i as f64);
+    bencher.bench_local(|| {
+        urdf_validator::statics::evaluate(&model, divan::black_box(&q), &mut data);
+        data.torque[0]
+    });
+}
+
+/// Forward kinematics + subtree sums + gravity torques of every joint, one configuration.
+#[divan::bench]
+fn gravity_torques_7dof(bencher: divan::Bencher) {
+    bench_gravity(bencher, &seven_dof_arm());
+}
+
+/// The same on PR2 (88 links, 87 joints).
+#[divan::bench]
+fn gravity_torques_pr2(bencher: divan::Bencher) {
+    let (_, text) = robot("pr2/pr2_description/robots/pr2.urdf");
+    bench_gravity(bencher, &text);
+}

@@ -1,0 +1,384 @@
+//! Statics on robots whose answers are known on paper: pendulums, a mimic pair, a lift, a payload; and the
+//! pose options on real SRDFs.
+
+mod common;
+
+use std::path::Path;
+
+use urdf_validator::pose::{PoseKind, PoseOptions};
+use urdf_validator::report::{JointStatics, StaticsSection, Status};
+use urdf_validator::statics_section::StaticsOptions;
+use urdf_validator::{validate_text, Options};
+
+const G: f64 = 9.81;
+
+fn inertial(mass: f64, x: f64) -> String {
+    format!(
+        r#"<inertial><origin xyz="{x} 0 0"/><mass value="{mass}"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#
+    )
+}
+
+/// A base with one revolute joint about +y carrying `mass` at `x`, then a `tool0` frame at `tool_x`.
+fn pendulum(mass: f64, x: f64, tool_x: f64, effort: f64) -> String {
+    format!(
+        r#"<robot name="pendulum">
+  <link name="base"/>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit lower="-1.5707963267948966" upper="1.5707963267948966" effort="{effort}" velocity="1"/>
+  </joint>
+  <link name="arm">{}</link>
+  <joint name="tool_joint" type="fixed"><parent link="arm"/><child link="tool0"/><origin xyz="{tool_x} 0 0"/></joint>
+  <link name="tool0"/>
+</robot>"#,
+        inertial(mass, x)
+    )
+}
+
+fn statics_with(urdf: &str, statics: StaticsOptions) -> StaticsSection {
+    let options = Options {
+        statics,
+        ..Options::default()
+    };
+    validate_text(urdf.to_string(), Path::new("t.urdf"), &options)
+        .expect("loads")
+        .report
+        .statics
+        .expect("statics")
+}
+
+fn statics(urdf: &str) -> StaticsSection {
+    statics_with(urdf, StaticsOptions::default())
+}
+
+fn pose(kind: PoseKind) -> StaticsOptions {
+    StaticsOptions {
+        pose: PoseOptions {
+            kind,
+            ..PoseOptions::default()
+        },
+        ..StaticsOptions::default()
+    }
+}
+
+fn joint<'a>(section: &'a StaticsSection, name: &str) -> &'a JointStatics {
+    section
+        .joints
+        .iter()
+        .find(|j| j.name == name)
+        .unwrap_or_else(|| panic!("no joint {name}"))
+}
+
+fn torque(section: &StaticsSection, name: &str) -> f64 {
+    joint(section, name)
+        .required_torque_gravity
+        .expect("torque")
+}
+
+#[test]
+fn horizontal_pendulum_needs_m_g_x() {
+    let section = statics(&pendulum(2.0, 0.5, 1.0, 30.0));
+    // Gravity pulls the arm down (+y rotation lowers +x); holding it takes −m·g·x about +y.
+    assert!((torque(&section, "shoulder") + 2.0 * G * 0.5).abs() < 1e-12);
+    let shoulder = joint(&section, "shoulder");
+    assert_eq!(shoulder.status, Status::Pass);
+    assert!((shoulder.margin.unwrap() - 30.0 / (2.0 * G * 0.5)).abs() < 1e-12);
+    assert_eq!(section.total_mass, Some(2.0));
+    assert_eq!(section.full_body_com, Some([0.5, 0.0, 0.0]));
+}
+
+#[test]
+fn verdicts_follow_the_margin_thresholds() {
+    let torque = 2.0 * G * 0.5;
+    for (effort, expected) in [
+        (1.6 * torque, Status::Pass),
+        (1.2 * torque, Status::Warn),
+        (0.9 * torque, Status::Fail),
+    ] {
+        let section = statics(&pendulum(2.0, 0.5, 1.0, effort));
+        assert_eq!(
+            joint(&section, "shoulder").status,
+            expected,
+            "effort {effort}"
+        );
+        assert_eq!(section.status, expected);
+    }
+}
+
+#[test]
+fn limits_pose_hangs_the_pendulum_straight_down() {
+    let section = statics_with(&pendulum(2.0, 0.5, 1.0, 30.0), pose(PoseKind::Limits));
+    assert_eq!(
+        section.configuration["shoulder"],
+        std::f64::consts::FRAC_PI_2
+    );
+    assert!(torque(&section, "shoulder").abs() < 1e-12);
+    assert_eq!(
+        joint(&section, "shoulder").summary,
+        "OK — torque negligible"
+    );
+    let com = section.full_body_com.unwrap();
+    assert!((com[2] + 0.5).abs() < 1e-12, "COM below the joint: {com:?}");
+}
+
+#[test]
+fn worst_pose_finds_the_horizontal_arm_within_sampling_error() {
+    let section = statics_with(&pendulum(2.0, 0.5, 1.0, 30.0), pose(PoseKind::Worst));
+    let worst = torque(&section, "shoulder").abs();
+    let exact = 2.0 * G * 0.5;
+    // |τ| = m g x cos q with q uniform in ±π/2: 5000 samples land within 0.01 rad of 0 with overwhelming
+    // probability, so the maximum is within 1 − cos(0.01) ≈ 5e-5 of the exact value, and never above it.
+    assert!(
+        worst <= exact + 1e-12 && worst > exact * (1.0 - 1e-4),
+        "{worst} vs {exact}"
+    );
+    let at = &joint(&section, "shoulder")
+        .worst_configuration
+        .as_ref()
+        .unwrap()["shoulder"];
+    assert!(at.abs() < 0.02, "worst near the horizontal, got {at}");
+    assert_eq!((section.samples, section.seed), (Some(5000), Some(7)));
+}
+
+#[test]
+fn prismatic_lift_holds_its_weight() {
+    let urdf = format!(
+        r#"<robot name="lift"><link name="base"/>
+  <joint name="lift" type="prismatic"><parent link="base"/><child link="carriage"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="1" effort="100" velocity="0.1"/></joint>
+  <link name="carriage">{}</link></robot>"#,
+        inertial(3.0, 0.2)
+    );
+    let section = statics(&urdf);
+    assert!((torque(&section, "lift") - 3.0 * G).abs() < 1e-12);
+}
+
+#[test]
+fn mimic_follower_torque_folds_into_its_leader() {
+    // Leader `drive` moves nothing itself; follower `finger` (×2) carries m at x. τ_finger = −m g x cos(2θ),
+    // and by virtual work the leader must supply 2·τ_finger.
+    let urdf = format!(
+        r#"<robot name="mimic"><link name="base"/>
+  <joint name="drive" type="revolute"><parent link="base"/><child link="crank"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="100" velocity="1"/></joint>
+  <link name="crank"/>
+  <joint name="finger" type="revolute"><parent link="base"/><child link="finger_link"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="100" velocity="1"/><mimic joint="drive" multiplier="2" offset="0"/></joint>
+  <link name="finger_link">{}</link></robot>"#,
+        inertial(1.5, 0.4)
+    );
+    let theta: f64 = 0.3;
+    let options = StaticsOptions {
+        pose: PoseOptions {
+            kind: PoseKind::Custom,
+            joint_angles: Some(format!("drive={theta}")),
+            ..PoseOptions::default()
+        },
+        ..StaticsOptions::default()
+    };
+    let section = statics_with(&urdf, options);
+    let follower = -1.5 * G * 0.4 * (2.0 * theta).cos();
+    assert!((torque(&section, "finger") - follower).abs() < 1e-12);
+    assert!((torque(&section, "drive") - 2.0 * follower).abs() < 1e-12);
+    assert_eq!(joint(&section, "finger").status, Status::NotApplicable);
+    assert_eq!(joint(&section, "finger").mimics.as_deref(), Some("drive"));
+    assert!(
+        !section.configuration.contains_key("finger"),
+        "followers are not independent coordinates"
+    );
+}
+
+#[test]
+fn payload_capacity_has_the_closed_form() {
+    // τ(m) = −g(M·x + m·L); capacity: g(M·x + m·L) = effort / 1.5.
+    let (mass, x, length, effort) = (2.0, 0.5, 1.0, 30.0);
+    let expected = (effort / 1.5 - G * mass * x) / (G * length);
+    let loaded = |payload: f64| StaticsOptions {
+        payload_mass: Some(payload),
+        ..StaticsOptions::default()
+    };
+    let section = statics_with(&pendulum(mass, x, length, effort), loaded(1.0));
+    assert_eq!(
+        section.payload_link.as_deref(),
+        Some("tool0"),
+        "end of the longest actuated chain"
+    );
+    assert!((section.payload_capacity_kg.unwrap() - expected).abs() < 1e-12);
+    assert!((torque(&section, "shoulder") + G * (mass * x + 1.0 * length)).abs() < 1e-12);
+    assert_eq!(section.status, Status::Pass);
+    let over = statics_with(&pendulum(mass, x, length, effort), loaded(expected + 0.01));
+    assert_eq!(
+        over.status,
+        Status::Warn,
+        "just past the capacity the margin drops below 1.5"
+    );
+}
+
+#[test]
+fn zero_outside_the_limits_is_clamped_with_a_note() {
+    let urdf =
+        pendulum(2.0, 0.5, 1.0, 30.0).replace(r#"lower="-1.5707963267948966""#, r#"lower="0.5""#);
+    let section = statics(&urdf);
+    assert_eq!(section.configuration["shoulder"], 0.5);
+    assert!(
+        section.notes[0].contains("0 is outside its limits"),
+        "{:?}",
+        section.notes
+    );
+}
+
+#[test]
+fn custom_pose_errors_and_notes() {
+    let urdf = pendulum(2.0, 0.5, 1.0, 30.0);
+    let custom = |angles: &str| StaticsOptions {
+        pose: PoseOptions {
+            kind: PoseKind::Custom,
+            joint_angles: Some(angles.to_string()),
+            ..PoseOptions::default()
+        },
+        ..StaticsOptions::default()
+    };
+    let options = Options {
+        statics: custom("shouldr=0.1"),
+        ..Options::default()
+    };
+    let error = validate_text(urdf.clone(), Path::new("t.urdf"), &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("unknown joint 'shouldr'") && error.contains("did you mean 'shoulder'"),
+        "{error}"
+    );
+    let section = statics_with(&urdf, custom("shoulder=120deg"));
+    assert!((section.configuration["shoulder"] - 120f64.to_radians()).abs() < 1e-12);
+    assert!(section.notes[0].contains("outside its limits"));
+}
+
+#[test]
+fn no_declared_mass_is_unknown_and_no_actuated_joint_is_not_applicable() {
+    let massless = pendulum(2.0, 0.5, 1.0, 30.0).replace(
+        &inertial(2.0, 0.5),
+        r#"<visual><geometry><box size="1 0.1 0.1"/></geometry></visual>"#,
+    );
+    let section = statics(&massless);
+    assert_eq!(section.status, Status::Unknown);
+    assert_eq!(section.full_body_com, None);
+    assert!(section
+        .reason
+        .as_deref()
+        .unwrap()
+        .contains("no link declares a mass"));
+    let rigid = r#"<robot name="r"><link name="a">
+      <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>"#;
+    assert_eq!(statics(rigid).status, Status::NotApplicable);
+}
+
+#[test]
+fn home_pose_reads_the_srdf_found_beside_the_urdf() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let urdf = corpus.join("z1_description/urdf/z1.urdf");
+    let options = Options {
+        statics: pose(PoseKind::Home),
+        ..Options::default()
+    };
+    let report = urdf_validator::validate(&urdf, &options)
+        .expect("loads")
+        .report;
+    let section = report.statics.expect("statics");
+    assert!(section.notes.is_empty(), "{:?}", section.notes);
+    let srdf = std::fs::read_to_string(corpus.join("z1_description/srdf/z1.srdf")).unwrap();
+    let states = urdf_validator::pose::group_states(&srdf).unwrap();
+    let home = states.iter().find(|s| s.name == "home").unwrap();
+    for (name, value) in &home.joints {
+        assert_eq!(section.configuration[name], *value, "{name}");
+    }
+}
+
+#[test]
+fn home_pose_without_the_state_warns_and_uses_zero() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let urdf = corpus.join("panda_description/urdf/panda.urdf");
+    let options = Options {
+        statics: pose(PoseKind::Home),
+        ..Options::default()
+    };
+    let section = urdf_validator::validate(&urdf, &options)
+        .expect("loads")
+        .report
+        .statics
+        .expect("statics");
+    assert!(
+        section
+            .notes
+            .iter()
+            .any(|n| n.contains("no group_state 'home'") && n.contains("default")),
+        "{:?}",
+        section.notes
+    );
+    let with_state = Options {
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                kind: PoseKind::Home,
+                state: "default".to_string(),
+                ..PoseOptions::default()
+            },
+            ..StaticsOptions::default()
+        },
+        ..Options::default()
+    };
+    let section = urdf_validator::validate(&urdf, &with_state)
+        .expect("loads")
+        .report
+        .statics
+        .expect("statics");
+    assert_eq!(section.configuration["panda_joint4"], -2.35619);
+}
+
+#[test]
+fn reference_robots_match_the_spec_where_the_physics_agrees() {
+    let Some(robots) = common::shared_robots() else {
+        return;
+    };
+    let load = |relative: &str| {
+        urdf_validator::validate(&robots.join(relative), &Options::default())
+            .expect("loads")
+            .report
+            .statics
+            .expect("statics")
+    };
+    let pr2 = load("pr2/pr2_description/robots/pr2.urdf");
+    assert_eq!(pr2.status, Status::Fail);
+    for side in ["r", "l"] {
+        let shoulder = joint(&pr2, &format!("{side}_shoulder_lift_joint"));
+        let needed = shoulder.required_torque_gravity.unwrap().abs();
+        assert!((needed - 49.5).abs() < 0.1, "{side}: {needed}");
+        assert_eq!(
+            (shoulder.declared_effort, shoulder.status),
+            (Some(30.0), Status::Fail)
+        );
+    }
+    assert!((pr2.total_mass.unwrap() - 265.732).abs() < 1e-3);
+    let fetch = load("fetch/fetch_description/robots/fetch.urdf");
+    assert_eq!(
+        (fetch.status, fetch.weakest_joint_name.as_deref()),
+        (Status::Pass, Some("torso_lift_joint"))
+    );
+    assert!((fetch.total_mass.unwrap() - 121.538).abs() < 1e-3);
+    let com = fetch.full_body_com.unwrap();
+    assert!(
+        (com[0] - 0.045).abs() < 5e-4 && (com[2] - 0.260).abs() < 5e-4,
+        "{com:?}"
+    );
+    let turtlebot = load("turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf");
+    assert_eq!(turtlebot.status, Status::Pass);
+    assert!((turtlebot.heaviest_link_pct.unwrap() - 82.4).abs() < 0.05);
+    let anymal = load("anymal/anymal_b_simple_description/urdf/anymal.urdf");
+    assert_eq!(
+        (anymal.status, anymal.weakest_joint_name.as_deref()),
+        (Status::Pass, Some("RF_HAA"))
+    );
+}
