@@ -57,6 +57,22 @@ pub struct Args {
     #[arg(long, value_name = "LINK")]
     pub payload_link: Option<String>,
 
+    /// Declare the robot category (the structural heuristic still runs; a disagreement is a warning).
+    #[arg(long, value_enum, value_name = "TYPE")]
+    pub robot_type: Option<RobotTypeArg>,
+
+    /// Ground-contact links for the support polygon, comma-separated: "foot_l,foot_r".
+    #[arg(long, value_name = "LINKS", value_delimiter = ',')]
+    pub contact_links: Option<Vec<String>>,
+
+    /// First link of the arm chain (with --arm-tip); validated against the tree.
+    #[arg(long, value_name = "LINK", requires = "arm_tip")]
+    pub arm_root: Option<String>,
+
+    /// End-effector link of the arm chain (with --arm-root).
+    #[arg(long, value_name = "LINK", requires = "arm_root")]
+    pub arm_tip: Option<String>,
+
     /// What to print on stdout: the text report, or the JSON report(s).
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
@@ -126,6 +142,44 @@ impl From<PoseArg> for urdf_validator::pose::PoseKind {
             PoseArg::Custom => PoseKind::Custom,
             PoseArg::Home => PoseKind::Home,
             PoseArg::Worst => PoseKind::Worst,
+        }
+    }
+}
+
+/// `--robot-type` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[value(rename_all = "snake_case")]
+pub enum RobotTypeArg {
+    /// Drives on wheels (may carry arms).
+    Wheeled,
+    /// Drives on wheels, no manipulator.
+    GroundVehicle,
+    /// Walks on legs.
+    Legged,
+    /// Four legs.
+    Quadruped,
+    /// Two legs and arms.
+    Humanoid,
+    /// Fixed-base arm.
+    ArmOnly,
+    /// Flies.
+    Aerial,
+    /// Anything else.
+    Unknown,
+}
+
+impl From<RobotTypeArg> for urdf_validator::classify::RobotType {
+    fn from(value: RobotTypeArg) -> Self {
+        use urdf_validator::classify::RobotType;
+        match value {
+            RobotTypeArg::Wheeled => RobotType::Wheeled,
+            RobotTypeArg::GroundVehicle => RobotType::GroundVehicle,
+            RobotTypeArg::Legged => RobotType::Legged,
+            RobotTypeArg::Quadruped => RobotType::Quadruped,
+            RobotTypeArg::Humanoid => RobotType::Humanoid,
+            RobotTypeArg::ArmOnly => RobotType::ArmOnly,
+            RobotTypeArg::Aerial => RobotType::Aerial,
+            RobotTypeArg::Unknown => RobotType::Unknown,
         }
     }
 }

@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayon::prelude::*;
+use urdf_validator::physics::Overrides;
 use urdf_validator::pose::PoseOptions;
 use urdf_validator::render::{render_text, TextOptions};
 use urdf_validator::resolve::PackageResolver;
@@ -83,6 +84,13 @@ fn run(args: Args) -> u8 {
             payload_mass: args.payload_mass,
             payload_link: args.payload_link.clone(),
         },
+        overrides: Overrides {
+            robot_type: args.robot_type.map(Into::into),
+            contact_links: args.contact_links.clone(),
+            arm_root: args.arm_root.clone(),
+            arm_tip: args.arm_tip.clone(),
+        },
+        ..Options::default()
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
     let outcomes: Vec<Outcome> = files

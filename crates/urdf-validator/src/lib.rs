@@ -12,11 +12,15 @@
 //! ```
 
 pub mod checks;
+pub mod classify;
 pub mod finding;
+pub mod geometry;
 pub mod kinematics;
 pub mod link_physics;
+pub mod mesh;
 pub mod model;
 pub mod parse;
+pub mod physics;
 pub mod pose;
 pub mod render;
 pub mod report;
@@ -26,9 +30,11 @@ pub mod robot;
 pub mod rules;
 pub mod schema_doc;
 pub mod source;
+pub mod stability_section;
 pub mod statics;
 pub mod statics_section;
 pub mod suggest;
+pub mod support_polygon;
 pub mod timestamp;
 
 use std::path::Path;
@@ -51,6 +57,10 @@ pub struct Options {
     pub resolver: PackageResolver,
     /// Pose and payload for statics.
     pub statics: statics_section::StaticsOptions,
+    /// What the user declares instead of heuristics.
+    pub overrides: physics::Overrides,
+    /// Meshes loaded so far (shared by every file of a run).
+    pub meshes: mesh::MeshCache,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -88,7 +98,7 @@ pub fn validate_text(
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
     let is_robot = !findings.iter().any(|f| f.rule == &rules::NOT_A_ROBOT);
-    if is_robot {
+    let physics = if is_robot {
         let urdf_dir = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -96,26 +106,58 @@ pub fn validate_text(
         let ctx = checks::CheckContext {
             urdf_dir,
             resolver: &options.resolver,
+            meshes: &options.meshes,
         };
         findings.extend(checks::run(&robot, &model, &ctx));
-    }
-    let statics = if is_robot {
-        let section = statics_section::analyse(&robot, &model, path, &options.statics).map_err(
-            |message| LoadError::Usage {
-                path: path.to_path_buf(),
-                message,
-            },
-        )?;
-        Some(section)
+        let supports: Vec<geometry::LinkSupports> = robot
+            .links
+            .iter()
+            .map(|link| geometry::link_supports(link, &|uri| ctx.mesh_points(uri)))
+            .collect();
+        let physics = physics::analyse(
+            &robot,
+            &model,
+            path,
+            &supports,
+            &options.statics,
+            &options.overrides,
+        )
+        .map_err(|message| LoadError::Usage {
+            path: path.to_path_buf(),
+            message,
+        })?;
+        Some(physics)
     } else {
         None
     };
     let source = SourceText::new(path, text);
-    let report = build_report(path, &robot, &model, &findings, &source, statics);
+    let report = build_report(path, &robot, &model, &findings, &source, physics);
     Ok(Validation {
         report,
         sources: vec![source],
     })
+}
+
+/// What could not be assessed, one line per section.
+fn unknowns(analyses: &physics::Physics) -> Vec<String> {
+    let mut lines = Vec::new();
+    if analyses.statics.status == Status::Unknown {
+        lines.push(format!(
+            "Statics: {}",
+            analyses
+                .statics
+                .reason
+                .as_deref()
+                .unwrap_or("a joint cannot be assessed")
+        ));
+    }
+    if analyses.stability.status == Status::Unknown {
+        lines.push(format!(
+            "Stability: {}",
+            analyses.stability.reason.as_deref().unwrap_or("no result")
+        ));
+    }
+    lines
 }
 
 fn messages(findings: &[Finding], severity: Severity) -> Vec<String> {
@@ -132,7 +174,7 @@ fn build_report(
     model: &Model,
     findings: &[Finding],
     source: &SourceText,
-    statics: Option<report::StaticsSection>,
+    analyses: Option<physics::Physics>,
 ) -> Report {
     let critical_issues = messages(findings, Severity::Critical);
     let warnings = messages(findings, Severity::Warn);
@@ -144,7 +186,12 @@ fn build_report(
         Status::Pass
     };
     let links = link_physics::link_reports(robot, model);
-    let physics = link_physics::summarize(&links);
+    let summary = link_physics::summarize(&links);
+    let overall_status = analyses.as_ref().map_or(schema_status, |a| {
+        schema_status
+            .worst(a.statics.status)
+            .worst(a.stability.status)
+    });
     Report {
         urdf_path: path.display().to_string(),
         robot_name: robot
@@ -154,22 +201,29 @@ fn build_report(
             .unwrap_or_default(),
         timestamp: timestamp::now(),
         validator_version: VERSION.to_string(),
-        overall_status: statics
-            .as_ref()
-            .map_or(schema_status, |s| schema_status.worst(s.status)),
-        confidence_level: link_physics::confidence_level(&physics),
+        overall_status,
+        robot_type: analyses.as_ref().map(|a| a.robot_type),
+        robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
+        robot_type_detected: analyses.as_ref().map(|a| a.detected),
+        robot_type_evidence: analyses.as_ref().map(|a| a.evidence.clone()),
+        confidence_level: link_physics::confidence_level(&summary),
         critical_issues: critical_issues.clone(),
-        warnings: warnings.clone(),
-        unknowns: Vec::new(),
+        warnings: warnings
+            .iter()
+            .chain(analyses.iter().flat_map(|a| &a.warnings))
+            .cloned()
+            .collect(),
+        unknowns: analyses.iter().flat_map(unknowns).collect(),
         schema: SchemaSection {
             status: schema_status,
             critical_issues,
             warnings,
             infos: messages(findings, Severity::Info),
         },
-        physics,
+        physics: summary,
         links,
-        statics,
+        statics: analyses.as_ref().map(|a| a.statics.clone()),
+        stability: analyses.map(|a| a.stability),
         findings: findings.iter().map(|f| finding_report(f, source)).collect(),
     }
 }

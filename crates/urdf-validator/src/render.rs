@@ -7,7 +7,9 @@ use std::fmt::Write;
 use anstyle::{AnsiColor, Style};
 
 use crate::finding::Severity;
-use crate::report::{FindingReport, JointStatics, Report, StaticsSection, Status};
+use crate::report::{
+    FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
+};
 use crate::Validation;
 
 /// How much to show.
@@ -62,6 +64,14 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     physics_line(&mut out, report);
     if let Some(statics) = &report.statics {
         statics_section(&mut out, statics, options.verbose);
+    }
+    if let Some(stability) = &report.stability {
+        stability_section(&mut out, report, stability);
+    }
+    // Declarations that disagree with the heuristics (they do not change the status).
+    let schema_warnings = report.schema.warnings.len();
+    for warning in report.warnings.iter().skip(schema_warnings) {
+        let _ = writeln!(out, "{}  {warning}", paint(YELLOW, "[WARN]"));
     }
     let overall = report.overall_status;
     let _ = writeln!(
@@ -389,5 +399,74 @@ fn confidence_label(confidence: crate::report::Confidence) -> &'static str {
         Confidence::Guessed => "guessed",
         Confidence::Missing => "missing",
         Confidence::Simulated => "simulated",
+    }
+}
+
+fn stability_section(out: &mut String, report: &Report, stability: &StabilitySection) {
+    let head = paint(BOLD, "[STABILITY]");
+    let indent = " ".repeat(13);
+    let kind = report.robot_type.map_or("unknown", |t| t.as_str());
+    let label = report
+        .robot_type_confidence
+        .map_or("estimated", confidence_label);
+    match stability.status {
+        Status::NotApplicable => {
+            let reason = stability.reason.as_deref().unwrap_or("not applicable");
+            let _ = writeln!(out, "{head}  N/A — not applicable — {reason}");
+            return;
+        }
+        Status::Pass | Status::Fail => {
+            let verdict = if stability.status == Status::Pass {
+                paint(GREEN, "✓ STABLE")
+            } else {
+                paint(RED, "✗ TIPS OVER")
+            };
+            let margin = stability.margin_mm.unwrap_or_default();
+            let direction = stability.tip_direction.as_deref().unwrap_or("?");
+            let _ = writeln!(out, "{head}  {verdict}  margin {margin:.1} mm  (nearest edge: {direction})  type {kind} ({label})");
+            let mut line = String::new();
+            if let (Some(ratio), Some(class)) = (
+                stability.com_height_ratio,
+                &stability.com_height_ratio_class,
+            ) {
+                line.push_str(&format!("COM height ratio {ratio:.2} — {class}"));
+            }
+            if let Some(angle) = stability.tipping_angle_deg {
+                line.push_str(&format!("  tips at {angle:.1}°"));
+            }
+            if !line.is_empty() {
+                let _ = writeln!(out, "{indent}{}", line.trim_start());
+            }
+        }
+        _ => {
+            let reason = stability.reason.as_deref().unwrap_or("no result");
+            let _ = writeln!(
+                out,
+                "{head}  {} — {reason}  type {kind} ({label})",
+                paint(RED, "UNKNOWN")
+            );
+        }
+    }
+    if !stability.contact_links.is_empty() {
+        let source = stability.contact_source.as_deref().unwrap_or("?");
+        let _ = writeln!(
+            out,
+            "{indent}contacts ({source}, {}): {}",
+            confidence_label(stability.contact_confidence),
+            stability.contact_links.join(", ")
+        );
+    }
+    for raised in &stability.raised_contacts {
+        let _ = writeln!(
+            out,
+            "{indent}{}",
+            paint(
+                YELLOW,
+                &format!(
+                    "{} is {:.1} mm above the ground: it does not support (the robot rocks)",
+                    raised.link, raised.height_mm
+                )
+            )
+        );
     }
 }

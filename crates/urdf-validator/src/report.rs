@@ -109,6 +109,18 @@ pub struct Report {
     pub validator_version: String,
     /// Worst applicable section status.
     pub overall_status: Status,
+    /// The robot category used for the capability profile (declared with `--robot-type`, else detected).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type: Option<crate::classify::RobotType>,
+    /// `exact` when declared, `estimated` when detected.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_confidence: Option<Confidence>,
+    /// What the structure shows (also when a type was declared, as a cross-check), and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_detected: Option<crate::classify::RobotType>,
+    /// The evidence behind `robot_type_detected`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_evidence: Option<String>,
     /// Quality of the physics data.
     pub confidence_level: ConfidenceLevel,
     /// Messages of CRITICAL findings.
@@ -126,6 +138,9 @@ pub struct Report {
     /// Mass, centre of mass and gravity torques (absent when the file is not a robot).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub statics: Option<StaticsSection>,
+    /// Support polygon and tipping (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stability: Option<StabilitySection>,
     /// Every finding with its rule and source position.
     pub findings: Vec<FindingReport>,
 }
@@ -281,4 +296,51 @@ pub struct JointStatics {
     pub mimics: Option<String>,
     /// For `--pose worst`: the configuration that produced `required_torque_gravity`.
     pub worst_configuration: Option<std::collections::BTreeMap<String, f64>>,
+}
+
+/// The `stability` section: the support polygon and where the centre of mass sits over it.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct StabilitySection {
+    /// PASS when the COM projects inside the support polygon, FAIL outside, UNKNOWN when there is no
+    /// polygon or no COM, N/A for fixed-base and aerial robots.
+    pub status: Status,
+    /// True when the COM projects inside the polygon.
+    pub stable: Option<bool>,
+    /// Signed distance from the COM projection to the polygon boundary, mm (positive inside).
+    pub margin_mm: Option<f64>,
+    /// Where the robot would tip: front, front-left, left, back-left, back, back-right, right, front-right.
+    pub tip_direction: Option<String>,
+    /// COM height above the ground over the polygon's minimum width.
+    pub com_height_ratio: Option<f64>,
+    /// Confidence of the ratio.
+    pub com_height_ratio_confidence: Confidence,
+    /// very_stable < 0.5 ≤ stable < 1 ≤ manageable < 2 ≤ requires_active_balancing < 3 ≤ will_fall.
+    pub com_height_ratio_class: Option<String>,
+    /// Smallest tilt that brings the COM over an edge: min over edges of atan(d / h), degrees.
+    pub tipping_angle_deg: Option<f64>,
+    /// `exact` with `--contact-links`, else `estimated`.
+    pub contact_confidence: Confidence,
+    /// How contacts were found: declared, wheels, feet, lowest_geometry.
+    pub contact_source: Option<String>,
+    /// Links touching the ground (supporting).
+    pub contact_links: Vec<String>,
+    /// Counter-clockwise support polygon in the root frame's ground plane, metres.
+    pub support_polygon: Vec<[f64; 2]>,
+    /// Height of the ground (the lowest contact) in the root frame, metres.
+    pub ground_height: Option<f64>,
+    /// COM height above the ground, metres.
+    pub com_height: Option<f64>,
+    /// Contact candidates more than 5 mm above the ground: they do not support (the robot rocks).
+    pub raised_contacts: Vec<RaisedContact>,
+    /// Why the status is UNKNOWN or N/A.
+    pub reason: Option<String>,
+}
+
+/// A contact candidate that does not reach the ground.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct RaisedContact {
+    /// The link.
+    pub link: String,
+    /// Its lowest point above the ground, mm.
+    pub height_mm: f64,
 }

@@ -240,6 +240,16 @@ rules! {
         why: "Degenerate shapes break collision detection and mass estimates. (Negative mesh scales, the usual way to mirror a part, are accepted.)",
         fix: "Use positive dimensions in metres.",
     }
+    MESH_IN_MILLIMETRES = "U504" "mesh-in-millimetres" Warn {
+        what: "A mesh is hundreds of times larger than the spacing of its link's joints.",
+        why: "The classic CAD-export bug: the mesh is in millimetres, so collisions, contacts and inertia estimates are 1000× too large.",
+        fix: "Add `scale=\"0.001 0.001 0.001\"` to the `<mesh>`, or re-export the mesh in metres.",
+    }
+    MESH_UNREADABLE = "U505" "mesh-unreadable" Warn {
+        what: "A mesh file exists but cannot be read (broken, truncated, or an unsupported format).",
+        why: "Simulators fail to load the link's geometry; contact and collision checks leave the link out.",
+        fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
+    }
 }
 
 /// Look a rule up by code (`U205`, any case) or name (`inertia-not-positive-definite`).

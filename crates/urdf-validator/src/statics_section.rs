@@ -23,13 +23,14 @@ pub struct StaticsOptions {
     pub payload_link: Option<String>,
 }
 
-/// The statics section, or a usage error (unknown joint or link name, unreadable SRDF).
+/// The statics section and the configuration it was evaluated at (the reference pose for `worst`), or a
+/// usage error (unknown joint or link name, unreadable SRDF).
 pub fn analyse(
     robot: &Robot,
     model: &Model,
     urdf_path: &Path,
     options: &StaticsOptions,
-) -> Result<StaticsSection, String> {
+) -> Result<(StaticsSection, Configuration), String> {
     let resolved = pose::resolve(robot, model, urdf_path, &options.pose)?;
     let payload_link = match &options.payload_link {
         Some(name) => Some(model.link(name).ok_or_else(|| {
@@ -176,7 +177,7 @@ pub fn analyse(
     } else {
         Confidence::Missing
     };
-    Ok(StaticsSection {
+    let section = StaticsSection {
         status,
         pose: options.pose.kind.as_str().to_string(),
         configuration: named_configuration(robot, model, &resolved.q),
@@ -204,7 +205,8 @@ pub fn analyse(
         samples: worst.as_ref().map(|_| options.pose.samples),
         seed: worst.as_ref().map(|_| options.pose.seed),
         joints,
-    })
+    };
+    Ok((section, resolved.q))
 }
 
 /// Independent actuated joints by name.

@@ -1,15 +1,17 @@
 //! Geometry checks: degenerate shapes, meshes that cannot be found, visuals without collisions.
 
 use crate::finding::Finding;
+use crate::model::{LinkId, Model};
 use crate::resolve::Resolution;
 use crate::robot::{Geometry, Robot};
 use crate::rules;
+use crate::source::Spanned;
 
 use super::CheckContext;
 
-pub(super) fn check(robot: &Robot, ctx: &CheckContext) -> Vec<Finding> {
+pub(super) fn check(robot: &Robot, model: &Model, ctx: &CheckContext) -> Vec<Finding> {
     let mut findings = Vec::new();
-    for link in &robot.links {
+    for (index, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
         for shape in link.visuals.iter().chain(&link.collisions) {
             let Some(geometry) = &shape.geometry else {
@@ -22,9 +24,12 @@ pub(super) fn check(robot: &Robot, ctx: &CheckContext) -> Vec<Finding> {
                     format!("{owner}: {problem}"),
                 ));
             }
-            if let Geometry::Mesh { filename, .. } = &geometry.value {
+            if let Geometry::Mesh { filename, scale } = &geometry.value {
                 match ctx.resolver.resolve(&filename.value, ctx.urdf_dir) {
-                    Resolution::Found(_) => {}
+                    Resolution::Found(_) => {
+                        let spacing = joint_spacing(robot, model, LinkId(index));
+                        findings.extend(check_mesh(ctx, &owner, filename, *scale, spacing));
+                    }
                     Resolution::NotFound { searched } => {
                         let looked: Vec<String> =
                             searched.iter().map(|p| p.display().to_string()).collect();
@@ -100,4 +105,60 @@ fn degenerate(geometry: &Geometry) -> Option<String> {
         )),
         _ => None,
     }
+}
+
+/// A mesh this many times larger than the spacing of its link's joints is probably in millimetres.
+const MILLIMETRE_RATIO: f64 = 100.0;
+
+/// The largest distance from a link's frame to the joints attaching it (parent and children), metres.
+fn joint_spacing(robot: &Robot, model: &Model, link: LinkId) -> f64 {
+    let parent = model.parent_joint[link.0].into_iter();
+    let children = model.child_joints[link.0].iter().copied();
+    parent
+        .map(|j| &robot.joints[j.0].origin.xyz)
+        .chain(children.map(|j| &robot.joints[j.0].origin.xyz))
+        .map(|xyz| xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
+        .filter(|d| d.is_finite())
+        .fold(0.0, f64::max)
+}
+
+/// A resolved mesh that cannot be loaded, or whose size says it is in millimetres.
+fn check_mesh(
+    ctx: &CheckContext,
+    owner: &str,
+    filename: &Spanned<String>,
+    scale: [f64; 3],
+    spacing: f64,
+) -> Option<Finding> {
+    let loaded = ctx.mesh(&filename.value)?;
+    let mesh = match loaded.as_ref() {
+        Ok(mesh) => mesh,
+        Err(error) => {
+            return Some(Finding::new(
+                &rules::MESH_UNREADABLE,
+                filename.span,
+                format!(
+                    "{owner}: mesh '{}' cannot be used: {}",
+                    filename.value, error.message
+                ),
+            ))
+        }
+    };
+    let (min, max) = mesh.aabb;
+    let extent = (0..3)
+        .map(|i| (max[i] - min[i]) * scale[i].abs())
+        .fold(0.0, f64::max);
+    let reference = spacing.max(0.01);
+    (extent > 1.0 && extent > MILLIMETRE_RATIO * reference).then(|| {
+        Finding::new(
+            &rules::MESH_IN_MILLIMETRES,
+            filename.span,
+            format!(
+                "{owner}: mesh '{}' is {extent:.1} m across, {:.0}× the {reference:.3} m spacing of the link's joints: it is probably in millimetres",
+                filename.value,
+                extent / reference
+            ),
+        )
+        .with_help("add scale=\"0.001 0.001 0.001\" to the <mesh>, or re-export the mesh in metres")
+    })
 }

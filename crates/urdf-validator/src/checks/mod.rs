@@ -10,8 +10,9 @@ mod references;
 use std::path::Path;
 
 use crate::finding::Finding;
+use crate::mesh::{MeshCache, MeshData, MeshError};
 use crate::model::Model;
-use crate::resolve::PackageResolver;
+use crate::resolve::{PackageResolver, Resolution};
 use crate::robot::Robot;
 use crate::rules;
 
@@ -21,6 +22,29 @@ pub struct CheckContext<'a> {
     pub urdf_dir: &'a Path,
     /// Package search paths.
     pub resolver: &'a PackageResolver,
+    /// Loaded meshes.
+    pub meshes: &'a MeshCache,
+}
+
+impl CheckContext<'_> {
+    /// The mesh a URI names, loaded (or why not); `None` when the URI does not resolve to a file.
+    pub fn mesh(&self, uri: &str) -> Option<std::sync::Arc<Result<MeshData, MeshError>>> {
+        match self.resolver.resolve(uri, self.urdf_dir) {
+            Resolution::Found(path) => Some(self.meshes.get(&path)),
+            _ => None,
+        }
+    }
+
+    /// Points of a mesh for contact geometry: its convex hull, or every vertex when the hull is degenerate.
+    pub fn mesh_points(&self, uri: &str) -> Option<Vec<[f64; 3]>> {
+        let loaded = self.mesh(uri)?;
+        let mesh = loaded.as_ref().as_ref().ok()?;
+        Some(if mesh.hull.is_empty() {
+            mesh.vertices.clone()
+        } else {
+            mesh.hull.clone()
+        })
+    }
 }
 
 /// Links above this count get an INFO.
@@ -45,7 +69,7 @@ pub fn run(robot: &Robot, model: &Model, ctx: &CheckContext) -> Vec<Finding> {
     findings.extend(inertia::check(robot, model));
     findings.extend(joints::check(robot, model));
     findings.extend(references::check(robot, model));
-    findings.extend(geometry::check(robot, ctx));
+    findings.extend(geometry::check(robot, model, ctx));
     if robot.links.len() > MANY_LINKS {
         findings.push(Finding::new(
             &rules::TOO_MANY_LINKS,

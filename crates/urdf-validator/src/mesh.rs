@@ -1,0 +1,1482 @@
+//! Mesh files → [`MeshData`]: the vertices (metres, Z up, in the mesh file's own frame), their convex
+//! hull and their axis-aligned bounds, for the stability and self-collision analyses.
+//!
+//! Formats, chosen by extension (case-insensitive):
+//! * **STL** (`.stl`), binary and ASCII. A binary file whose 80-byte header starts with `solid` is
+//!   common, so the size decides first: `84 + 50·n` bytes (with `n` the header's triangle count) means
+//!   binary. Otherwise a file that starts with `solid` and has no NUL byte near the start is ASCII.
+//! * **Wavefront OBJ** (`.obj`): `v x y z [w]` lines (extra numbers such as vertex colours are
+//!   ignored); `f` lines only count triangles (a polygon of k vertices is k − 2 triangles). Material
+//!   libraries are never opened.
+//! * **COLLADA** (`.dae`): geometry positions instantiated through the visual scene, with node
+//!   transforms composed down the hierarchy, `<unit meter>` applied once to everything (node
+//!   translations included) and `<up_axis>` turned into Z up at the root (see [`UpAxisPolicy`]).
+//!
+//! Files are untrusted: nothing here panics on file content, memory and time are bounded
+//! ([`MAX_FILE_BYTES`], [`MAX_VERTICES`], an XML node limit, a node-instancing depth and count limit),
+//! and every error names the file and, where possible, the line (text formats) or byte offset (binary
+//! STL).
+//!
+//! Vertices are deduplicated exactly (same bits, `-0.0` folded into `0.0`), keeping the order of
+//! first occurrence: an STL's triangle soup shrinks about sixfold. The convex hull is computed with
+//! parry3d-f64's quickhull after an affine normalisation (see [`MeshData::hull`]).
+
+use std::collections::{HashMap, HashSet};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, PoisonError};
+
+use nalgebra::{Matrix4, Point3, Rotation3, SymmetricEigen, Unit, Vector3};
+use roxmltree::{Document, Node};
+
+/// Largest mesh file read, in bytes (256 MiB).
+pub const MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
+/// Largest number of vertices read from one file (before deduplication; COLLADA: after instancing).
+pub const MAX_VERTICES: usize = 20_000_000;
+/// Deepest COLLADA node hierarchy followed (nested `<node>`s plus `<instance_node>` hops).
+pub const MAX_NODE_DEPTH: usize = 32;
+/// Most COLLADA nodes instantiated in one file (bounds `<instance_node>` fan-out).
+pub const MAX_NODE_INSTANCES: usize = 100_000;
+/// Most hull candidates handed to quickhull as they are; above it the candidates are thinned on a
+/// grid first and the hull is approximate (see [`MeshData::hull`]). parry's quickhull costs about
+/// candidates × hull vertices (≈ 1 s for 90,000 points that are all on the hull).
+pub const HULL_EXACT_LIMIT: usize = 100_000;
+/// Above this many vertices, points provably inside the hull are dropped before quickhull.
+const HULL_PREFILTER_MIN: usize = 10_000;
+/// Grid resolution (cells per axis) of the first thinning step above [`HULL_EXACT_LIMIT`].
+const HULL_GRID_CELLS: u32 = 128;
+/// Largest number of XML nodes accepted in a COLLADA file.
+const MAX_XML_NODES: u32 = 5_000_000;
+/// A point cloud whose smallest principal variance is below this fraction of the largest is flat.
+const FLAT_VARIANCE_RATIO: f64 = 1e-12;
+
+/// One loaded mesh, in metres, Z up, before the URDF `scale`.
+#[derive(Debug, Clone)]
+pub struct MeshData {
+    /// Every vertex, deduplicated exactly (first occurrence order). STL/OBJ: as in the file (no units:
+    /// metres assumed). COLLADA: every position of every instantiated geometry, transformed into the
+    /// file's root frame, in metres, Z up.
+    pub vertices: Vec<[f64; 3]>,
+    /// Vertices of the convex hull (a subset of `vertices`, bit for bit); empty if the hull is
+    /// degenerate (flat / < 4 points), then callers fall back to `vertices`.
+    ///
+    /// Computed by `parry3d_f64::transformation::try_convex_hull` on the vertices after an affine
+    /// whitening (centre, then scale along the principal axes to unit variance), which leaves the set
+    /// of hull vertices unchanged but keeps thin plates from being mistaken for flat ones. Point clouds
+    /// whose smallest principal variance is below 1e-12 of the largest count as flat. Above 10,000
+    /// vertices, the extreme points along 98 fixed directions span an inner polytope and every vertex
+    /// strictly inside it is dropped first (exact: those are never hull vertices).
+    ///
+    /// If more than [`HULL_EXACT_LIMIT`] candidates remain (a finely tessellated, mostly convex
+    /// surface), the hull is **approximate**: the whitened candidates are bucketed on a 128³ grid
+    /// (coarser, halving, until at most the limit remain) and each cell keeps only its point farthest
+    /// from the centroid. The result is still a subset of `vertices` and lies inside the true hull,
+    /// within about one cell diagonal of it (≲ 1.5 % of the mesh size, usually much less). If parry
+    /// fails, the hull is left empty.
+    pub hull: Vec<[f64; 3]>,
+    /// Axis-aligned bounds (min, max) of `vertices`.
+    pub aabb: ([f64; 3], [f64; 3]),
+    /// Triangle count as read (STL facets; OBJ `f` polygons as k − 2 triangles; COLLADA primitives of
+    /// every instantiated geometry, once per instance).
+    pub triangles: usize,
+    /// The COLLADA `<asset><up_axis>` the file declares (`None` for STL/OBJ, or a COLLADA file
+    /// without one), whether or not it was applied (see [`UpAxisPolicy`]).
+    pub declared_up_axis: Option<UpAxis>,
+}
+
+/// A COLLADA up axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UpAxis {
+    /// `X_UP`: mapped to Z up by (x, y, z) → (−y, −z, x).
+    X,
+    /// `Y_UP`: mapped to Z up by (x, y, z) → (x, −z, y).
+    Y,
+    /// `Z_UP`: identity.
+    Z,
+}
+
+impl UpAxis {
+    /// The COLLADA spelling (`X_UP`, `Y_UP`, `Z_UP`).
+    pub fn label(self) -> &'static str {
+        match self {
+            UpAxis::X => "X_UP",
+            UpAxis::Y => "Y_UP",
+            UpAxis::Z => "Z_UP",
+        }
+    }
+
+    /// The rotation that takes this axis to +Z (right-handed, a proper rotation).
+    fn to_z_up(self) -> Matrix4<f64> {
+        #[rustfmt::skip]
+        let m = match self {
+            UpAxis::X => Matrix4::new(
+                0.0, -1.0, 0.0, 0.0,
+                0.0, 0.0, -1.0, 0.0,
+                1.0, 0.0, 0.0, 0.0,
+                0.0, 0.0, 0.0, 1.0,
+            ),
+            UpAxis::Y => Matrix4::new(
+                1.0, 0.0, 0.0, 0.0,
+                0.0, 0.0, -1.0, 0.0,
+                0.0, 1.0, 0.0, 0.0,
+                0.0, 0.0, 0.0, 1.0,
+            ),
+            UpAxis::Z => Matrix4::identity(),
+        };
+        m
+    }
+}
+
+/// What to do with a COLLADA file's `<asset><up_axis>`.
+///
+/// The COLLADA specification says to honour it. ROS tools do not: RViz drops the rotation part of
+/// the root transform (keeping the unit scale), MoveIt's `geometric_shapes` and Gazebo classic ignore
+/// the tag, so many ROS meshes (PR2's, for one) say `Y_UP` while their geometry is already Z up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum UpAxisPolicy {
+    /// Rotate `X_UP`/`Y_UP` files so that their up axis becomes +Z (the COLLADA specification).
+    #[default]
+    Honour,
+    /// Leave the axes as they are in the file (what RViz, MoveIt and Gazebo do).
+    Ignore,
+}
+
+/// How meshes are loaded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct MeshOptions {
+    /// Treatment of COLLADA `<up_axis>`.
+    pub up_axis: UpAxisPolicy,
+}
+
+/// Why a mesh could not be used.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshError {
+    /// The mesh file.
+    pub path: PathBuf,
+    /// What went wrong: what was expected, with the line (text formats) or byte offset (binary STL)
+    /// where possible.
+    pub message: String,
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.message)
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// Load a mesh file, choosing the format by extension (case-insensitive): `.stl`, `.obj` or `.dae`,
+/// with the default [`MeshOptions`].
+pub fn load_mesh(path: &Path) -> Result<MeshData, MeshError> {
+    load_mesh_with(path, &MeshOptions::default())
+}
+
+/// Load a mesh file like [`load_mesh`], with explicit options.
+pub fn load_mesh_with(path: &Path, options: &MeshOptions) -> Result<MeshData, MeshError> {
+    load(path, options).map_err(|message| MeshError {
+        path: path.to_path_buf(),
+        message,
+    })
+}
+
+/// Thread-safe cache keyed by path: each file read and parsed once per run, shared across
+/// robots/poses. Clones share the same entries.
+#[derive(Default, Clone)]
+pub struct MeshCache {
+    entries: Arc<Mutex<HashMap<PathBuf, Arc<Result<MeshData, MeshError>>>>>,
+    options: MeshOptions,
+}
+
+impl fmt::Debug for MeshCache {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let entries = self.lock().len();
+        f.debug_struct("MeshCache")
+            .field("entries", &entries)
+            .field("options", &self.options)
+            .finish()
+    }
+}
+
+impl MeshCache {
+    /// An empty cache loading with the default [`MeshOptions`].
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// An empty cache loading with `options`.
+    pub fn with_options(options: MeshOptions) -> Self {
+        Self {
+            entries: Arc::default(),
+            options,
+        }
+    }
+
+    /// The mesh at `path` (or why it could not be loaded), read on first use. The lock is not held
+    /// while a file is parsed; if two threads race on the same new path both parse it, and both get
+    /// the entry stored first.
+    pub fn get(&self, path: &Path) -> Arc<Result<MeshData, MeshError>> {
+        if let Some(entry) = self.lock().get(path) {
+            return Arc::clone(entry);
+        }
+        let loaded = Arc::new(load_mesh_with(path, &self.options));
+        Arc::clone(self.lock().entry(path.to_path_buf()).or_insert(loaded))
+    }
+
+    /// Number of paths loaded (or failed) so far.
+    pub fn len(&self) -> usize {
+        self.lock().len()
+    }
+
+    /// Whether nothing has been loaded yet.
+    pub fn is_empty(&self) -> bool {
+        self.lock().is_empty()
+    }
+
+    fn lock(
+        &self,
+    ) -> std::sync::MutexGuard<'_, HashMap<PathBuf, Arc<Result<MeshData, MeshError>>>> {
+        // A panic elsewhere while holding the lock cannot leave the map half-updated.
+        self.entries.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Stl,
+    Obj,
+    Dae,
+}
+
+/// What a format parser hands back.
+struct RawMesh {
+    vertices: Vec<[f64; 3]>,
+    triangles: usize,
+    declared_up_axis: Option<UpAxis>,
+}
+
+fn load(path: &Path, options: &MeshOptions) -> Result<MeshData, String> {
+    let format = format_of(path)?;
+    let size = std::fs::metadata(path)
+        .map_err(|e| format!("cannot read file: {e}"))?
+        .len();
+    if size > MAX_FILE_BYTES {
+        return Err(format!(
+            "file is {size} bytes, larger than the {MAX_FILE_BYTES}-byte limit for meshes"
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read file: {e}"))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(format!(
+            "file is {} bytes, larger than the {MAX_FILE_BYTES}-byte limit for meshes",
+            bytes.len()
+        ));
+    }
+    let raw = match format {
+        Format::Stl => parse_stl(&bytes)?,
+        Format::Obj => parse_obj(&bytes)?,
+        Format::Dae => parse_dae(&bytes, options)?,
+    };
+    Ok(finish(raw))
+}
+
+fn format_of(path: &Path) -> Result<Format, String> {
+    let Some(ext) = path.extension() else {
+        return Err("mesh file has no extension (expected .stl, .obj or .dae)".to_string());
+    };
+    let ext = ext.to_string_lossy();
+    match ext.to_ascii_lowercase().as_str() {
+        "stl" => Ok(Format::Stl),
+        "obj" => Ok(Format::Obj),
+        "dae" => Ok(Format::Dae),
+        _ => Err(format!(
+            "unsupported mesh format '.{ext}' (expected .stl, .obj or .dae)"
+        )),
+    }
+}
+
+fn finish(raw: RawMesh) -> MeshData {
+    let aabb = bounds(&raw.vertices);
+    let hull = convex_hull(&raw.vertices, aabb);
+    MeshData {
+        vertices: raw.vertices,
+        hull,
+        aabb,
+        triangles: raw.triangles,
+        declared_up_axis: raw.declared_up_axis,
+    }
+}
+
+fn bounds(vertices: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for v in vertices {
+        for k in 0..3 {
+            min[k] = min[k].min(v[k]);
+            max[k] = max[k].max(v[k]);
+        }
+    }
+    (min, max)
+}
+
+/// Collects vertices, dropping exact duplicates and enforcing [`MAX_VERTICES`].
+#[derive(Default)]
+struct VertexSink {
+    vertices: Vec<[f64; 3]>,
+    seen: HashSet<[u64; 3]>,
+    read: usize,
+}
+
+impl VertexSink {
+    /// Add one vertex; `Err` with a message (without location) past the limit or on a non-finite value.
+    fn push(&mut self, v: [f64; 3]) -> Result<(), String> {
+        self.read += 1;
+        if self.read > MAX_VERTICES {
+            return Err(format!("more than {MAX_VERTICES} vertices (limit)"));
+        }
+        if !v.iter().all(|c| c.is_finite()) {
+            return Err(format!("non-finite vertex {v:?}"));
+        }
+        // `+ 0.0` folds -0.0 into 0.0 so that both hash alike.
+        let v = [v[0] + 0.0, v[1] + 0.0, v[2] + 0.0];
+        if self.seen.insert(bits(v)) {
+            self.vertices.push(v);
+        }
+        Ok(())
+    }
+
+    /// The vertices read, or an error if there are none.
+    fn finish(self, what: &str) -> Result<Vec<[f64; 3]>, String> {
+        if self.vertices.is_empty() {
+            Err(format!("no vertices found (expected {what})"))
+        } else {
+            Ok(self.vertices)
+        }
+    }
+}
+
+fn bits(v: [f64; 3]) -> [u64; 3] {
+    [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()]
+}
+
+/// A finite number, or `None`.
+fn number(token: &[u8]) -> Option<f64> {
+    std::str::from_utf8(token)
+        .ok()?
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+}
+
+/// A token for an error message: lossy UTF-8, at most 40 characters.
+fn shown(token: &[u8]) -> String {
+    let text = String::from_utf8_lossy(token);
+    if text.chars().count() > 40 {
+        format!("{}…", text.chars().take(40).collect::<String>())
+    } else {
+        text.into_owned()
+    }
+}
+
+/// Lines (1-based numbers, `\r` stripped) and their whitespace-separated tokens.
+fn lines(bytes: &[u8]) -> impl Iterator<Item = (usize, Vec<&[u8]>)> {
+    bytes.split(|&b| b == b'\n').enumerate().map(|(i, line)| {
+        let tokens = line
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|t| !t.is_empty())
+            .collect();
+        (i + 1, tokens)
+    })
+}
+
+/// Parse the three numbers after a keyword (`tokens[1..4]`); `what` names the keyword in errors.
+fn xyz(tokens: &[&[u8]], line: usize, what: &str) -> Result<[f64; 3], String> {
+    let mut v = [0.0; 3];
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let Some(token) = tokens.get(k + 1) else {
+            return Err(format!(
+                "line {line}: expected 3 numbers after '{what}', found {}",
+                tokens.len().saturating_sub(1)
+            ));
+        };
+        v[k] = number(token).ok_or_else(|| {
+            format!(
+                "line {line}: expected a finite number for the {axis} coordinate of '{what}', found '{}'",
+                shown(token)
+            )
+        })?;
+    }
+    Ok(v)
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL
+
+fn parse_stl(bytes: &[u8]) -> Result<RawMesh, String> {
+    if bytes.is_empty() {
+        return Err("empty file (expected binary or ASCII STL)".to_string());
+    }
+    let declared = (bytes.len() >= 84)
+        .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64);
+    let binary_size = declared.map(|n| 84 + 50 * n);
+    if binary_size == Some(bytes.len() as u64) {
+        return parse_binary_stl(bytes);
+    }
+    let starts_with_solid = bytes
+        .iter()
+        .position(|b| !b.is_ascii_whitespace())
+        .is_some_and(|start| bytes[start..].starts_with(b"solid"));
+    let textual = !bytes[..bytes.len().min(1024)].contains(&0);
+    if starts_with_solid && textual {
+        return parse_ascii_stl(bytes, declared);
+    }
+    if bytes.len() < 84 {
+        return Err(format!(
+            "file is {} bytes: too short for a binary STL (80-byte header and 4-byte triangle count) \
+             and does not start with 'solid' (ASCII STL)",
+            bytes.len()
+        ));
+    }
+    // Binary with a size that does not match: truncated is an error, trailing bytes are ignored.
+    parse_binary_stl(bytes)
+}
+
+fn parse_binary_stl(bytes: &[u8]) -> Result<RawMesh, String> {
+    let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+    let expected = 84 + 50 * count as u64;
+    let complete = (bytes.len() - 84) / 50;
+    if complete < count {
+        let offset = 84 + 50 * complete;
+        return Err(format!(
+            "byte offset {offset}: binary STL truncated: triangle {complete} of {count} is incomplete \
+             (the header declares {count} triangles, {expected} bytes; the file has {} bytes)",
+            bytes.len()
+        ));
+    }
+    if count == 0 {
+        return Err("binary STL declares 0 triangles (byte offset 80)".to_string());
+    }
+    let mut sink = VertexSink::default();
+    for t in 0..count {
+        let base = 84 + 50 * t;
+        for corner in 0..3 {
+            let at = base + 12 + 12 * corner;
+            let mut v = [0.0; 3];
+            for (k, value) in v.iter_mut().enumerate() {
+                let o = at + 4 * k;
+                let raw = [bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]];
+                *value = f64::from(f32::from_le_bytes(raw));
+            }
+            sink.push(v)
+                .map_err(|e| format!("byte offset {at}: triangle {t}, vertex {corner}: {e}"))?;
+        }
+    }
+    Ok(RawMesh {
+        vertices: sink.finish("binary STL triangles")?,
+        triangles: count,
+        declared_up_axis: None,
+    })
+}
+
+fn parse_ascii_stl(bytes: &[u8], declared: Option<u64>) -> Result<RawMesh, String> {
+    let mut sink = VertexSink::default();
+    let mut facets = 0usize;
+    for (line, tokens) in lines(bytes) {
+        let Some(first) = tokens.first() else {
+            continue;
+        };
+        if first.eq_ignore_ascii_case(b"vertex") {
+            let v = xyz(&tokens, line, "vertex")?;
+            sink.push(v).map_err(|e| format!("line {line}: {e}"))?;
+        } else if first.eq_ignore_ascii_case(b"facet") {
+            facets += 1;
+        }
+    }
+    if sink.vertices.is_empty() {
+        let hint = match declared {
+            Some(n) => format!(
+                "; if it is binary, its size {} does not match 84 + 50 × {n} triangles from its header",
+                bytes.len()
+            ),
+            None => String::new(),
+        };
+        return Err(format!(
+            "ASCII STL (starts with 'solid') has no 'vertex x y z' lines{hint}"
+        ));
+    }
+    Ok(RawMesh {
+        vertices: sink.vertices,
+        triangles: facets,
+        declared_up_axis: None,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ
+
+fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
+    if bytes.is_empty() {
+        return Err("empty file (expected Wavefront OBJ 'v x y z' lines)".to_string());
+    }
+    let mut sink = VertexSink::default();
+    let mut triangles = 0usize;
+    for (line, tokens) in lines(bytes) {
+        match tokens.first().copied() {
+            Some(b"v") => {
+                let v = xyz(&tokens, line, "v")?;
+                sink.push(v).map_err(|e| format!("line {line}: {e}"))?;
+            }
+            Some(b"f") => triangles = triangles.saturating_add(tokens.len().saturating_sub(3)),
+            _ => {}
+        }
+    }
+    Ok(RawMesh {
+        vertices: sink.finish("Wavefront OBJ 'v x y z' lines")?,
+        triangles,
+        declared_up_axis: None,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// COLLADA
+
+/// A geometry's positions in file units, and its triangle count.
+struct Geometry {
+    positions: Vec<[f64; 3]>,
+    triangles: usize,
+}
+
+struct Collada<'a, 'input> {
+    doc: &'a Document<'input>,
+    ids: HashMap<&'a str, Node<'a, 'input>>,
+    geometries: HashMap<&'a str, Arc<Geometry>>,
+    sink: VertexSink,
+    triangles: usize,
+    instances: usize,
+}
+
+fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, String> {
+    if bytes.is_empty() {
+        return Err("empty file (expected COLLADA XML)".to_string());
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        format!(
+            "byte offset {}: not UTF-8 (expected COLLADA XML in UTF-8)",
+            e.valid_up_to()
+        )
+    })?;
+    let parsing = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: MAX_XML_NODES,
+        ..Default::default()
+    };
+    let doc = Document::parse_with_options(text, parsing).map_err(|e| {
+        let pos = e.pos();
+        format!("line {}, column {}: invalid XML: {e}", pos.row, pos.col)
+    })?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "COLLADA" {
+        return Err(format!(
+            "line {}: expected a <COLLADA> root element, found <{}>",
+            line_of(&doc, root),
+            root.tag_name().name()
+        ));
+    }
+    let mut c = Collada {
+        doc: &doc,
+        ids: HashMap::new(),
+        geometries: HashMap::new(),
+        sink: VertexSink::default(),
+        triangles: 0,
+        instances: 0,
+    };
+    for node in root.descendants().filter(|n| n.is_element()) {
+        if let Some(id) = node.attribute("id") {
+            c.ids.entry(id).or_insert(node);
+        }
+    }
+
+    let (unit, declared_up_axis) = c.asset(root)?;
+    let mut top = Matrix4::new_scaling(unit);
+    if let (Some(axis), UpAxisPolicy::Honour) = (declared_up_axis, options.up_axis) {
+        top = axis.to_z_up() * top;
+    }
+
+    match c.scene(root)? {
+        Some(scene) => {
+            for node in elements(scene).filter(|n| tag(*n) == "node") {
+                c.node(node, &top, 1)?;
+            }
+        }
+        None => {
+            // No visual scene: every geometry, untransformed (unit and up axis still apply).
+            let geometries: Vec<Node> = root
+                .descendants()
+                .filter(|n| n.is_element() && tag(*n) == "geometry")
+                .collect();
+            for geometry in geometries {
+                c.instantiate(geometry, &top)?;
+            }
+        }
+    }
+    let triangles = c.triangles;
+    Ok(RawMesh {
+        vertices: c
+            .sink
+            .finish("COLLADA <mesh> positions instantiated by the visual scene")?,
+        triangles,
+        declared_up_axis,
+    })
+}
+
+fn tag<'a>(node: Node<'a, '_>) -> &'a str {
+    node.tag_name().name()
+}
+
+fn elements<'a, 'i>(node: Node<'a, 'i>) -> impl Iterator<Item = Node<'a, 'i>> {
+    node.children().filter(|n| n.is_element())
+}
+
+fn child<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
+    elements(node).find(|n| tag(*n) == name)
+}
+
+fn line_of(doc: &Document, node: Node) -> u32 {
+    doc.text_pos_at(node.range().start).row
+}
+
+/// The element's text as numbers, each finite; errors give the line of the offending token.
+fn floats(doc: &Document, node: Node) -> Result<Vec<f64>, String> {
+    let Some(text_node) = node.first_child().filter(|n| n.is_text()) else {
+        return Ok(Vec::new());
+    };
+    let text = text_node.text().unwrap_or("");
+    let base = text_node.range().start;
+    let mut out = Vec::new();
+    for token in text.split_ascii_whitespace() {
+        match number(token.as_bytes()) {
+            Some(v) => out.push(v),
+            None => {
+                let offset = token.as_ptr() as usize - text.as_ptr() as usize;
+                let pos = doc.text_pos_at(base + offset);
+                return Err(format!(
+                    "line {}, column {}: expected a finite number in <{}>, found '{}'",
+                    pos.row,
+                    pos.col,
+                    tag(node),
+                    shown(token.as_bytes())
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Exactly `n` numbers from an element (transforms, bind_shape_matrix).
+fn fixed_floats(doc: &Document, node: Node, n: usize) -> Result<Vec<f64>, String> {
+    let values = floats(doc, node)?;
+    if values.len() != n {
+        return Err(format!(
+            "line {}: expected {n} numbers in <{}>, found {}",
+            line_of(doc, node),
+            tag(node),
+            values.len()
+        ));
+    }
+    Ok(values)
+}
+
+/// A non-negative integer attribute (absent → `default`).
+fn usize_attr(doc: &Document, node: Node, name: &str, default: usize) -> Result<usize, String> {
+    match node.attribute(name) {
+        None => Ok(default),
+        Some(text) => text.trim().parse::<usize>().map_err(|_| {
+            format!(
+                "line {}: expected a non-negative integer for <{} {name}>, found '{}'",
+                line_of(doc, node),
+                tag(node),
+                shown(text.as_bytes())
+            )
+        }),
+    }
+}
+
+/// Whitespace-separated tokens in an element's text.
+fn token_count(node: Node) -> usize {
+    node.text()
+        .map(|t| t.split_ascii_whitespace().count())
+        .unwrap_or(0)
+}
+
+impl<'a, 'input> Collada<'a, 'input> {
+    /// `<asset><unit meter>` (default 1) and `<asset><up_axis>` (absent → `None`, no rotation).
+    fn asset(&self, root: Node<'a, 'input>) -> Result<(f64, Option<UpAxis>), String> {
+        let Some(asset) = child(root, "asset") else {
+            return Ok((1.0, None));
+        };
+        let mut unit = 1.0;
+        if let Some(node) = child(asset, "unit") {
+            if let Some(text) = node.attribute("meter") {
+                unit = text
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite() && *v > 0.0)
+                    .ok_or_else(|| {
+                        format!(
+                            "line {}: expected a positive number for <unit meter>, found '{}'",
+                            line_of(self.doc, node),
+                            shown(text.as_bytes())
+                        )
+                    })?;
+            }
+        }
+        let up = match child(asset, "up_axis") {
+            None => None,
+            Some(node) => match node.text().unwrap_or("").trim() {
+                "X_UP" => Some(UpAxis::X),
+                "Y_UP" => Some(UpAxis::Y),
+                "Z_UP" => Some(UpAxis::Z),
+                other => {
+                    return Err(format!(
+                        "line {}: expected X_UP, Y_UP or Z_UP in <up_axis>, found '{}'",
+                        line_of(self.doc, node),
+                        shown(other.as_bytes())
+                    ))
+                }
+            },
+        };
+        Ok((unit, up))
+    }
+
+    /// The visual scene to instantiate: the one `<scene><instance_visual_scene url>` names, else the
+    /// first `<visual_scene>`, else none.
+    fn scene(&self, root: Node<'a, 'input>) -> Result<Option<Node<'a, 'input>>, String> {
+        if let Some(instance) = child(root, "scene").and_then(|s| child(s, "instance_visual_scene"))
+        {
+            return self.target(instance, "url", "visual_scene").map(Some);
+        }
+        Ok(root
+            .descendants()
+            .find(|n| n.is_element() && tag(*n) == "visual_scene"))
+    }
+
+    /// The element a `#id` reference in attribute `attr` of `from` points to, which must be a `<kind>`.
+    fn target(&self, from: Node, attr: &str, kind: &str) -> Result<Node<'a, 'input>, String> {
+        let line = || line_of(self.doc, from);
+        let name = tag(from);
+        let Some(url) = from.attribute(attr) else {
+            return Err(format!(
+                "line {}: <{name}> has no '{attr}' attribute",
+                line()
+            ));
+        };
+        let Some(id) = url.strip_prefix('#') else {
+            return Err(format!(
+                "line {}: <{name} {attr}=\"{}\">: only references inside the file ('#id') are supported",
+                line(),
+                shown(url.as_bytes())
+            ));
+        };
+        let Some(&node) = self.ids.get(id) else {
+            return Err(format!(
+                "line {}: <{name} {attr}=\"{}\">: no element with id '{}'",
+                line(),
+                shown(url.as_bytes()),
+                shown(id.as_bytes())
+            ));
+        };
+        if tag(node) != kind {
+            return Err(format!(
+                "line {}: <{name} {attr}=\"{}\"> points to a <{}> (line {}), expected a <{kind}>",
+                line(),
+                shown(url.as_bytes()),
+                tag(node),
+                line_of(self.doc, node)
+            ));
+        }
+        Ok(node)
+    }
+
+    /// Instantiate `node` under `parent` (the transform to metres, Z up, of its parent frame).
+    fn node(
+        &mut self,
+        node: Node<'a, 'input>,
+        parent: &Matrix4<f64>,
+        depth: usize,
+    ) -> Result<(), String> {
+        if depth > MAX_NODE_DEPTH {
+            return Err(format!(
+                "line {}: node hierarchy deeper than {MAX_NODE_DEPTH} levels (an <instance_node> cycle?)",
+                line_of(self.doc, node)
+            ));
+        }
+        self.instances += 1;
+        if self.instances > MAX_NODE_INSTANCES {
+            return Err(format!(
+                "line {}: more than {MAX_NODE_INSTANCES} node instances (limit)",
+                line_of(self.doc, node)
+            ));
+        }
+        let mut m = *parent;
+        for t in elements(node) {
+            m *= match tag(t) {
+                "matrix" => {
+                    let v = fixed_floats(self.doc, t, 16)?;
+                    Matrix4::from_row_slice(&v)
+                }
+                "translate" => {
+                    let v = fixed_floats(self.doc, t, 3)?;
+                    Matrix4::new_translation(&Vector3::new(v[0], v[1], v[2]))
+                }
+                "rotate" => {
+                    let v = fixed_floats(self.doc, t, 4)?;
+                    match Unit::try_new(Vector3::new(v[0], v[1], v[2]), f64::MIN_POSITIVE) {
+                        Some(axis) => {
+                            Rotation3::from_axis_angle(&axis, v[3].to_radians()).to_homogeneous()
+                        }
+                        None => Matrix4::identity(),
+                    }
+                }
+                "scale" => {
+                    let v = fixed_floats(self.doc, t, 3)?;
+                    Matrix4::new_nonuniform_scaling(&Vector3::new(v[0], v[1], v[2]))
+                }
+                "lookat" => {
+                    let v = fixed_floats(self.doc, t, 9)?;
+                    look_at(&v)
+                }
+                // <skew> is not supported (practically unused); other children are not transforms.
+                _ => continue,
+            };
+        }
+        for item in elements(node) {
+            match tag(item) {
+                "node" => self.node(item, &m, depth + 1)?,
+                "instance_node" => {
+                    let target = self.target(item, "url", "node")?;
+                    self.node(target, &m, depth + 1)?;
+                }
+                "instance_geometry" => {
+                    let geometry = self.target(item, "url", "geometry")?;
+                    self.instantiate(geometry, &m)?;
+                }
+                "instance_controller" => self.controller(item, &m)?,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// `<instance_controller>` → `<controller><skin source="#geometry">` (with its
+    /// `<bind_shape_matrix>`) or `<morph source="#geometry">`.
+    fn controller(&mut self, item: Node<'a, 'input>, m: &Matrix4<f64>) -> Result<(), String> {
+        let controller = self.target(item, "url", "controller")?;
+        if let Some(skin) = child(controller, "skin") {
+            let geometry = self.target(skin, "source", "geometry")?;
+            let bind = match child(skin, "bind_shape_matrix") {
+                Some(b) => Matrix4::from_row_slice(&fixed_floats(self.doc, b, 16)?),
+                None => Matrix4::identity(),
+            };
+            self.instantiate(geometry, &(m * bind))
+        } else if let Some(morph) = child(controller, "morph") {
+            let geometry = self.target(morph, "source", "geometry")?;
+            self.instantiate(geometry, m)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Add the positions of `geometry`, transformed by `m`, and its triangles.
+    fn instantiate(&mut self, geometry: Node<'a, 'input>, m: &Matrix4<f64>) -> Result<(), String> {
+        let Some(data) = self.geometry(geometry)? else {
+            return Ok(());
+        };
+        // The affine part (COLLADA transforms are affine), in plain arithmetic for unoptimised builds.
+        let row = |r: usize| [m[(r, 0)], m[(r, 1)], m[(r, 2)], m[(r, 3)]];
+        let rows = [row(0), row(1), row(2)];
+        for p in &data.positions {
+            let q = rows.map(|r| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3]);
+            self.sink.push(q).map_err(|e| {
+                format!(
+                    "line {}: geometry instantiated by the visual scene: {e}",
+                    line_of(self.doc, geometry)
+                )
+            })?;
+        }
+        self.triangles = self.triangles.saturating_add(data.triangles);
+        Ok(())
+    }
+
+    /// A `<geometry>`'s `<mesh>` (parsed once); `None` for other geometry kinds (splines…).
+    fn geometry(&mut self, geometry: Node<'a, 'input>) -> Result<Option<Arc<Geometry>>, String> {
+        let key = geometry.attribute("id").unwrap_or("");
+        if !key.is_empty() {
+            if let Some(data) = self.geometries.get(key) {
+                return Ok(Some(Arc::clone(data)));
+            }
+        }
+        let Some(mesh) = child(geometry, "mesh") else {
+            return Ok(None);
+        };
+        let data = Arc::new(Geometry {
+            positions: self.positions(mesh)?,
+            triangles: self.mesh_triangles(mesh)?,
+        });
+        if !key.is_empty() {
+            self.geometries.insert(key, Arc::clone(&data));
+        }
+        Ok(Some(data))
+    }
+
+    /// `<vertices><input semantic="POSITION" source="#…">` → `<source>` → accessor → float_array.
+    fn positions(&self, mesh: Node<'a, 'input>) -> Result<Vec<[f64; 3]>, String> {
+        let input = child(mesh, "vertices")
+            .and_then(|v| {
+                elements(v).find(|i| tag(*i) == "input" && i.attribute("semantic") == Some("POSITION"))
+            })
+            .ok_or_else(|| {
+                format!(
+                    "line {}: <mesh> has no <vertices><input semantic=\"POSITION\"> (expected vertex positions)",
+                    line_of(self.doc, mesh)
+                )
+            })?;
+        let source = self.target(input, "source", "source")?;
+        let accessor = child(source, "technique_common").and_then(|t| child(t, "accessor"));
+        let array = match accessor {
+            Some(a) if a.attribute("source").is_some() => {
+                self.target(a, "source", "float_array")?
+            }
+            _ => child(source, "float_array").ok_or_else(|| {
+                format!(
+                    "line {}: POSITION <source> has no <float_array>",
+                    line_of(self.doc, source)
+                )
+            })?,
+        };
+        let values = floats(self.doc, array)?;
+        let (count, stride, offset, slots) = match accessor {
+            Some(a) => {
+                let stride = usize_attr(self.doc, a, "stride", 1)?;
+                let offset = usize_attr(self.doc, a, "offset", 0)?;
+                let count = usize_attr(self.doc, a, "count", 0)?;
+                let params: Vec<Node> = elements(a).filter(|p| tag(*p) == "param").collect();
+                let slots: Vec<usize> = if params.is_empty() {
+                    vec![0, 1, 2]
+                } else {
+                    params
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, p)| p.attribute("name").is_some_and(|n| !n.is_empty()))
+                        .map(|(i, _)| i)
+                        .take(3)
+                        .collect()
+                };
+                if slots.len() < 3 || slots.iter().any(|&s| s >= stride) {
+                    return Err(format!(
+                        "line {}: POSITION <accessor> must bind 3 named params within its stride {stride}",
+                        line_of(self.doc, a)
+                    ));
+                }
+                (count, stride, offset, slots)
+            }
+            None => (values.len() / 3, 3, 0, vec![0, 1, 2]),
+        };
+        if count == 0 {
+            return Ok(Vec::new());
+        }
+        let needed = (count - 1)
+            .checked_mul(stride)
+            .and_then(|n| n.checked_add(offset))
+            .and_then(|n| n.checked_add(slots[2].max(slots[1]).max(slots[0]) + 1));
+        if needed.is_none_or(|n| n > values.len()) || count > MAX_VERTICES {
+            return Err(format!(
+                "line {}: accessor reads {count} points with stride {stride} from offset {offset}, \
+                 but the <float_array> (line {}) has {} numbers",
+                line_of(self.doc, accessor.unwrap_or(source)),
+                line_of(self.doc, array),
+                values.len()
+            ));
+        }
+        Ok((0..count)
+            .map(|i| {
+                let at = offset + i * stride;
+                [
+                    values[at + slots[0]],
+                    values[at + slots[1]],
+                    values[at + slots[2]],
+                ]
+            })
+            .collect())
+    }
+
+    /// Triangles of a `<mesh>`'s primitives: `<triangles count>`, `<polylist>` `<vcount>`,
+    /// `<polygons>`/`<trifans>`/`<tristrips>` `<p>` lengths; lines count none.
+    fn mesh_triangles(&self, mesh: Node<'a, 'input>) -> Result<usize, String> {
+        let mut total = 0usize;
+        for prim in elements(mesh) {
+            let n = match tag(prim) {
+                "triangles" => usize_attr(self.doc, prim, "count", 0)?,
+                "polylist" => match child(prim, "vcount") {
+                    Some(vcount) => {
+                        let mut sum = 0usize;
+                        for token in vcount.text().unwrap_or("").split_ascii_whitespace() {
+                            let k = token.parse::<usize>().map_err(|_| {
+                                format!(
+                                    "line {}: expected a vertex count in <vcount>, found '{}'",
+                                    line_of(self.doc, vcount),
+                                    shown(token.as_bytes())
+                                )
+                            })?;
+                            sum = sum.saturating_add(k.saturating_sub(2));
+                        }
+                        sum
+                    }
+                    None => 0,
+                },
+                "polygons" | "trifans" | "tristrips" => {
+                    let stride = self.input_stride(prim)?;
+                    let mut sum = 0usize;
+                    let ps = elements(prim).flat_map(|c| match tag(c) {
+                        "p" => vec![c],
+                        // polygons with holes: the outer boundary.
+                        "ph" => child(c, "p").into_iter().collect(),
+                        _ => Vec::new(),
+                    });
+                    for p in ps {
+                        sum = sum.saturating_add((token_count(p) / stride).saturating_sub(2));
+                    }
+                    sum
+                }
+                _ => 0,
+            };
+            total = total.saturating_add(n);
+        }
+        Ok(total)
+    }
+
+    /// Indices per vertex in a primitive's `<p>`: largest input offset + 1.
+    fn input_stride(&self, prim: Node<'a, 'input>) -> Result<usize, String> {
+        let mut stride = 1;
+        for input in elements(prim).filter(|i| tag(*i) == "input") {
+            let offset = usize_attr(self.doc, input, "offset", 0)?;
+            stride = stride.max(offset.saturating_add(1));
+        }
+        Ok(stride)
+    }
+}
+
+/// COLLADA `<lookat>`: eye, interest, up → the frame at `eye` looking along −Z at `interest`.
+fn look_at(v: &[f64]) -> Matrix4<f64> {
+    let eye = Vector3::new(v[0], v[1], v[2]);
+    let dir = Vector3::new(v[3], v[4], v[5]) - eye;
+    let up = Vector3::new(v[6], v[7], v[8]);
+    let (Some(dir), Some(up)) = (dir.try_normalize(0.0), up.try_normalize(0.0)) else {
+        return Matrix4::new_translation(&eye);
+    };
+    let Some(right) = dir.cross(&up).try_normalize(0.0) else {
+        return Matrix4::new_translation(&eye);
+    };
+    let up = right.cross(&dir);
+    #[rustfmt::skip]
+    let m = Matrix4::new(
+        right.x, up.x, -dir.x, eye.x,
+        right.y, up.y, -dir.y, eye.y,
+        right.z, up.z, -dir.z, eye.z,
+        0.0, 0.0, 0.0, 1.0,
+    );
+    m
+}
+
+// ---------------------------------------------------------------------------------------------
+// Convex hull
+
+/// See [`MeshData::hull`].
+fn convex_hull(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Vec<[f64; 3]> {
+    if vertices.len() < 4 {
+        return Vec::new();
+    }
+    // Hot loops use plain arrays: nalgebra is slow in unoptimised (test) builds.
+    let (min, max) = aabb;
+    let center = [
+        0.5 * (min[0] + max[0]),
+        0.5 * (min[1] + max[1]),
+        0.5 * (min[2] + max[2]),
+    ];
+    let diag = norm(sub(max, min));
+    if !(diag.is_finite() && diag > 0.0) || !center.iter().all(|c| c.is_finite()) {
+        return Vec::new();
+    }
+    // Normalised coordinates (within ±0.5) keep the covariance from overflowing.
+    let normalised = |v: &[f64; 3]| scale(sub(*v, center), 1.0 / diag);
+    let n = vertices.len() as f64;
+    let mut mean = [0.0; 3];
+    for v in vertices {
+        mean = add(mean, normalised(v));
+    }
+    let mean = scale(mean, 1.0 / n);
+    let mut c = [[0.0; 3]; 3];
+    for v in vertices {
+        let d = sub(normalised(v), mean);
+        for (row, &di) in c.iter_mut().zip(&d) {
+            for (cell, &dj) in row.iter_mut().zip(&d) {
+                *cell += di * dj;
+            }
+        }
+    }
+    let covariance = nalgebra::Matrix3::from_fn(|i, j| c[i][j] / n);
+    let eigen = SymmetricEigen::new(covariance);
+    let largest = eigen.eigenvalues.max();
+    let smallest = eigen.eigenvalues.min();
+    if !(largest > 0.0 && smallest > largest * FLAT_VARIANCE_RATIO) {
+        return Vec::new();
+    }
+    // Whitening: an invertible affine map, so hull vertices map to hull vertices. Row k of `w` is
+    // eigenvector k divided by the square root of its eigenvalue.
+    let w: [[f64; 3]; 3] = std::array::from_fn(|k| {
+        let axis = eigen.eigenvectors.column(k);
+        let s = 1.0 / eigen.eigenvalues[k].sqrt();
+        [axis[0] * s, axis[1] * s, axis[2] * s]
+    });
+    let white: Vec<[f64; 3]> = vertices
+        .iter()
+        .map(|v| {
+            let d = sub(normalised(v), mean);
+            [dot(w[0], d), dot(w[1], d), dot(w[2], d)]
+        })
+        .collect();
+    if !white.iter().all(|p| p.iter().all(|c| c.is_finite())) {
+        return Vec::new();
+    }
+    let mut candidates: Vec<usize> = if white.len() > HULL_PREFILTER_MIN {
+        prefilter(&white, (0..white.len()).collect())
+    } else {
+        (0..white.len()).collect()
+    };
+    let mut cells = HULL_GRID_CELLS;
+    while candidates.len() > HULL_EXACT_LIMIT && cells >= 2 {
+        candidates = prefilter(&white, thin_on_grid(&white, &candidates, cells));
+        cells /= 2;
+    }
+    let points: Vec<parry3d_f64::math::Vector> = candidates
+        .iter()
+        .map(|&i| to_parry(white[i]))
+        .collect();
+    let Some((hull_points, _)) = run_hull(&points) else {
+        return Vec::new();
+    };
+    // parry returns copies of its input points: map them back to the original vertices.
+    let index: HashMap<[u64; 3], usize> = candidates
+        .iter()
+        .map(|&i| (bits(white[i]), i))
+        .collect();
+    let hull: Vec<[f64; 3]> = hull_points
+        .iter()
+        .filter_map(|p| index.get(&bits([p.x, p.y, p.z])))
+        .map(|&i| vertices[i])
+        .collect();
+    if hull.len() < 4 {
+        Vec::new()
+    } else {
+        hull
+    }
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+fn to_parry(p: [f64; 3]) -> parry3d_f64::math::Vector {
+    parry3d_f64::math::Vector::new(p[0], p[1], p[2])
+}
+
+type HullResult = (Vec<parry3d_f64::math::Vector>, Vec<[u32; 3]>);
+
+/// parry's quickhull, with its known panics on degenerate input (dimforge/parry#49) turned into `None`
+/// as a last resort (the inputs here are whitened and non-flat, so this is not expected to trigger).
+fn run_hull(points: &[parry3d_f64::math::Vector]) -> Option<HullResult> {
+    std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points))
+        .ok()?
+        .ok()
+}
+
+/// Of the `candidates` (indices into `points`), those that may be hull vertices: all but the points
+/// strictly inside the polytope spanned by the extreme points along fixed directions (Akl–Toussaint
+/// heuristic; exact).
+fn prefilter(points: &[[f64; 3]], candidates: Vec<usize>) -> Vec<usize> {
+    let directions = directions();
+    let mut best = vec![(f64::NEG_INFINITY, usize::MAX); directions.len()];
+    for &i in &candidates {
+        let p = points[i];
+        for (d, slot) in directions.iter().zip(best.iter_mut()) {
+            let s = dot(*d, p);
+            if s > slot.0 {
+                *slot = (s, i);
+            }
+        }
+    }
+    if best.iter().any(|&(_, i)| i == usize::MAX) {
+        return candidates;
+    }
+    let mut extreme: Vec<usize> = best.iter().map(|&(_, i)| i).collect();
+    extreme.sort_unstable();
+    extreme.dedup();
+    let inner: Vec<parry3d_f64::math::Vector> =
+        extreme.iter().map(|&i| to_parry(points[i])).collect();
+    let Some((vertices, faces)) = run_hull(&inner) else {
+        return candidates;
+    };
+    if faces.len() < 4 {
+        return candidates;
+    }
+    // Outward planes (normal, offset) of the inner polytope, checked against its centroid.
+    let corners: Vec<[f64; 3]> = vertices.iter().map(|v| [v.x, v.y, v.z]).collect();
+    let mut centroid = [0.0; 3];
+    for &c in &corners {
+        centroid = add(centroid, c);
+    }
+    let centroid = scale(centroid, 1.0 / corners.len() as f64);
+    let mut planes = Vec::with_capacity(faces.len());
+    for face in &faces {
+        let corner = |k: usize| corners.get(face[k] as usize).copied();
+        let (Some(a), Some(b), Some(c)) = (corner(0), corner(1), corner(2)) else {
+            return candidates;
+        };
+        let normal = cross(sub(b, a), sub(c, a));
+        let length = norm(normal);
+        if !(length > 1e-12) {
+            continue;
+        }
+        let mut normal = scale(normal, 1.0 / length);
+        if dot(normal, sub(centroid, a)) > 0.0 {
+            normal = scale(normal, -1.0);
+        }
+        planes.push((normal, dot(normal, a)));
+    }
+    // Whitened points have unit variance, so an absolute margin is meaningful.
+    const MARGIN: f64 = 1e-9;
+    let mut keep: Vec<usize> = candidates
+        .into_iter()
+        .filter(|&i| {
+            planes
+                .iter()
+                .any(|&(n, offset)| dot(n, points[i]) > offset - MARGIN)
+        })
+        .collect();
+    keep.extend(&extreme);
+    keep.sort_unstable();
+    keep.dedup();
+    keep
+}
+
+/// Of the `candidates`, one per occupied cell of a `cells`³ grid over their bounds: the point
+/// farthest from the origin (the whitened centroid). Approximate (see [`MeshData::hull`]).
+fn thin_on_grid(points: &[[f64; 3]], candidates: &[usize], cells: u32) -> Vec<usize> {
+    let (min, max) = bounds(&candidates.iter().map(|&i| points[i]).collect::<Vec<_>>());
+    let size = sub(max, min).into_iter().fold(0.0, f64::max);
+    if !(size.is_finite() && size > 0.0) {
+        return candidates.to_vec();
+    }
+    let top = f64::from(cells - 1);
+    let cell = |c: f64| ((c / size * f64::from(cells)).floor()).clamp(0.0, top) as u64;
+    let mut best: HashMap<u64, (f64, usize)> = HashMap::new();
+    for &i in candidates {
+        let d = sub(points[i], min);
+        let key = (cell(d[0]) << 42) | (cell(d[1]) << 21) | cell(d[2]);
+        let r = dot(points[i], points[i]);
+        let slot = best.entry(key).or_insert((r, i));
+        if r > slot.0 {
+            *slot = (r, i);
+        }
+    }
+    let mut kept: Vec<usize> = best.into_values().map(|(_, i)| i).collect();
+    kept.sort_unstable();
+    kept
+}
+
+/// 98 unit directions: the 26 of the 3×3×3 lattice and 72 on a Fibonacci sphere.
+fn directions() -> Vec<[f64; 3]> {
+    let mut out = Vec::with_capacity(98);
+    for x in -1i32..=1 {
+        for y in -1i32..=1 {
+            for z in -1i32..=1 {
+                let d = [f64::from(x), f64::from(y), f64::from(z)];
+                let length = norm(d);
+                if length > 0.0 {
+                    out.push(scale(d, 1.0 / length));
+                }
+            }
+        }
+    }
+    let n = 72;
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    for i in 0..n {
+        let z = 1.0 - 2.0 * (f64::from(i) + 0.5) / f64::from(n);
+        let r = (1.0 - z * z).sqrt();
+        let phi = golden * f64::from(i);
+        out.push([r * phi.cos(), r * phi.sin(), z]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> Vec<[f64; 3]> {
+        let mut v = Vec::new();
+        for x in [0.0, 1.0] {
+            for y in [0.0, 1.0] {
+                for z in [0.0, 1.0] {
+                    v.push([x, y, z]);
+                }
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn up_axes_are_proper_rotations_taking_up_to_z() {
+        for (axis, up) in [
+            (UpAxis::X, [1.0, 0.0, 0.0]),
+            (UpAxis::Y, [0.0, 1.0, 0.0]),
+            (UpAxis::Z, [0.0, 0.0, 1.0]),
+        ] {
+            let m = axis.to_z_up();
+            let r = m.fixed_view::<3, 3>(0, 0).into_owned();
+            assert!((r.determinant() - 1.0).abs() < 1e-15, "{axis:?}");
+            let z = m.transform_point(&Point3::new(up[0], up[1], up[2]));
+            assert_eq!([z.x, z.y, z.z], [0.0, 0.0, 1.0], "{axis:?}");
+        }
+        let y = UpAxis::Y
+            .to_z_up()
+            .transform_point(&Point3::new(1.0, 2.0, 3.0));
+        assert_eq!([y.x, y.y, y.z], [1.0, -3.0, 2.0]);
+    }
+
+    #[test]
+    fn hull_of_cube_with_interior_and_face_points() {
+        let mut v = cube();
+        v.push([0.5, 0.5, 0.5]);
+        v.push([0.5, 0.5, 1.0]);
+        v.push([0.25, 0.0, 0.75]);
+        let aabb = bounds(&v);
+        let hull = convex_hull(&v, aabb);
+        assert_eq!(hull.len(), 8, "{hull:?}");
+        for h in &hull {
+            assert!(cube().contains(h));
+        }
+    }
+
+    #[test]
+    fn flat_and_tiny_inputs_have_no_hull() {
+        let square = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, 0.0],
+        ];
+        assert!(convex_hull(&square, bounds(&square)).is_empty());
+        let tilted: Vec<[f64; 3]> = (0..50)
+            .map(|i| {
+                let (a, b) = ((i % 7) as f64, (i / 7) as f64);
+                [a, b, 0.3 * a - 0.2 * b]
+            })
+            .collect();
+        assert!(convex_hull(&tilted, bounds(&tilted)).is_empty());
+        let three = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        assert!(convex_hull(&three, bounds(&three)).is_empty());
+        let same = vec![[1.0; 3]; 10];
+        assert!(convex_hull(&same, bounds(&same)).is_empty());
+    }
+
+    #[test]
+    fn thin_plate_keeps_all_eight_corners() {
+        // 1 m × 1 m × 10 µm: parry alone would see a flat cloud and return 4 corners.
+        let mut v = Vec::new();
+        for x in [0.0, 1.0] {
+            for y in [0.0, 1.0] {
+                for z in [0.0, 1e-5] {
+                    v.push([x, y, z]);
+                }
+            }
+        }
+        // tilt it so that it is not axis-aligned
+        let r = Rotation3::from_euler_angles(0.3, -0.4, 0.5);
+        let v: Vec<[f64; 3]> = v
+            .iter()
+            .map(|p| {
+                let q = r * Point3::new(p[0], p[1], p[2]);
+                [q.x, q.y, q.z]
+            })
+            .collect();
+        assert_eq!(convex_hull(&v, bounds(&v)).len(), 8);
+    }
+
+    #[test]
+    fn prefilter_keeps_every_hull_vertex() {
+        // Points on a sphere and inside it: the filter drops only interior points.
+        let mut pts = Vec::new();
+        let mut state = 12345u64;
+        let mut rand = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        for i in 0..5000 {
+            let v = [rand(), rand(), rand()];
+            let v = if i % 10 == 0 {
+                scale(v, 1.5 / norm(v))
+            } else {
+                scale(v, 0.5)
+            };
+            pts.push(v);
+        }
+        let kept = prefilter(&pts, (0..pts.len()).collect());
+        assert!(kept.len() < pts.len() / 2, "{}", kept.len());
+        for (i, p) in pts.iter().enumerate() {
+            if (norm(*p) - 1.5).abs() < 1e-12 {
+                assert!(kept.contains(&i));
+            }
+        }
+    }
+
+    #[test]
+    fn sink_dedupes_and_folds_negative_zero() {
+        let mut sink = VertexSink::default();
+        sink.push([0.0, 1.0, 2.0]).unwrap();
+        sink.push([-0.0, 1.0, 2.0]).unwrap();
+        sink.push([0.0, 1.0, 2.0]).unwrap();
+        assert_eq!(sink.vertices.len(), 1);
+        assert!(sink.push([f64::NAN, 0.0, 0.0]).is_err());
+    }
+}
