@@ -26,7 +26,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, PoisonError};
 
-use nalgebra::{Matrix4, Point3, Rotation3, SymmetricEigen, Unit, Vector3};
+use nalgebra::{Matrix4, Rotation3, SymmetricEigen, Unit, Vector3};
 use roxmltree::{Document, Node};
 
 /// Largest mesh file read, in bytes (256 MiB).
@@ -43,6 +43,8 @@ pub const MAX_NODE_INSTANCES: usize = 100_000;
 pub const HULL_EXACT_LIMIT: usize = 100_000;
 /// Above this many vertices, points provably inside the hull are dropped before quickhull.
 const HULL_PREFILTER_MIN: usize = 10_000;
+/// Largest points × hull faces product for which every point is checked to be inside the hull.
+const HULL_CONTAINMENT_CHECK_LIMIT: usize = 20_000_000;
 /// Grid resolution (cells per axis) of the first thinning step above [`HULL_EXACT_LIMIT`].
 const HULL_GRID_CELLS: u32 = 128;
 /// Largest number of XML nodes accepted in a COLLADA file.
@@ -1099,6 +1101,177 @@ fn convex_hull(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Vec<[f64; 3
     if vertices.len() < 4 {
         return Vec::new();
     }
+    let Some(white) = whiten(vertices, aabb) else {
+        return Vec::new();
+    };
+    let mut candidates: Vec<usize> = if white.len() > HULL_PREFILTER_MIN {
+        prefilter(&white, (0..white.len()).collect())
+    } else {
+        (0..white.len()).collect()
+    };
+    let mut cells = HULL_GRID_CELLS;
+    while candidates.len() > HULL_EXACT_LIMIT && cells >= 2 {
+        candidates = prefilter(&white, thin_on_grid(&white, &candidates, cells));
+        cells /= 2;
+    }
+    // parry's quickhull is not robust to exactly coplanar points (it can return a broken surface
+    // that leaves true hull vertices out), so the points are joggled (as qhull's `QJ` does) and the
+    // result is checked; a second, larger joggle is the fallback.
+    for jitter in [1e-9, 1e-7] {
+        let points: Vec<[f64; 3]> = joggle(candidates.iter().map(|&i| white[i]), jitter);
+        let parry_points: Vec<parry3d_f64::math::Vector> =
+            points.iter().map(|&p| to_parry(p)).collect();
+        let Some((hull_points, faces)) = run_hull(&parry_points) else {
+            continue;
+        };
+        let corners: Vec<[f64; 3]> = hull_points.iter().map(|p| [p.x, p.y, p.z]).collect();
+        let Some(normals) = convex_hull_planes(&corners, &faces, &points, 10.0 * jitter) else {
+            continue;
+        };
+        // parry returns copies of its input points: map them back to the original vertices.
+        let index: HashMap<[u64; 3], usize> = candidates
+            .iter()
+            .zip(&points)
+            .map(|(&i, &p)| (bits(p), i))
+            .collect();
+        let hull: Vec<[f64; 3]> = extreme_corners(corners.len(), &faces, &normals)
+            .into_iter()
+            .filter_map(|c| index.get(&bits(corners[c])))
+            .map(|&i| vertices[i])
+            .collect();
+        if hull.len() >= 4 {
+            return hull;
+        }
+    }
+    Vec::new()
+}
+
+/// The points moved by up to ±`jitter`/2 per coordinate (deterministic pseudo-random).
+fn joggle(points: impl Iterator<Item = [f64; 3]>, jitter: f64) -> Vec<[f64; 3]> {
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        // xorshift64
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * jitter
+    };
+    points
+        .map(|p| [p[0] + next(), p[1] + next(), p[2] + next()])
+        .collect()
+}
+
+/// The outward unit normals of `faces` (in order) if they form, over `corners`, a closed,
+/// consistently oriented, locally convex surface (hence a convex polyhedron) that, when that is
+/// cheap enough to check, contains every one of `points` (within `tolerance`).
+fn convex_hull_planes(
+    corners: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    points: &[[f64; 3]],
+    tolerance: f64,
+) -> Option<Vec<[f64; 3]>> {
+    let ok = |b: bool| b.then_some(());
+    ok(corners.len() >= 4 && faces.len() >= 4)?;
+    let corner = |i: u32| corners.get(i as usize).copied();
+    let mut centroid = [0.0; 3];
+    for &c in corners {
+        centroid = add(centroid, c);
+    }
+    let centroid = scale(centroid, 1.0 / corners.len() as f64);
+    // Normals oriented by the winding; all must agree on which side the centroid is.
+    let mut planes = Vec::with_capacity(faces.len());
+    let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * faces.len());
+    let mut sign = 0.0;
+    for (f, face) in faces.iter().enumerate() {
+        let (a, b, c) = (corner(face[0])?, corner(face[1])?, corner(face[2])?);
+        let normal = cross(sub(b, a), sub(c, a));
+        let length = norm(normal);
+        let normal = if length > 0.0 {
+            scale(normal, 1.0 / length)
+        } else {
+            [0.0; 3]
+        };
+        let side = dot(normal, sub(centroid, a));
+        if length > 0.0 && side.abs() > tolerance {
+            if sign == 0.0 {
+                sign = side.signum();
+            } else {
+                ok(side.signum() == sign)?;
+            }
+        }
+        planes.push((normal, a));
+        for k in 0..3 {
+            // A directed edge used twice: not a consistently oriented manifold.
+            ok(edges.insert((face[k], face[(k + 1) % 3]), f).is_none())?;
+        }
+    }
+    ok(sign != 0.0)?;
+    // Outward normals point away from the centroid.
+    let planes: Vec<([f64; 3], [f64; 3])> = planes
+        .into_iter()
+        .map(|(normal, a)| (scale(normal, -sign), a))
+        .collect();
+    // Closed (every edge has its reverse) and locally convex (each neighbour's far corner is behind).
+    for (&(from, to), &f) in &edges {
+        let g = *edges.get(&(to, from))?;
+        let far = faces[g].iter().copied().find(|&v| v != from && v != to)?;
+        let (normal, a) = planes[f];
+        ok(dot(normal, sub(corner(far)?, a)) <= tolerance)?;
+    }
+    // Euler characteristic of a sphere.
+    let used: HashSet<u32> = faces.iter().flatten().copied().collect();
+    ok(used.len() as i64 - (edges.len() / 2) as i64 + faces.len() as i64 == 2)?;
+    // Every point inside, when affordable (otherwise the surface checks above stand alone).
+    if points.len().saturating_mul(planes.len()) <= HULL_CONTAINMENT_CHECK_LIMIT {
+        for &p in points {
+            ok(planes
+                .iter()
+                .all(|&(normal, a)| dot(normal, sub(p, a)) <= tolerance))?;
+        }
+    }
+    Some(planes.into_iter().map(|(normal, _)| normal).collect())
+}
+
+/// Indices of the corners that are vertices of the polyhedron: those whose incident faces' normals
+/// span three dimensions. Corners inside a flat facet or on a straight edge (as joggling can leave)
+/// are dropped.
+fn extreme_corners(count: usize, faces: &[[u32; 3]], normals: &[[f64; 3]]) -> Vec<usize> {
+    // Sine of the smallest angle between facets that still makes a corner.
+    const DISTINCT: f64 = 1e-4;
+    let mut incident: Vec<Vec<[f64; 3]>> = vec![Vec::new(); count];
+    for (face, &normal) in faces.iter().zip(normals) {
+        if norm(normal) > 0.5 {
+            for &v in face {
+                if let Some(list) = incident.get_mut(v as usize) {
+                    list.push(normal);
+                }
+            }
+        }
+    }
+    (0..count)
+        .filter(|&c| {
+            let list = &incident[c];
+            let Some(&first) = list.first() else {
+                return false;
+            };
+            let Some(second) = list
+                .iter()
+                .copied()
+                .find(|&n| norm(cross(first, n)) > DISTINCT)
+            else {
+                return false;
+            };
+            let edge = cross(first, second);
+            let edge = scale(edge, 1.0 / norm(edge));
+            list.iter().any(|&n| dot(edge, n).abs() > DISTINCT)
+        })
+        .collect()
+}
+
+/// The vertices whitened (centred, then scaled along the principal axes to unit variance), or `None`
+/// if they are flat (smallest principal variance below [`FLAT_VARIANCE_RATIO`] of the largest) or
+/// not finite.
+fn whiten(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Option<Vec<[f64; 3]>> {
     // Hot loops use plain arrays: nalgebra is slow in unoptimised (test) builds.
     let (min, max) = aabb;
     let center = [
@@ -1108,7 +1281,7 @@ fn convex_hull(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Vec<[f64; 3
     ];
     let diag = norm(sub(max, min));
     if !(diag.is_finite() && diag > 0.0) || !center.iter().all(|c| c.is_finite()) {
-        return Vec::new();
+        return None;
     }
     // Normalised coordinates (within ±0.5) keep the covariance from overflowing.
     let normalised = |v: &[f64; 3]| scale(sub(*v, center), 1.0 / diag);
@@ -1132,7 +1305,7 @@ fn convex_hull(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Vec<[f64; 3
     let largest = eigen.eigenvalues.max();
     let smallest = eigen.eigenvalues.min();
     if !(largest > 0.0 && smallest > largest * FLAT_VARIANCE_RATIO) {
-        return Vec::new();
+        return None;
     }
     // Whitening: an invertible affine map, so hull vertices map to hull vertices. Row k of `w` is
     // eigenvector k divided by the square root of its eigenvalue.
@@ -1149,40 +1322,9 @@ fn convex_hull(vertices: &[[f64; 3]], aabb: ([f64; 3], [f64; 3])) -> Vec<[f64; 3
         })
         .collect();
     if !white.iter().all(|p| p.iter().all(|c| c.is_finite())) {
-        return Vec::new();
+        return None;
     }
-    let mut candidates: Vec<usize> = if white.len() > HULL_PREFILTER_MIN {
-        prefilter(&white, (0..white.len()).collect())
-    } else {
-        (0..white.len()).collect()
-    };
-    let mut cells = HULL_GRID_CELLS;
-    while candidates.len() > HULL_EXACT_LIMIT && cells >= 2 {
-        candidates = prefilter(&white, thin_on_grid(&white, &candidates, cells));
-        cells /= 2;
-    }
-    let points: Vec<parry3d_f64::math::Vector> = candidates
-        .iter()
-        .map(|&i| to_parry(white[i]))
-        .collect();
-    let Some((hull_points, _)) = run_hull(&points) else {
-        return Vec::new();
-    };
-    // parry returns copies of its input points: map them back to the original vertices.
-    let index: HashMap<[u64; 3], usize> = candidates
-        .iter()
-        .map(|&i| (bits(white[i]), i))
-        .collect();
-    let hull: Vec<[f64; 3]> = hull_points
-        .iter()
-        .filter_map(|p| index.get(&bits([p.x, p.y, p.z])))
-        .map(|&i| vertices[i])
-        .collect();
-    if hull.len() < 4 {
-        Vec::new()
-    } else {
-        hull
-    }
+    Some(white)
 }
 
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -1248,40 +1390,27 @@ fn prefilter(points: &[[f64; 3]], candidates: Vec<usize>) -> Vec<usize> {
     let mut extreme: Vec<usize> = best.iter().map(|&(_, i)| i).collect();
     extreme.sort_unstable();
     extreme.dedup();
-    let inner: Vec<parry3d_f64::math::Vector> =
-        extreme.iter().map(|&i| to_parry(points[i])).collect();
-    let Some((vertices, faces)) = run_hull(&inner) else {
+    // The inner polytope, joggled and checked like the hull itself (see `convex_hull`).
+    let inner = joggle(extreme.iter().map(|&i| points[i]), 1e-9);
+    let parry_inner: Vec<parry3d_f64::math::Vector> = inner.iter().map(|&p| to_parry(p)).collect();
+    let Some((vertices, faces)) = run_hull(&parry_inner) else {
         return candidates;
     };
-    if faces.len() < 4 {
-        return candidates;
-    }
-    // Outward planes (normal, offset) of the inner polytope, checked against its centroid.
     let corners: Vec<[f64; 3]> = vertices.iter().map(|v| [v.x, v.y, v.z]).collect();
-    let mut centroid = [0.0; 3];
-    for &c in &corners {
-        centroid = add(centroid, c);
-    }
-    let centroid = scale(centroid, 1.0 / corners.len() as f64);
+    let Some(normals) = convex_hull_planes(&corners, &faces, &inner, 1e-8) else {
+        return candidates;
+    };
     let mut planes = Vec::with_capacity(faces.len());
-    for face in &faces {
-        let corner = |k: usize| corners.get(face[k] as usize).copied();
-        let (Some(a), Some(b), Some(c)) = (corner(0), corner(1), corner(2)) else {
-            return candidates;
-        };
-        let normal = cross(sub(b, a), sub(c, a));
-        let length = norm(normal);
-        if !(length > 1e-12) {
-            continue;
+    for (face, &normal) in faces.iter().zip(&normals) {
+        if let Some(&a) = corners.get(face[0] as usize) {
+            if norm(normal) > 0.5 {
+                planes.push((normal, dot(normal, a)));
+            }
         }
-        let mut normal = scale(normal, 1.0 / length);
-        if dot(normal, sub(centroid, a)) > 0.0 {
-            normal = scale(normal, -1.0);
-        }
-        planes.push((normal, dot(normal, a)));
     }
-    // Whitened points have unit variance, so an absolute margin is meaningful.
-    const MARGIN: f64 = 1e-9;
+    // Whitened points have unit variance, so an absolute margin is meaningful (it also covers the
+    // joggle).
+    const MARGIN: f64 = 1e-7;
     let mut keep: Vec<usize> = candidates
         .into_iter()
         .filter(|&i| {
@@ -1349,6 +1478,7 @@ fn directions() -> Vec<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Point3;
 
     fn cube() -> Vec<[f64; 3]> {
         let mut v = Vec::new();

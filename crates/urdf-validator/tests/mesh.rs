@@ -733,5 +733,9 @@ fn every_corpus_mesh_loads() {
         return;
     };
     let meshes = load_all(&corpus);
-    assert!(meshes.len() >= 700, "expected the corpus meshes, found {}", meshes.len());
+    assert!(
+        meshes.len() >= 700,
+        "expected the corpus meshes, found {}",
+        meshes.len()
+    );
 }

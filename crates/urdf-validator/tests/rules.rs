@@ -268,6 +268,8 @@ const COVERED: &[&str] = &[
     u501_mesh_not_found::CODE,
     u502_visual_without_collision::CODE,
     u503_invalid_geometry_size::CODE,
+    u504_mesh_in_millimetres::CODE,
+    u505_mesh_unreadable::CODE,
 ];
 
 #[test]
@@ -1410,6 +1412,140 @@ rule_case! {
 "#,
 }
 
+/// A unit cube as ASCII STL, `size` units across.
+fn cube_stl(size: f64) -> String {
+    let mut out = String::from("solid cube\n");
+    let corners = |i: usize| {
+        [
+            (i & 1) as f64 * size,
+            ((i >> 1) & 1) as f64 * size,
+            ((i >> 2) & 1) as f64 * size,
+        ]
+    };
+    for [a, b, c] in [
+        [0, 1, 3],
+        [0, 3, 2],
+        [4, 6, 7],
+        [4, 7, 5],
+        [0, 4, 5],
+        [0, 5, 1],
+        [2, 3, 7],
+        [2, 7, 6],
+        [0, 2, 6],
+        [0, 6, 4],
+        [1, 5, 7],
+        [1, 7, 3],
+    ] {
+        out.push_str("facet normal 0 0 0\nouter loop\n");
+        for v in [a, b, c].map(corners) {
+            out.push_str(&format!("vertex {} {} {}\n", v[0], v[1], v[2]));
+        }
+        out.push_str("endloop\nendfacet\n");
+    }
+    out + "endsolid cube\n"
+}
+
+/// A link carrying `part.stl` at the end of a 0.1 m joint.
+const PART_ROBOT: &str = r#"<robot name="r">
+  <link name="base"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="part"/><origin xyz="0.1 0 0"/></joint>
+  <link name="part">
+    <collision>
+      <geometry>
+        <mesh filename="part.stl"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"#;
+
+/// Written out by hand: the mesh file must exist next to the URDF.
+mod u504_mesh_in_millimetres {
+    use super::*;
+
+    pub const CODE: &str = "U504";
+
+    fn findings_with_part(tag: &str, stl: &str, urdf: &str) -> Vec<FindingReport> {
+        let dir = TempDir::new(tag);
+        fs::write(dir.path().join("part.stl"), stl).unwrap();
+        run_at(urdf, &dir.path().join("robot.urdf")).report.findings
+    }
+
+    #[test]
+    fn fires() {
+        // A 100 mm part exported in millimetres: 100 "metres" next to a 0.1 m joint.
+        let all = findings_with_part("u504-fires", &cube_stl(100.0), PART_ROBOT);
+        assert_eq!(
+            positions_of(&all, CODE),
+            vec![(7, 25)],
+            "{}",
+            describe(&all)
+        );
+        assert!(text_at(PART_ROBOT, 7, 25).starts_with("part.stl"));
+        let hit = the_one(&all, CODE);
+        assert_eq!(hit.severity, Severity::Warn);
+        assert!(
+            hit.help.as_deref().unwrap_or("").contains("0.001"),
+            "{:?}",
+            hit.help
+        );
+    }
+
+    #[test]
+    fn clean() {
+        let scaled = PART_ROBOT.replace(
+            r#"filename="part.stl""#,
+            r#"filename="part.stl" scale="0.001 0.001 0.001""#,
+        );
+        let all = findings_with_part("u504-clean", &cube_stl(100.0), &scaled);
+        assert!(lines_of(&all, CODE).is_empty(), "{}", describe(&all));
+        let metres = findings_with_part("u504-metres", &cube_stl(0.1), PART_ROBOT);
+        assert!(lines_of(&metres, CODE).is_empty(), "{}", describe(&metres));
+    }
+}
+
+/// Written out by hand: the mesh file must exist next to the URDF.
+mod u505_mesh_unreadable {
+    use super::*;
+
+    pub const CODE: &str = "U505";
+
+    #[test]
+    fn fires() {
+        let dir = TempDir::new("u505-fires");
+        fs::write(
+            dir.path().join("part.stl"),
+            "solid broken\nfacet normal 0 0 0\nouter loop\nvertex 1 x 2\n",
+        )
+        .unwrap();
+        let all = run_at(PART_ROBOT, &dir.path().join("robot.urdf"))
+            .report
+            .findings;
+        assert_eq!(
+            positions_of(&all, CODE),
+            vec![(7, 25)],
+            "{}",
+            describe(&all)
+        );
+        let hit = the_one(&all, CODE);
+        assert!(
+            hit.message.contains("part.stl") && hit.message.contains("line 4"),
+            "{}",
+            hit.message
+        );
+    }
+
+    #[test]
+    fn clean() {
+        let dir = TempDir::new("u505-clean");
+        fs::write(dir.path().join("part.stl"), cube_stl(0.1)).unwrap();
+        let all = run_at(PART_ROBOT, &dir.path().join("robot.urdf"))
+            .report
+            .findings;
+        assert!(lines_of(&all, CODE).is_empty(), "{}", describe(&all));
+    }
+}
+
 // -------------------------------------------------------------------------------------------------
 // Frames and missing inertials
 // -------------------------------------------------------------------------------------------------
@@ -2374,7 +2510,7 @@ fn unknown_elements_and_attributes_are_info() {
         "{}",
         attribute.message
     );
-    assert_eq!(r.overall_status, Status::Pass, "{}", describe(&r.findings));
+    assert_eq!(r.schema.status, Status::Pass, "{}", describe(&r.findings));
 }
 
 #[test]
@@ -2614,7 +2750,11 @@ fn a_mesh_in_an_unknown_package_is_u501_info() {
         "{:?}",
         hit.help
     );
-    assert_eq!(r.overall_status, Status::Pass);
+    assert_eq!(
+        r.schema.status,
+        Status::Pass,
+        "INFO findings do not change the status"
+    );
 }
 
 #[test]

@@ -25,7 +25,10 @@ fn cart(com: [f64; 3], raised: Option<usize>, lift: f64) -> String {
         r#"<robot name="cart"><link name="chassis">{}<collision><origin xyz="0 0 0.2"/><geometry><box size="0.6 0.4 0.1"/></geometry></collision></link>"#,
         inertial(40.0, com)
     );
-    for (i, (x, y)) in [(0.25, 0.22), (0.25, -0.22), (-0.25, 0.22), (-0.25, -0.22)].iter().enumerate() {
+    for (i, (x, y)) in [(0.25, 0.22), (0.25, -0.22), (-0.25, 0.22), (-0.25, -0.22)]
+        .iter()
+        .enumerate()
+    {
         let z = WHEEL_RADIUS + if raised == Some(i) { lift } else { 0.0 };
         urdf.push_str(&format!(
             r#"<joint name="wheel_{i}_joint" type="continuous"><parent link="chassis"/><child link="wheel_{i}"/>
@@ -38,8 +41,13 @@ fn cart(com: [f64; 3], raised: Option<usize>, lift: f64) -> String {
 }
 
 fn report_with(urdf: &str, overrides: Overrides) -> Report {
-    let options = Options { overrides, ..Options::default() };
-    validate_text(urdf.to_string(), Path::new("t.urdf"), &options).expect("loads").report
+    let options = Options {
+        overrides,
+        ..Options::default()
+    };
+    validate_text(urdf.to_string(), Path::new("t.urdf"), &options)
+        .expect("loads")
+        .report
 }
 
 fn report(urdf: &str) -> Report {
@@ -55,14 +63,30 @@ fn cart_margin_direction_and_tipping_angle_are_exact() {
     assert_eq!(s.status, Status::Pass);
     // Whole-body COM: the 4 wheel masses sit at the wheel centres (z = 0.1), symmetric in x and y.
     let total = 44.0;
-    let com = [40.0 * cx / total, 40.0 * cy / total, (40.0 * cz + 4.0 * WHEEL_RADIUS) / total];
+    let com = [
+        40.0 * cx / total,
+        40.0 * cy / total,
+        (40.0 * cz + 4.0 * WHEEL_RADIUS) / total,
+    ];
     // Support rectangle: rim bottoms at x = ±0.25, y = ±(0.22 + width/2).
     let half_y = 0.22 + WHEEL_WIDTH / 2.0;
     let to_front = 0.25 - com[0];
     let to_right = half_y + com[1];
     let margin = to_front.min(to_right);
-    assert!((s.margin_mm.unwrap() - 1000.0 * margin).abs() < 1e-6, "{:?} vs {}", s.margin_mm, 1000.0 * margin);
-    assert_eq!(s.tip_direction.as_deref(), Some(if to_front < to_right { "front" } else { "right" }));
+    assert!(
+        (s.margin_mm.unwrap() - 1000.0 * margin).abs() < 1e-6,
+        "{:?} vs {}",
+        s.margin_mm,
+        1000.0 * margin
+    );
+    assert_eq!(
+        s.tip_direction.as_deref(),
+        Some(if to_front < to_right {
+            "front"
+        } else {
+            "right"
+        })
+    );
     let height = com[2];
     assert!((s.com_height.unwrap() - height).abs() < 1e-9);
     assert!((s.tipping_angle_deg.unwrap() - margin.atan2(height).to_degrees()).abs() < 1e-6);
@@ -86,7 +110,9 @@ fn com_outside_the_wheels_fails_with_a_negative_margin() {
 
 #[test]
 fn a_raised_wheel_is_reported_and_does_not_support() {
-    let s = report(&cart([0.0, 0.0, 0.2], Some(0), 0.02)).stability.unwrap();
+    let s = report(&cart([0.0, 0.0, 0.2], Some(0), 0.02))
+        .stability
+        .unwrap();
     assert_eq!(s.raised_contacts.len(), 1);
     assert_eq!(s.raised_contacts[0].link, "wheel_0");
     assert!((s.raised_contacts[0].height_mm - 20.0).abs() < 1e-6);
@@ -95,15 +121,24 @@ fn a_raised_wheel_is_reported_and_does_not_support() {
     // wheel's inner rim (0.25, −0.2) to the rear-left wheel's outer rim (−0.25, 0.24).
     assert_eq!(s.support_polygon.len(), 4);
     let (b, c): ([f64; 2], [f64; 2]) = ([0.25, -0.2], [-0.25, 0.24]);
-    let diagonal = ((c[0] - b[0]) * (0.0 - b[1]) - (c[1] - b[1]) * (0.0 - b[0])).abs() / (c[0] - b[0]).hypot(c[1] - b[1]);
-    assert!((s.margin_mm.unwrap() - 1000.0 * diagonal).abs() < 1e-6, "{:?} vs {}", s.margin_mm, 1000.0 * diagonal);
+    let diagonal = ((c[0] - b[0]) * (0.0 - b[1]) - (c[1] - b[1]) * (0.0 - b[0])).abs()
+        / (c[0] - b[0]).hypot(c[1] - b[1]);
+    assert!(
+        (s.margin_mm.unwrap() - 1000.0 * diagonal).abs() < 1e-6,
+        "{:?} vs {}",
+        s.margin_mm,
+        1000.0 * diagonal
+    );
     assert_eq!(s.tip_direction.as_deref(), Some("front-left"));
     assert_eq!(s.status, Status::Pass);
 }
 
 /// A 30 kg pelvis 0.6 m up on two legs (hip and knee revolute) with 0.2 × 0.1 box feet at y = ±0.1.
 fn biped() -> String {
-    let mut urdf = format!(r#"<robot name="biped"><link name="pelvis">{}<collision><geometry><box size="0.2 0.3 0.1"/></geometry></collision></link>"#, inertial(30.0, [0.0; 3]));
+    let mut urdf = format!(
+        r#"<robot name="biped"><link name="pelvis">{}<collision><geometry><box size="0.2 0.3 0.1"/></geometry></collision></link>"#,
+        inertial(30.0, [0.0; 3])
+    );
     for (side, y) in [("left", 0.1), ("right", -0.1)] {
         urdf.push_str(&format!(
             r#"<joint name="{side}_hip" type="revolute"><parent link="pelvis"/><child link="{side}_thigh"/><origin xyz="0 {y} -0.05"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="200" velocity="5"/></joint>
@@ -123,7 +158,12 @@ fn biped() -> String {
 #[test]
 fn biped_stands_on_the_hull_of_its_two_feet() {
     let report = report(&biped());
-    assert_eq!(report.robot_type, Some(RobotType::Legged), "{:?}", report.robot_type_evidence);
+    assert_eq!(
+        report.robot_type,
+        Some(RobotType::Legged),
+        "{:?}",
+        report.robot_type_evidence
+    );
     let s = report.stability.unwrap();
     assert_eq!(s.contact_source.as_deref(), Some("feet"));
     assert_eq!(s.contact_links, ["left_foot", "right_foot"]);
@@ -136,7 +176,10 @@ fn biped_stands_on_the_hull_of_its_two_feet() {
 #[test]
 fn tripod_on_three_spheres_has_the_triangle_inradius_as_margin() {
     let radius = 0.3;
-    let mut urdf = format!(r#"<robot name="tripod"><link name="body">{}</link>"#, inertial(10.0, [0.0, 0.0, 0.5]));
+    let mut urdf = format!(
+        r#"<robot name="tripod"><link name="body">{}</link>"#,
+        inertial(10.0, [0.0, 0.0, 0.5])
+    );
     for i in 0..3 {
         let angle = std::f64::consts::TAU * i as f64 / 3.0;
         urdf.push_str(&format!(
@@ -152,41 +195,94 @@ fn tripod_on_three_spheres_has_the_triangle_inradius_as_margin() {
     let s = report.stability.unwrap();
     assert_eq!(s.contact_links.len(), 3);
     // Equilateral triangle with circumradius R: inradius R/2, and the COM sits on the centroid.
-    assert!((s.margin_mm.unwrap() - 1000.0 * radius / 2.0).abs() < 1e-6, "{:?}", s.margin_mm);
+    assert!(
+        (s.margin_mm.unwrap() - 1000.0 * radius / 2.0).abs() < 1e-6,
+        "{:?}",
+        s.margin_mm
+    );
     assert!(s.ground_height.unwrap().abs() < 1e-12);
 }
 
 #[test]
 fn declared_contacts_are_exact_and_unknown_names_are_errors() {
-    let declared = Overrides { contact_links: Some(vec!["wheel_0".into(), "wheel_1".into(), "wheel_2".into()]), ..Overrides::default() };
-    let s = report_with(&cart([0.0; 3], None, 0.0), declared).stability.unwrap();
+    let declared = Overrides {
+        contact_links: Some(vec!["wheel_0".into(), "wheel_1".into(), "wheel_2".into()]),
+        ..Overrides::default()
+    };
+    let s = report_with(&cart([0.0; 3], None, 0.0), declared)
+        .stability
+        .unwrap();
     assert_eq!(s.contact_confidence, Confidence::Exact);
     assert_eq!(s.contact_source.as_deref(), Some("declared"));
     assert_eq!(s.contact_links.len(), 3);
-    let wrong = Overrides { contact_links: Some(vec!["wheel_9".into()]), ..Overrides::default() };
-    let options = Options { overrides: wrong, ..Options::default() };
-    let error = validate_text(cart([0.0; 3], None, 0.0), Path::new("t.urdf"), &options).unwrap_err().to_string();
-    assert!(error.contains("unknown link 'wheel_9'") && error.contains("did you mean"), "{error}");
+    let wrong = Overrides {
+        contact_links: Some(vec!["wheel_9".into()]),
+        ..Overrides::default()
+    };
+    let options = Options {
+        overrides: wrong,
+        ..Options::default()
+    };
+    let error = validate_text(cart([0.0; 3], None, 0.0), Path::new("t.urdf"), &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("unknown link 'wheel_9'") && error.contains("did you mean"),
+        "{error}"
+    );
 }
 
 #[test]
 fn declared_type_wins_and_a_disagreement_is_a_warning() {
-    let declared = Overrides { robot_type: Some(RobotType::Aerial), ..Overrides::default() };
+    let declared = Overrides {
+        robot_type: Some(RobotType::Aerial),
+        ..Overrides::default()
+    };
     let report = report_with(&cart([0.0; 3], None, 0.0), declared);
-    assert_eq!((report.robot_type, report.robot_type_confidence), (Some(RobotType::Aerial), Some(Confidence::Exact)));
+    assert_eq!(
+        (report.robot_type, report.robot_type_confidence),
+        (Some(RobotType::Aerial), Some(Confidence::Exact))
+    );
     assert_eq!(report.robot_type_detected, Some(RobotType::Wheeled));
-    assert!(report.warnings.iter().any(|w| w.contains("--robot-type=aerial") && w.contains("wheeled")), "{:?}", report.warnings);
+    assert!(
+        report
+            .warnings
+            .iter()
+            .any(|w| w.contains("--robot-type=aerial") && w.contains("wheeled")),
+        "{:?}",
+        report.warnings
+    );
     let s = report.stability.unwrap();
-    assert_eq!(s.status, Status::NotApplicable, "aerial robots have no ground contact");
-    assert_eq!(report.overall_status, Status::Pass, "N/A is excluded from the overall status");
+    assert_eq!(
+        s.status,
+        Status::NotApplicable,
+        "aerial robots have no ground contact"
+    );
+    assert_eq!(
+        report.overall_status,
+        Status::Pass,
+        "N/A is excluded from the overall status"
+    );
 }
 
 #[test]
 fn arm_declarations_are_validated() {
     let urdf = cart([0.0; 3], None, 0.0);
     let check = |root: &str, tip: &str| {
-        let overrides = Overrides { arm_root: Some(root.into()), arm_tip: Some(tip.into()), ..Overrides::default() };
-        validate_text(urdf.clone(), Path::new("t.urdf"), &Options { overrides, ..Options::default() }).map(|_| ())
+        let overrides = Overrides {
+            arm_root: Some(root.into()),
+            arm_tip: Some(tip.into()),
+            ..Overrides::default()
+        };
+        validate_text(
+            urdf.clone(),
+            Path::new("t.urdf"),
+            &Options {
+                overrides,
+                ..Options::default()
+            },
+        )
+        .map(|_| ())
     };
     assert!(check("chassis", "wheel_0").is_ok());
     let error = check("wheel_0", "wheel_1").unwrap_err().to_string();
