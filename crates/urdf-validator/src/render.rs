@@ -279,9 +279,10 @@ fn statics_section(out: &mut String, statics: &StaticsSection, verbose: bool) {
     let indent = " ".repeat(11);
     match (statics.full_body_com, statics.total_mass) {
         (Some([x, y, z]), Some(mass)) => {
+            let height = statics.com_height_above_ground.unwrap_or(z);
             let _ = writeln!(
                 out,
-                "{head}  COM [{x:.3}, {y:.3}, {z:.3}] m  height {z:.3} m  total mass {mass:.3} kg  ({})",
+                "{head}  COM [{x:.3}, {y:.3}, {z:.3}] m  height {height:.3} m  total mass {mass:.3} kg  ({})",
                 confidence_label(statics.com_confidence)
             );
             if let (Some(name), Some(pct)) =

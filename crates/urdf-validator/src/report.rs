@@ -247,8 +247,8 @@ pub struct StaticsSection {
     pub total_mass: Option<f64>,
     /// `estimated` when at least one mass is declared, else `missing`.
     pub mass_confidence: Confidence,
-    /// Height of the centre of mass above the root frame origin, metres (the ground plane arrives with
-    /// the stability analysis).
+    /// Height of the centre of mass above the ground (the lowest contact found by the stability
+    /// analysis); above the root frame origin when no ground was found. Metres.
     pub com_height_above_ground: Option<f64>,
     /// Link with the largest declared mass.
     pub heaviest_link_name: Option<String>,

@@ -11,13 +11,28 @@ use urdf_validator::mesh::{
     load_mesh, load_mesh_with, MeshCache, MeshData, MeshOptions, UpAxis, UpAxisPolicy,
 };
 
-/// A fresh directory for one test (removed first if a previous run left it).
-fn temp_dir(test: &str) -> PathBuf {
+/// A fresh directory for one test, removed when dropped.
+struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn temp_dir(test: &str) -> TempDir {
     let dir =
         std::env::temp_dir().join(format!("urdf-validator-mesh-{}-{test}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("create temp dir");
-    dir
+    TempDir(dir)
 }
 
 fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
