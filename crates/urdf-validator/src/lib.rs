@@ -13,6 +13,7 @@
 
 pub mod checks;
 pub mod classify;
+pub mod collision;
 pub mod finding;
 pub mod geometry;
 pub mod kinematics;

@@ -1,0 +1,1 @@
+//! Self-collision with real geometry (work in progress: see issue 5).
