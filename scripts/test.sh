@@ -13,6 +13,8 @@ corpus="$(bash scripts/setup-test-env.sh)" || {
 }
 export URDF_VALIDATOR_CORPUS="$corpus"
 echo "test.sh: URDF_VALIDATOR_CORPUS=$URDF_VALIDATOR_CORPUS" >&2
+# Python xacro 2.1.1 (installed by setup-test-env.sh): the oracle of crates/xacro's differential tests.
+export URDF_VALIDATOR_XACRO="$repo_root/.venv/bin/xacro"
 
 shared_robots="$repo_root/../shared/robots"
 if [[ -d "$shared_robots" ]]; then
