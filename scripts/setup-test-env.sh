@@ -17,6 +17,7 @@ TEST_PACKAGES=(
     "example-robot-data==6.0.0" # the 69-URDF test corpus (pulls cmeel 0.62.0, jrl-cmakemodules 2.1.0)
     "xacro==2.1.1"              # oracle for the native xacro expander's differential tests (.venv/bin/xacro)
     "pyyaml==6.0.3"             # xacro's load_yaml
+    "ros-ament-index-python==1.11.0" # xacro's $(find pkg) without ROS (AMENT_PREFIX_PATH resource index)
 )
 # ---------------------------------------------------------------------------------------------------------
 
