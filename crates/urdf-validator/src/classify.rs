@@ -3,6 +3,7 @@
 
 use std::collections::BTreeSet;
 
+use crate::arms::{detect as detect_arms, subtree_links, Arm, BodyParts};
 use crate::geometry::{lowest_points, LinkSupports};
 use crate::kinematics::Data;
 use crate::model::{JointId, LinkId, Model};
@@ -87,8 +88,8 @@ pub struct Classification {
     pub legs: Vec<Leg>,
     /// Wheel links touching the ground.
     pub wheels: Vec<LinkId>,
-    /// Chains of three or more position-limited joints that do not reach the ground.
-    pub arms: usize,
+    /// Arms (see [`crate::arms`]).
+    pub arms: Vec<Arm>,
     /// Rotor-named links or joints.
     pub rotors: usize,
     /// Height of the lowest geometry at the reference pose.
@@ -338,7 +339,7 @@ pub fn classify(
             robot_type,
             legs: Vec::new(),
             wheels: Vec::new(),
-            arms: 0,
+            arms: Vec::new(),
             rotors,
             ground_z: None,
             evidence: "no geometry to find the ground with".to_string(),
@@ -407,20 +408,26 @@ pub fn classify(
                 _ => false,
             })
         })
-        .map(LinkId)
-        .collect();
-    // Arms: leaves whose chain to the body holds ≥ 3 limb joints and is not a leg.
-    let arm_tops: BTreeSet<JointId> = in_tree
-        .iter()
-        .filter(|&&l| model.child_joints[l].is_empty())
-        .filter_map(|&l| {
-            let chain = chain_to_body(model, &branch, LinkId(l));
-            chain.top.filter(|top| {
-                chain.limb_joints >= 3 && !legs.iter().any(|leg| leg.top_joint == *top)
+        // A wheel carries nothing that moves (a continuous base joint of an arm is not a wheel).
+        .filter(|&l| {
+            subtree_links(model, LinkId(l)).iter().all(|s| {
+                model.child_joints[s.0]
+                    .iter()
+                    .all(|j| !model.joint_data[j.0].is_actuated())
             })
         })
+        .map(LinkId)
         .collect();
-    let arms = arm_tops.len();
+    let leg_tops: Vec<JointId> = legs.iter().map(|leg| leg.top_joint).collect();
+    let arms = detect_arms(
+        robot,
+        model,
+        &BodyParts {
+            leg_tops: &leg_tops,
+            wheels: &wheels,
+        },
+    );
+    let arm_count = arms.len();
     let actuated = model.joint_data.iter().any(|j| j.is_actuated());
     let named = if by_name {
         " (found by name: the model does not stand on z)"
@@ -428,9 +435,9 @@ pub fn classify(
         ""
     };
     let (robot_type, evidence) = match legs.len() {
-        2 if arms > 0 => (
+        2 if arm_count > 0 => (
             RobotType::Humanoid,
-            format!("2 legs and {arms} arm chain(s){named}"),
+            format!("2 legs and {arm_count} arm chain(s){named}"),
         ),
         4 => (RobotType::Quadruped, format!("4 legs{named}")),
         n if n >= 2 => (RobotType::Legged, format!("{n} legs{named}")),
@@ -442,9 +449,9 @@ pub fn classify(
             RobotType::Aerial,
             format!("{rotors} rotor-named part(s), no legs or wheels"),
         ),
-        _ if arms > 0 => (
+        _ if arm_count > 0 => (
             RobotType::ArmOnly,
-            format!("{arms} arm chain(s), no legs, wheels or rotors"),
+            format!("{arm_count} arm chain(s), no legs, wheels or rotors"),
         ),
         _ if actuated && root_on_ground => {
             (RobotType::ArmOnly, "a fixed-base mechanism".to_string())

@@ -11,6 +11,7 @@
 //! # Ok::<(), urdf_validator::parse::LoadError>(())
 //! ```
 
+pub mod arms;
 pub mod checks;
 pub mod classify;
 pub mod collision;

@@ -1,0 +1,54 @@
+//! Print the detected robot type and arm chains of each URDF given on the command line (a development aid
+//! for the classification and arm-detection heuristics): `cargo run --example classify -- a.urdf b.urdf`.
+
+use std::path::Path;
+
+use urdf_validator::kinematics::{forward_kinematics, Data};
+use urdf_validator::{checks, classify, geometry, model::Model, parse, Options};
+
+fn main() {
+    let options = Options::default();
+    for arg in std::env::args().skip(1) {
+        let path = Path::new(&arg);
+        let text = match parse::read_text(path) {
+            Ok(text) => text,
+            Err(e) => {
+                eprintln!("{e}");
+                continue;
+            }
+        };
+        let Ok((robot, _)) = parse::parse_urdf(&text, path) else {
+            eprintln!("{arg}: not parsed");
+            continue;
+        };
+        let (model, _) = Model::build(&robot);
+        let ctx = checks::CheckContext {
+            urdf_dir: path.parent().unwrap_or(Path::new(".")),
+            resolver: &options.resolver,
+            meshes: &options.meshes,
+        };
+        let supports: Vec<_> = robot
+            .links
+            .iter()
+            .map(|l| geometry::link_supports(l, &|u| ctx.mesh_points(u)))
+            .collect();
+        let mut data = Data::new(&model);
+        forward_kinematics(&model, &model.zero_configuration(), &mut data);
+        let c = classify::classify(&robot, &model, &data, &supports);
+        println!("{arg}: {} ({})", c.robot_type.as_str(), c.evidence);
+        for arm in &c.arms {
+            let first = arm
+                .first_joint(&model)
+                .map_or("-", |j| robot.joints[j.0].name.value.as_str());
+            println!(
+                "  arm {} -> {} (first joint {first}, {} dof, hand {}, {} finger links)",
+                robot.links[arm.base.0].name.value,
+                robot.links[arm.tip.0].name.value,
+                arm.sampled_joints(&model).len(),
+                arm.hand
+                    .map_or("-", |h| robot.links[h.0].name.value.as_str()),
+                arm.fingers.len()
+            );
+        }
+    }
+}
