@@ -1,0 +1,247 @@
+//! The tree the expander works on: source files parsed with roxmltree into shared, immutable nodes that
+//! remember where they were written, and the output nodes built from them (same type, so macro blocks can
+//! be evaluated again as Python xacro does).
+
+use std::rc::Rc;
+
+use crate::error::{ErrorKind, XacroError};
+use crate::source_map::FrameKind;
+
+/// A shared node.
+pub(crate) type NodeRef = Rc<Node>;
+
+/// A node with its origin.
+#[derive(Debug)]
+pub(crate) struct Node {
+    pub kind: Kind,
+    pub src: Src,
+}
+
+/// What a node is.
+#[derive(Debug)]
+pub(crate) enum Kind {
+    Element(Element),
+    Text(String),
+    Comment(String),
+    Pi { target: String, data: Option<String> },
+    /// Python xacro's `_empty_text_node` singleton ("\n\n"), moved around by `remove_previous_comments`:
+    /// only the instance with the latest generation exists; older ones are treated as absent.
+    Separator(u64),
+}
+
+/// An element: its qualified name as written (`xacro:macro`), attributes in document order (namespace
+/// declarations first, as minidom has them), children.
+#[derive(Debug)]
+pub(crate) struct Element {
+    pub name: String,
+    pub attrs: Vec<Attr>,
+    pub children: Vec<NodeRef>,
+}
+
+/// An attribute and where its name and value were written.
+#[derive(Clone, Debug)]
+pub(crate) struct Attr {
+    pub name: String,
+    pub value: String,
+    pub name_loc: Loc,
+    /// Origin of the value.
+    pub src: Src,
+}
+
+/// A byte range in a source file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Loc {
+    pub file: u32,
+    pub start: u32,
+    pub end: u32,
+}
+
+/// Where a node was written, and the macro/include frame it was instantiated in (`None` = not yet
+/// instantiated: a node straight from a parsed file or a macro body; `Some(None)` = at the top level).
+#[derive(Clone, Debug)]
+pub(crate) struct Src {
+    pub loc: Loc,
+    pub frame: Option<Option<FrameRef>>,
+}
+
+impl Src {
+    /// The same origin, placed in `frame` unless it was already placed (block contents keep the frame of
+    /// the call site where they were written).
+    pub fn placed(&self, frame: &Option<FrameRef>) -> Src {
+        Src {
+            loc: self.loc,
+            frame: Some(match &self.frame {
+                Some(f) => f.clone(),
+                None => frame.clone(),
+            }),
+        }
+    }
+}
+
+/// A shared frame.
+pub(crate) type FrameRef = Rc<FrameData>;
+
+/// One macro call or include during the expansion.
+#[derive(Debug)]
+pub(crate) struct FrameData {
+    pub kind: FrameKind,
+    /// Macro name or included path.
+    pub name: String,
+    /// The call's or include's start tag.
+    pub loc: Loc,
+    pub parent: Option<FrameRef>,
+}
+
+/// A parsed source file: the document's top-level nodes and which one is the root element.
+#[derive(Debug)]
+pub(crate) struct ParsedDoc {
+    pub children: Vec<NodeRef>,
+    pub root: usize,
+}
+
+impl ParsedDoc {
+    pub fn root(&self) -> Option<&NodeRef> {
+        self.children.get(self.root)
+    }
+}
+
+/// Parse `text` (file number `file`) into nodes. DTDs are refused. Errors carry the byte offset.
+pub(crate) fn parse(text: &str, file: u32, max_depth: usize) -> Result<ParsedDoc, (String, usize)> {
+    let (body, shift) = match text.strip_prefix('\u{feff}') {
+        Some(rest) => (rest, 3),
+        None => (text, 0),
+    };
+    if body.len() > u32::MAX as usize - 8 {
+        return Err(("file too large".into(), 0));
+    }
+    let opts = roxmltree::ParsingOptions { allow_dtd: false, ..Default::default() };
+    let doc = roxmltree::Document::parse_with_options(body, opts).map_err(|e| {
+        let pos = e.pos();
+        (format!("{e}"), shift + byte_of(body, pos.row as usize, pos.col as usize))
+    })?;
+    let conv = Converter { text: body, file, shift: shift as u32, max_depth };
+    let mut children = Vec::new();
+    let mut root = 0;
+    for child in doc.root().children() {
+        if child.is_element() {
+            root = children.len();
+        }
+        if let Some(n) = conv.node(child, 0)? {
+            children.push(n);
+        }
+    }
+    Ok(ParsedDoc { children, root })
+}
+
+/// Byte offset of 1-based (row, col-in-chars) in `text`.
+fn byte_of(text: &str, row: usize, col: usize) -> usize {
+    let mut line_start = 0;
+    for _ in 1..row {
+        match text[line_start..].find('\n') {
+            Some(i) => line_start += i + 1,
+            None => break,
+        }
+    }
+    text[line_start..].char_indices().nth(col.saturating_sub(1)).map_or(text.len(), |(i, _)| line_start + i)
+}
+
+struct Converter<'t> {
+    text: &'t str,
+    file: u32,
+    shift: u32,
+    max_depth: usize,
+}
+
+impl Converter<'_> {
+    fn loc(&self, start: usize, end: usize) -> Loc {
+        Loc { file: self.file, start: start as u32 + self.shift, end: end as u32 + self.shift }
+    }
+
+    fn src(&self, start: usize, end: usize) -> Src {
+        Src { loc: self.loc(start, end), frame: None }
+    }
+
+    fn node(&self, n: roxmltree::Node, depth: usize) -> Result<Option<NodeRef>, (String, usize)> {
+        let r = n.range();
+        let kind = match n.node_type() {
+            roxmltree::NodeType::Element => {
+                if depth > self.max_depth {
+                    return Err((format!("elements nested deeper than {} levels", self.max_depth), r.start));
+                }
+                return self.element(n, depth).map(Some);
+            }
+            roxmltree::NodeType::Text => Kind::Text(n.text().unwrap_or_default().to_string()),
+            roxmltree::NodeType::Comment => Kind::Comment(n.text().unwrap_or_default().to_string()),
+            roxmltree::NodeType::PI => match n.pi() {
+                Some(pi) => Kind::Pi { target: pi.target.to_string(), data: pi.value.map(str::to_string) },
+                None => return Ok(None),
+            },
+            roxmltree::NodeType::Root => return Ok(None),
+        };
+        Ok(Some(Rc::new(Node { kind, src: self.src(r.start, r.end) })))
+    }
+
+    fn element(&self, n: roxmltree::Node, depth: usize) -> Result<NodeRef, (String, usize)> {
+        let r = n.range();
+        let tag_text = self.text.get(r.start + 1..).unwrap_or("");
+        let name_len = tag_text.find(|c: char| c.is_whitespace() || c == '/' || c == '>').unwrap_or(tag_text.len());
+        let name = tag_text[..name_len].to_string();
+        let mut tag_end = r.start + 1 + name_len;
+        let mut attrs = Vec::new();
+        // Namespace declarations made on this element (minidom keeps them as attributes, first).
+        let parent_ns: Vec<(Option<&str>, &str)> = n
+            .parent_element()
+            .map(|p| p.namespaces().map(|ns| (ns.name(), ns.uri())).collect())
+            .unwrap_or_default();
+        for ns in n.namespaces() {
+            if ns.name() == Some("xml") || parent_ns.contains(&(ns.name(), ns.uri())) {
+                continue;
+            }
+            let attr_name = match ns.name() {
+                Some(p) => format!("xmlns:{p}"),
+                None => "xmlns".to_string(),
+            };
+            attrs.push((attr_name, ns.uri().to_string(), None));
+        }
+        for a in n.attributes() {
+            tag_end = tag_end.max(a.range().end);
+            let qname = self.text.get(a.range_qname()).unwrap_or(a.name()).to_string();
+            attrs.push((qname, a.value().to_string(), Some((a.range_qname(), a.range_value()))));
+        }
+        if let Some(i) = self.text.get(tag_end..).and_then(|t| t.find('>')) {
+            tag_end += i + 1;
+        }
+        let tag_end = tag_end.min(r.end);
+        let attrs = attrs
+            .into_iter()
+            .map(|(name, value, ranges)| {
+                let (name_loc, value_src) = match ranges {
+                    Some((qn, v)) => (self.loc(qn.start, qn.end), self.src(v.start, v.end)),
+                    None => {
+                        // A namespace declaration: find it in the start tag.
+                        let tag = self.text.get(r.start..tag_end).unwrap_or("");
+                        let at = tag.find(&name).map_or(r.start, |i| r.start + i);
+                        (self.loc(at, at + name.len()), self.src(at, at + name.len()))
+                    }
+                };
+                Attr { name, value, name_loc, src: value_src }
+            })
+            .collect();
+        let mut children = Vec::new();
+        for c in n.children() {
+            if let Some(node) = self.node(c, depth + 1)? {
+                children.push(node);
+            }
+        }
+        Ok(Rc::new(Node {
+            kind: Kind::Element(Element { name, attrs, children }),
+            src: self.src(r.start, tag_end),
+        }))
+    }
+}
+
+/// A parse failure as an error (location filled by the caller).
+pub(crate) fn parse_error(path: &std::path::Path, message: &str) -> XacroError {
+    XacroError::new(ErrorKind::XmlParse, format!("XML parsing error in {}: {message}", path.display()))
+}
+

@@ -1,0 +1,115 @@
+//! Files: `$(find pkg)` package lookup without ROS, include file names (relative to the including file,
+//! globs), reading sources.
+
+use std::path::{Path, PathBuf};
+
+use crate::Options;
+
+/// How many ancestors of the current file the walk-up of `$(find)` visits.
+const MAX_WALK_UP: usize = 64;
+
+/// `abs_filename_spec`: `spec` relative to the directory of `current` unless absolute.
+pub(crate) fn abs_filename(spec: &str, current: &Path) -> PathBuf {
+    let p = Path::new(spec);
+    if p.is_absolute() {
+        return p.to_path_buf();
+    }
+    match current.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join(p),
+        _ => Path::new(".").join(p),
+    }
+}
+
+/// Whether an include file name is a glob (Python xacro: it contains `*`, `[` or `?`).
+pub(crate) fn is_glob(spec: &str) -> bool {
+    spec.contains(['*', '[', '?'])
+}
+
+/// The files matching a glob, sorted (Python's `sorted(glob.glob(spec))`).
+pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
+    let opts = glob::MatchOptions { require_literal_leading_dot: true, ..Default::default() };
+    let mut files: Vec<PathBuf> = match glob::glob_with(spec, opts) {
+        Ok(paths) => paths.filter_map(Result::ok).collect(),
+        Err(_) => Vec::new(),
+    };
+    files.sort();
+    files
+}
+
+/// The `<name>` of a `package.xml`.
+fn package_xml_name(dir: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(dir.join("package.xml")).ok()?;
+    let start = text.find("<name>")? + "<name>".len();
+    let end = start + text[start..].find("</name>")?;
+    Some(text[start..end].trim().to_string())
+}
+
+/// Find package `pkg`: the caller's callback, the caller's package paths (`DIR/pkg`, or `DIR` itself when its
+/// `package.xml` names `pkg`), `AMENT_PREFIX_PATH` (the ament resource index, as Python xacro does),
+/// `ROS_PACKAGE_PATH`, then the ancestors of the current file (a directory, or a child directory of one,
+/// whose `package.xml` names `pkg`). On failure, the places searched.
+pub(crate) fn find_package(
+    pkg: &str,
+    opts: &Options,
+    env: &dyn Fn(&str) -> Option<String>,
+    current: &Path,
+) -> Result<PathBuf, Vec<String>> {
+    let mut searched = Vec::new();
+    if let Some(finder) = &opts.find_package {
+        if let Some(p) = finder(pkg) {
+            return Ok(p);
+        }
+        searched.push("the caller's package finder".to_string());
+    }
+    let valid = !pkg.is_empty() && !pkg.contains(['/', '\\']) && pkg != "." && pkg != "..";
+    if !valid {
+        return Err(searched);
+    }
+    for dir in &opts.package_paths {
+        let candidate = dir.join(pkg);
+        if candidate.is_dir() {
+            return Ok(candidate);
+        }
+        if package_xml_name(dir).as_deref() == Some(pkg) {
+            return Ok(dir.clone());
+        }
+        searched.push(candidate.display().to_string());
+    }
+    if let Some(prefixes) = env("AMENT_PREFIX_PATH") {
+        for prefix in prefixes.split(':').filter(|p| !p.is_empty()) {
+            let prefix = Path::new(prefix);
+            let marker = prefix.join("share/ament_index/resource_index/packages").join(pkg);
+            if marker.is_file() {
+                return Ok(prefix.join("share").join(pkg));
+            }
+            searched.push(format!("AMENT_PREFIX_PATH entry {}", prefix.display()));
+        }
+    }
+    if let Some(paths) = env("ROS_PACKAGE_PATH") {
+        for dir in paths.split(':').filter(|p| !p.is_empty()) {
+            let dir = Path::new(dir);
+            if package_xml_name(dir).as_deref() == Some(pkg) {
+                return Ok(dir.to_path_buf());
+            }
+            let candidate = dir.join(pkg);
+            if candidate.is_dir() {
+                return Ok(candidate);
+            }
+            searched.push(format!("ROS_PACKAGE_PATH entry {}", dir.display()));
+        }
+    }
+    let start = std::path::absolute(current).unwrap_or_else(|_| current.to_path_buf());
+    for dir in start.ancestors().skip(1).take(MAX_WALK_UP) {
+        if package_xml_name(dir).as_deref() == Some(pkg) {
+            return Ok(dir.to_path_buf());
+        }
+        let child = dir.join(pkg);
+        if package_xml_name(&child).as_deref() == Some(pkg) {
+            return Ok(child);
+        }
+    }
+    if let Some(dir) = start.parent() {
+        searched.push(format!("package.xml files in the ancestors of {}", dir.display()));
+    }
+    Err(searched)
+}
