@@ -23,7 +23,10 @@ pub(crate) enum Kind {
     Element(Element),
     Text(String),
     Comment(String),
-    Pi { target: String, data: Option<String> },
+    Pi {
+        target: String,
+        data: Option<String>,
+    },
     /// Python xacro's `_empty_text_node` singleton ("\n\n"), moved around by `remove_previous_comments`:
     /// only the instance with the latest generation exists; older ones are treated as absent.
     Separator(u64),
@@ -114,12 +117,23 @@ pub(crate) fn parse(text: &str, file: u32, max_depth: usize) -> Result<ParsedDoc
     if body.len() > u32::MAX as usize - 8 {
         return Err(("file too large".into(), 0));
     }
-    let opts = roxmltree::ParsingOptions { allow_dtd: false, ..Default::default() };
+    let opts = roxmltree::ParsingOptions {
+        allow_dtd: false,
+        ..Default::default()
+    };
     let doc = roxmltree::Document::parse_with_options(body, opts).map_err(|e| {
         let pos = e.pos();
-        (format!("{e}"), shift + byte_of(body, pos.row as usize, pos.col as usize))
+        (
+            format!("{e}"),
+            shift + byte_of(body, pos.row as usize, pos.col as usize),
+        )
     })?;
-    let conv = Converter { text: body, file, shift: shift as u32, max_depth };
+    let conv = Converter {
+        text: body,
+        file,
+        shift: shift as u32,
+        max_depth,
+    };
     let mut children = Vec::new();
     let mut root = 0;
     for child in doc.root().children() {
@@ -142,7 +156,10 @@ fn byte_of(text: &str, row: usize, col: usize) -> usize {
             None => break,
         }
     }
-    text[line_start..].char_indices().nth(col.saturating_sub(1)).map_or(text.len(), |(i, _)| line_start + i)
+    text[line_start..]
+        .char_indices()
+        .nth(col.saturating_sub(1))
+        .map_or(text.len(), |(i, _)| line_start + i)
 }
 
 struct Converter<'t> {
@@ -154,11 +171,18 @@ struct Converter<'t> {
 
 impl Converter<'_> {
     fn loc(&self, start: usize, end: usize) -> Loc {
-        Loc { file: self.file, start: start as u32 + self.shift, end: end as u32 + self.shift }
+        Loc {
+            file: self.file,
+            start: start as u32 + self.shift,
+            end: end as u32 + self.shift,
+        }
     }
 
     fn src(&self, start: usize, end: usize) -> Src {
-        Src { loc: self.loc(start, end), frame: None }
+        Src {
+            loc: self.loc(start, end),
+            frame: None,
+        }
     }
 
     fn node(&self, n: roxmltree::Node, depth: usize) -> Result<Option<NodeRef>, (String, usize)> {
@@ -166,25 +190,36 @@ impl Converter<'_> {
         let kind = match n.node_type() {
             roxmltree::NodeType::Element => {
                 if depth > self.max_depth {
-                    return Err((format!("elements nested deeper than {} levels", self.max_depth), r.start));
+                    return Err((
+                        format!("elements nested deeper than {} levels", self.max_depth),
+                        r.start,
+                    ));
                 }
                 return self.element(n, depth).map(Some);
             }
             roxmltree::NodeType::Text => Kind::Text(n.text().unwrap_or_default().to_string()),
             roxmltree::NodeType::Comment => Kind::Comment(n.text().unwrap_or_default().to_string()),
             roxmltree::NodeType::PI => match n.pi() {
-                Some(pi) => Kind::Pi { target: pi.target.to_string(), data: pi.value.map(str::to_string) },
+                Some(pi) => Kind::Pi {
+                    target: pi.target.to_string(),
+                    data: pi.value.map(str::to_string),
+                },
                 None => return Ok(None),
             },
             roxmltree::NodeType::Root => return Ok(None),
         };
-        Ok(Some(Rc::new(Node { kind, src: self.src(r.start, r.end) })))
+        Ok(Some(Rc::new(Node {
+            kind,
+            src: self.src(r.start, r.end),
+        })))
     }
 
     fn element(&self, n: roxmltree::Node, depth: usize) -> Result<NodeRef, (String, usize)> {
         let r = n.range();
         let tag_text = self.text.get(r.start + 1..).unwrap_or("");
-        let name_len = tag_text.find(|c: char| c.is_whitespace() || c == '/' || c == '>').unwrap_or(tag_text.len());
+        let name_len = tag_text
+            .find(|c: char| c.is_whitespace() || c == '/' || c == '>')
+            .unwrap_or(tag_text.len());
         let name = tag_text[..name_len].to_string();
         let mut tag_end = r.start + 1 + name_len;
         let mut attrs = Vec::new();
@@ -205,8 +240,16 @@ impl Converter<'_> {
         }
         for a in n.attributes() {
             tag_end = tag_end.max(a.range().end);
-            let qname = self.text.get(a.range_qname()).unwrap_or(a.name()).to_string();
-            attrs.push((qname, a.value().to_string(), Some((a.range_qname(), a.range_value()))));
+            let qname = self
+                .text
+                .get(a.range_qname())
+                .unwrap_or(a.name())
+                .to_string();
+            attrs.push((
+                qname,
+                a.value().to_string(),
+                Some((a.range_qname(), a.range_value())),
+            ));
         }
         if let Some(i) = self.text.get(tag_end..).and_then(|t| t.find('>')) {
             tag_end += i + 1;
@@ -224,7 +267,12 @@ impl Converter<'_> {
                         (self.loc(at, at + name.len()), self.src(at, at + name.len()))
                     }
                 };
-                Attr { name, value, name_loc, src: value_src }
+                Attr {
+                    name,
+                    value,
+                    name_loc,
+                    src: value_src,
+                }
             })
             .collect();
         let mut children = Vec::new();
@@ -234,7 +282,11 @@ impl Converter<'_> {
             }
         }
         Ok(Rc::new(Node {
-            kind: Kind::Element(Element { name, attrs, children }),
+            kind: Kind::Element(Element {
+                name,
+                attrs,
+                children,
+            }),
             src: self.src(r.start, tag_end),
         }))
     }
@@ -242,6 +294,8 @@ impl Converter<'_> {
 
 /// A parse failure as an error (location filled by the caller).
 pub(crate) fn parse_error(path: &std::path::Path, message: &str) -> XacroError {
-    XacroError::new(ErrorKind::XmlParse, format!("XML parsing error in {}: {message}", path.display()))
+    XacroError::new(
+        ErrorKind::XmlParse,
+        format!("XML parsing error in {}: {message}", path.display()),
+    )
 }
-

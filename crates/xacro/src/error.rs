@@ -135,7 +135,12 @@ pub struct XacroError {
 impl XacroError {
     /// An error without a location yet.
     pub(crate) fn new(kind: ErrorKind, message: impl Into<String>) -> Self {
-        XacroError { kind, message: message.into(), location: None, stack: Vec::new() }
+        XacroError {
+            kind,
+            message: message.into(),
+            location: None,
+            stack: Vec::new(),
+        }
     }
 }
 
@@ -147,12 +152,16 @@ impl fmt::Display for XacroError {
         }
         for entry in &self.stack {
             match entry.kind {
-                crate::source_map::FrameKind::Macro => {
-                    write!(f, "\n  in macro '{}' called at {}", entry.name, entry.location)?
-                }
-                crate::source_map::FrameKind::Include => {
-                    write!(f, "\n  in file '{}' included at {}", entry.name, entry.location)?
-                }
+                crate::source_map::FrameKind::Macro => write!(
+                    f,
+                    "\n  in macro '{}' called at {}",
+                    entry.name, entry.location
+                )?,
+                crate::source_map::FrameKind::Include => write!(
+                    f,
+                    "\n  in file '{}' included at {}",
+                    entry.name, entry.location
+                )?,
             }
         }
         Ok(())
@@ -162,7 +171,10 @@ impl fmt::Display for XacroError {
 impl std::error::Error for XacroError {}
 
 /// The candidate closest to `name` by edit distance, when it is close enough to be a likely typo.
-pub(crate) fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub(crate) fn closest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     let limit = (name.chars().count() / 3).max(1) + 1;
     candidates
         .into_iter()
@@ -174,8 +186,13 @@ pub(crate) fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a s
 }
 
 /// " (did you mean 'x'?)" or "".
-pub(crate) fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
-    closest(name, candidates).map(|c| format!(" (did you mean '{c}'?)")).unwrap_or_default()
+pub(crate) fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    closest(name, candidates)
+        .map(|c| format!(" (did you mean '{c}'?)"))
+        .unwrap_or_default()
 }
 
 fn edit_distance(a: &str, b: &str) -> usize {

@@ -6,7 +6,9 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use crate::document::{self, Attr, Element, FrameData, FrameRef, Kind, Loc, Node, NodeRef, ParsedDoc, Src};
+use crate::document::{
+    self, Attr, Element, FrameData, FrameRef, Kind, Loc, Node, NodeRef, ParsedDoc, Src,
+};
 use crate::error::{did_you_mean, ErrorKind, Location, StackEntry, XacroError};
 use crate::expr::{self, EvalError, Scope, Value};
 use crate::include;
@@ -35,7 +37,11 @@ struct Built {
 impl Built {
     fn into_node(self) -> NodeRef {
         Rc::new(Node {
-            kind: Kind::Element(Element { name: self.name, attrs: self.attrs, children: self.children }),
+            kind: Kind::Element(Element {
+                name: self.name,
+                attrs: self.attrs,
+                children: self.children,
+            }),
             src: self.src,
         })
     }
@@ -76,7 +82,10 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         exprs: RefCell::default(),
     };
     let (_, doc) = x.register(path, text.to_string())?;
-    let root = doc.root().cloned().ok_or_else(|| XacroError::new(ErrorKind::XmlParse, "no root element"))?;
+    let root = doc
+        .root()
+        .cloned()
+        .ok_or_else(|| XacroError::new(ErrorKind::XmlParse, "no root element"))?;
     let macros: MacroTableRef = Rc::default();
     let symbols: TableRef = Rc::default();
     let ctx = Ctx::default();
@@ -84,11 +93,18 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
     let root = match &root.kind {
         Kind::Element(el) if el.attrs.iter().any(|a| a.name == "xacro:targetNamespace") => {
             let mut attrs = el.attrs.clone();
-            for a in attrs.iter_mut().filter(|a| a.name == "xacro:targetNamespace") {
+            for a in attrs
+                .iter_mut()
+                .filter(|a| a.name == "xacro:targetNamespace")
+            {
                 a.name = "xmlns".into();
             }
             Rc::new(Node {
-                kind: Kind::Element(Element { name: el.name.clone(), attrs, children: el.children.clone() }),
+                kind: Kind::Element(Element {
+                    name: el.name.clone(),
+                    attrs,
+                    children: el.children.clone(),
+                }),
                 src: root.src.clone(),
             })
         }
@@ -107,19 +123,27 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         x.separator.get(),
         opts.limits.max_output_bytes,
     )?;
-    Ok(Expansion { xml, sources, map, warnings: x.warnings.into_inner() })
+    Ok(Expansion {
+        xml,
+        sources,
+        map,
+        warnings: x.warnings.into_inner(),
+    })
 }
 
 const PY_KEYWORDS: [&str; 35] = [
-    "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class", "continue", "def", "del",
-    "elif", "else", "except", "finally", "for", "from", "global", "if", "import", "in", "is", "lambda",
-    "nonlocal", "not", "or", "pass", "raise", "return", "try", "while", "with", "yield",
+    "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class", "continue",
+    "def", "del", "elif", "else", "except", "finally", "for", "from", "global", "if", "import",
+    "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return", "try", "while",
+    "with", "yield",
 ];
 
 /// A Python identifier that is not a keyword (`is_valid_name`).
 fn is_valid_name(name: &str) -> bool {
     let mut chars = name.chars();
-    let Some(first) = chars.next() else { return false };
+    let Some(first) = chars.next() else {
+        return false;
+    };
     (first == '_' || first.is_alphabetic())
         && chars.all(|c| c == '_' || c.is_alphanumeric())
         && !PY_KEYWORDS.contains(&name)
@@ -156,7 +180,10 @@ fn dunder_names(code: &str) -> Vec<String> {
                 names.push(word.to_string());
             }
         } else if c.is_ascii_digit() {
-            while chars.peek().is_some_and(|&(_, d)| d.is_alphanumeric() || d == '_' || d == '.') {
+            while chars
+                .peek()
+                .is_some_and(|&(_, d)| d.is_alphanumeric() || d == '_' || d == '.')
+            {
                 chars.next();
             }
         }
@@ -173,10 +200,17 @@ struct PropScope<'a, 'o> {
 
 impl Scope for PropScope<'_, '_> {
     fn lookup(&self, name: &str) -> Result<Option<Value>, EvalError> {
-        self.x.lookup_property(self.symbols, name, self.ctx).map_err(|e| self.x.stash(e))
+        self.x
+            .lookup_property(self.symbols, name, self.ctx)
+            .map_err(|e| self.x.stash(e))
     }
 
-    fn call_host(&self, name: &str, args: &[Value], kwargs: &[(String, Value)]) -> Option<Result<Value, EvalError>> {
+    fn call_host(
+        &self,
+        name: &str,
+        args: &[Value],
+        kwargs: &[(String, Value)],
+    ) -> Option<Result<Value, EvalError>> {
         self.x.call_host(name, args, kwargs, self.ctx)
     }
 }
@@ -193,12 +227,24 @@ impl Scope for ArgScope<'_, '_> {
         Ok(match name {
             "true" | "True" => Some(Value::Bool(true)),
             "false" | "False" => Some(Value::Bool(false)),
-            "arg" | "dirname" | "env" | "optenv" | "find" => Some(Value::Function(format!("xacro.eval_{name}").into())),
-            _ => self.x.args.borrow().get(name).map(|v| substitution::convert_auto(v)),
+            "arg" | "dirname" | "env" | "optenv" | "find" => {
+                Some(Value::Function(format!("xacro.eval_{name}").into()))
+            }
+            _ => self
+                .x
+                .args
+                .borrow()
+                .get(name)
+                .map(|v| substitution::convert_auto(v)),
         })
     }
 
-    fn call_host(&self, name: &str, args: &[Value], kwargs: &[(String, Value)]) -> Option<Result<Value, EvalError>> {
+    fn call_host(
+        &self,
+        name: &str,
+        args: &[Value],
+        kwargs: &[(String, Value)],
+    ) -> Option<Result<Value, EvalError>> {
         self.x.call_host(name, args, kwargs, self.ctx)
     }
 }
@@ -211,13 +257,23 @@ impl Scope for NoScope {
         Ok(None)
     }
 
-    fn call_host(&self, _: &str, _: &[Value], _: &[(String, Value)]) -> Option<Result<Value, EvalError>> {
+    fn call_host(
+        &self,
+        _: &str,
+        _: &[Value],
+        _: &[(String, Value)],
+    ) -> Option<Result<Value, EvalError>> {
         None
     }
 }
 
 fn host_error(kind: &'static str, message: String) -> EvalError {
-    EvalError { kind, message, undefined_name: None, offset: None }
+    EvalError {
+        kind,
+        message,
+        undefined_name: None,
+        offset: None,
+    }
 }
 
 fn str_arg(args: &[Value], i: usize) -> Option<String> {
@@ -232,16 +288,24 @@ impl<'o> Expander<'o> {
     fn register(&self, path: &Path, text: String) -> Result<(u32, Rc<ParsedDoc>), XacroError> {
         let file = self.sources.borrow().len() as u32;
         let parsed = document::parse(&text, file, self.opts.limits.max_nesting);
-        self.sources.borrow_mut().push(SourceFile::new(path.to_path_buf(), text));
+        self.sources
+            .borrow_mut()
+            .push(SourceFile::new(path.to_path_buf(), text));
         match parsed {
             Ok(doc) => {
                 let doc = Rc::new(doc);
-                self.docs.borrow_mut().insert(path.to_path_buf(), (file, doc.clone()));
+                self.docs
+                    .borrow_mut()
+                    .insert(path.to_path_buf(), (file, doc.clone()));
                 Ok((file, doc))
             }
             Err((message, byte)) => {
                 let mut e = document::parse_error(path, &message);
-                e.location = self.location(Loc { file, start: byte as u32, end: byte as u32 });
+                e.location = self.location(Loc {
+                    file,
+                    start: byte as u32,
+                    end: byte as u32,
+                });
                 Err(e)
             }
         }
@@ -253,8 +317,15 @@ impl<'o> Expander<'o> {
             return Ok(doc.clone());
         }
         let text = std::fs::read_to_string(path).map_err(|e| {
-            let kind = if e.kind() == std::io::ErrorKind::NotFound { ErrorKind::IncludeNotFound } else { ErrorKind::Io };
-            XacroError::new(kind, format!("No such file or directory: {} ({e})", path.display()))
+            let kind = if e.kind() == std::io::ErrorKind::NotFound {
+                ErrorKind::IncludeNotFound
+            } else {
+                ErrorKind::Io
+            };
+            XacroError::new(
+                kind,
+                format!("No such file or directory: {} ({e})", path.display()),
+            )
         })?;
         self.register(path, text).map(|(_, d)| d)
     }
@@ -267,7 +338,12 @@ impl<'o> Expander<'o> {
         let sources = self.sources.borrow();
         let file = sources.get(loc.file as usize)?;
         let (line, col) = file.line_col(loc.start as usize);
-        Some(Location { path: file.path.clone(), line, col, byte: loc.start as usize })
+        Some(Location {
+            path: file.path.clone(),
+            line,
+            col,
+            byte: loc.start as usize,
+        })
     }
 
     fn stack(&self, ctx: &Ctx) -> Vec<StackEntry> {
@@ -275,7 +351,11 @@ impl<'o> Expander<'o> {
         let mut f = ctx.frame.clone();
         while let Some(frame) = f {
             if let Some(location) = self.location(frame.loc) {
-                out.push(StackEntry { kind: frame.kind, name: frame.name.clone(), location });
+                out.push(StackEntry {
+                    kind: frame.kind,
+                    name: frame.name.clone(),
+                    location,
+                });
             }
             f = frame.parent.clone();
         }
@@ -293,7 +373,9 @@ impl<'o> Expander<'o> {
 
     fn warn(&self, message: String, loc: Option<Loc>) {
         let location = loc.and_then(|l| self.location(l));
-        self.warnings.borrow_mut().push(Warning { message, location });
+        self.warnings
+            .borrow_mut()
+            .push(Warning { message, location });
     }
 
     /// Keep the detailed error for when the evaluator gives up, and tell the evaluator.
@@ -319,7 +401,10 @@ impl<'o> Expander<'o> {
         if self.bytes.get() > limits.max_output_bytes.saturating_mul(4) {
             return Err(XacroError::new(
                 ErrorKind::Limit,
-                format!("the expansion creates more than {} bytes of text", limits.max_output_bytes * 4),
+                format!(
+                    "the expansion creates more than {} bytes of text",
+                    limits.max_output_bytes * 4
+                ),
             ));
         }
         Ok(())
@@ -340,10 +425,16 @@ impl<'o> Expander<'o> {
             if dollars >= 2 && matches!(rest.as_bytes().get(dollars), Some(b'{' | b'(')) {
                 results.push(Value::Str(rest[1..=dollars].into()));
                 rest = &rest[dollars + 1..];
-            } else if let Some(inner) = rest.strip_prefix("${").and_then(|r| r.find('}').map(|i| &r[..i])) {
+            } else if let Some(inner) = rest
+                .strip_prefix("${")
+                .and_then(|r| r.find('}').map(|i| &r[..i]))
+            {
                 results.push(self.handle_expr(inner, symbols, ctx)?);
                 rest = &rest[inner.len() + 3..];
-            } else if let Some(inner) = rest.strip_prefix("$(").and_then(|r| r.find(')').map(|i| &r[..i])) {
+            } else if let Some(inner) = rest
+                .strip_prefix("$(")
+                .and_then(|r| r.find(')').map(|i| &r[..i]))
+            {
                 results.push(self.handle_extension(inner, symbols, ctx)?);
                 rest = &rest[inner.len() + 3..];
             } else if dollars == 0 {
@@ -354,11 +445,16 @@ impl<'o> Expander<'o> {
                 results.push(Value::Str("$".into()));
                 rest = "";
             } else if dollars == 1 && !matches!(rest.as_bytes().get(1), Some(b'{' | b'(')) {
-                let end = rest[1..].find(['{', '(', '$']).map_or(rest.len(), |i| i + 1);
+                let end = rest[1..]
+                    .find(['{', '(', '$'])
+                    .map_or(rest.len(), |i| i + 1);
                 results.push(Value::Str(rest[..end].into()));
                 rest = &rest[end..];
             } else {
-                return Err(XacroError::new(ErrorKind::Expression, format!("invalid expression: {rest}")));
+                return Err(XacroError::new(
+                    ErrorKind::Expression,
+                    format!("invalid expression: {rest}"),
+                ));
             }
         }
         if results.len() == 1 {
@@ -366,7 +462,10 @@ impl<'o> Expander<'o> {
         }
         let joined: String = results.iter().map(Value::to_xacro_string).collect();
         if joined.len() > self.opts.limits.max_output_bytes {
-            return Err(XacroError::new(ErrorKind::Limit, "a string exceeds the output size limit"));
+            return Err(XacroError::new(
+                ErrorKind::Limit,
+                "a string exceeds the output size limit",
+            ));
         }
         Ok(Value::Str(joined.into()))
     }
@@ -376,7 +475,9 @@ impl<'o> Expander<'o> {
             return Ok(e.clone());
         }
         let parsed = Rc::new(expr::parse(code)?);
-        self.exprs.borrow_mut().insert(code.to_string(), parsed.clone());
+        self.exprs
+            .borrow_mut()
+            .insert(code.to_string(), parsed.clone());
         Ok(parsed)
     }
 
@@ -387,11 +488,20 @@ impl<'o> Expander<'o> {
         if !bad.is_empty() {
             return Err(XacroError::new(
                 ErrorKind::InvalidName,
-                format!("Use of invalid name(s): {} in expression '${{{inner}}}'", bad.join(", ")),
+                format!(
+                    "Use of invalid name(s): {} in expression '${{{inner}}}'",
+                    bad.join(", ")
+                ),
             ));
         }
-        let scope = PropScope { x: self, symbols, ctx };
-        let result = self.parse_expr(code.trim()).and_then(|e| expr::eval(&e, &scope));
+        let scope = PropScope {
+            x: self,
+            symbols,
+            ctx,
+        };
+        let result = self
+            .parse_expr(code.trim())
+            .and_then(|e| expr::eval(&e, &scope));
         let value = match result {
             Ok(v) => {
                 self.pending.borrow_mut().take();
@@ -406,7 +516,10 @@ impl<'o> Expander<'o> {
         };
         if let Value::Str(s) = &value {
             if s.len() > self.opts.limits.max_output_bytes {
-                return Err(XacroError::new(ErrorKind::Limit, "a string exceeds the output size limit"));
+                return Err(XacroError::new(
+                    ErrorKind::Limit,
+                    "a string exceeds the output size limit",
+                ));
             }
         }
         Ok(value)
@@ -426,11 +539,22 @@ impl<'o> Expander<'o> {
                 format!("{}{hint}, when evaluating expression '{inner}'", e.message),
             );
         }
-        XacroError::new(ErrorKind::Expression, format!("{}: {}, when evaluating expression '{inner}'", e.kind, e.message))
+        XacroError::new(
+            ErrorKind::Expression,
+            format!(
+                "{}: {}, when evaluating expression '{inner}'",
+                e.kind, e.message
+            ),
+        )
     }
 
     /// `$(inner)`.
-    fn handle_extension(&self, inner: &str, symbols: &TableRef, ctx: &Ctx) -> Result<Value, XacroError> {
+    fn handle_extension(
+        &self,
+        inner: &str,
+        symbols: &TableRef,
+        ctx: &Ctx,
+    ) -> Result<Value, XacroError> {
         let inner = self.eval_text(inner, symbols, ctx)?.to_xacro_string();
         let s = format!("$({inner})");
         if s == "$(cwd)" {
@@ -445,7 +569,9 @@ impl<'o> Expander<'o> {
                 ));
             }
             let scope = ArgScope { x: self, ctx };
-            let result = self.parse_expr(code.trim()).and_then(|e| expr::eval(&e, &scope));
+            let result = self
+                .parse_expr(code.trim())
+                .and_then(|e| expr::eval(&e, &scope));
             return match result {
                 Ok(v) => {
                     self.pending.borrow_mut().take();
@@ -465,7 +591,10 @@ impl<'o> Expander<'o> {
         let args = self.args.borrow();
         args.get(name).cloned().ok_or_else(|| {
             let hint = did_you_mean(name, args.keys().map(String::as_str));
-            XacroError::new(ErrorKind::UndefinedArgument, format!("Undefined substitution argument {name}{hint}"))
+            XacroError::new(
+                ErrorKind::UndefinedArgument,
+                format!("Undefined substitution argument {name}{hint}"),
+            )
         })
     }
 
@@ -481,29 +610,52 @@ impl<'o> Expander<'o> {
         include::find_package(pkg, self.opts, &env, &self.current_file())
             .map(|p| p.display().to_string())
             .map_err(|searched| {
-                let where_ = if searched.is_empty() { String::new() } else { format!("; searched: {}", searched.join(", ")) };
-                XacroError::new(ErrorKind::PackageNotFound, format!("package '{pkg}' not found{where_}"))
+                let where_ = if searched.is_empty() {
+                    String::new()
+                } else {
+                    format!("; searched: {}", searched.join(", "))
+                };
+                XacroError::new(
+                    ErrorKind::PackageNotFound,
+                    format!("package '{pkg}' not found{where_}"),
+                )
             })
     }
 
     fn dirname(&self) -> Result<String, XacroError> {
         let current = self.current_file();
         let abs = std::path::absolute(&current).unwrap_or(current);
-        Ok(abs.parent().map(|p| p.display().to_string()).unwrap_or_default())
+        Ok(abs
+            .parent()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default())
     }
 
     // ----------------------------------------------------------------------------------------------------
     // Properties and host functions
 
     /// `symbols[name]` with lazy evaluation; `Ok(None)` when no property has that name.
-    fn lookup_property(&self, symbols: &TableRef, name: &str, ctx: &Ctx) -> Result<Option<Value>, XacroError> {
-        let Some(table) = symbols.find(name) else { return Ok(None) };
+    fn lookup_property(
+        &self,
+        symbols: &TableRef,
+        name: &str,
+        ctx: &Ctx,
+    ) -> Result<Option<Value>, XacroError> {
+        let Some(table) = symbols.find(name) else {
+            return Ok(None);
+        };
         let entry = table.entries.borrow().get(name).cloned();
         match entry {
             None | Some(Entry::Block(_)) => Ok(None),
             Some(Entry::Value(v)) => Ok(Some(v)),
             Some(Entry::Namespace(ns)) => {
-                let keys: Vec<String> = ns.entries.borrow().keys().filter(|k| is_valid_name(k)).cloned().collect();
+                let keys: Vec<String> = ns
+                    .entries
+                    .borrow()
+                    .keys()
+                    .filter(|k| is_valid_name(k))
+                    .cloned()
+                    .collect();
                 let mut items = Vec::new();
                 for k in keys {
                     if let Ok(Some(v)) = self.lookup_property(&ns, &k, ctx) {
@@ -544,7 +696,10 @@ impl<'o> Expander<'o> {
                     Value::Str(s) => crate::properties::eval_literal(&s),
                     v => v,
                 };
-                table.entries.borrow_mut().insert(name.to_string(), Entry::Value(value.clone()));
+                table
+                    .entries
+                    .borrow_mut()
+                    .insert(name.to_string(), Entry::Value(value.clone()));
                 Ok(Some(value))
             }
         }
@@ -556,7 +711,10 @@ impl<'o> Expander<'o> {
     }
 
     fn is_builtin(&self, name: &str) -> bool {
-        is_valid_name(name) && expr::parse(name).and_then(|e| expr::eval(&e, &NoScope)).is_ok()
+        is_valid_name(name)
+            && expr::parse(name)
+                .and_then(|e| expr::eval(&e, &NoScope))
+                .is_ok()
     }
 
     fn call_host(
@@ -574,7 +732,12 @@ impl<'o> Expander<'o> {
             }
             "xacro.abs_filename" | "abs_filename" => {
                 let spec = str_arg(args, 0).unwrap_or_default();
-                Ok(Value::Str(include::abs_filename(&spec, &self.current_file()).display().to_string().into()))
+                Ok(Value::Str(
+                    include::abs_filename(&spec, &self.current_file())
+                        .display()
+                        .to_string()
+                        .into(),
+                ))
             }
             "xacro.arg" | "xacro.eval_arg" => {
                 let n = str_arg(args, 0).unwrap_or_default();
@@ -600,8 +763,16 @@ impl<'o> Expander<'o> {
             "xacro.tokenize" => {
                 let s = str_arg(args, 0).unwrap_or_default();
                 let kw = |k: &str| kwargs.iter().find(|(n, _)| n == k).map(|(_, v)| v.clone());
-                let sep = args.get(1).cloned().or_else(|| kw("sep")).map_or(",; ".to_string(), |v| v.to_xacro_string());
-                let skip_empty = args.get(2).cloned().or_else(|| kw("skip_empty")).is_none_or(|v| v.is_truthy());
+                let sep = args
+                    .get(1)
+                    .cloned()
+                    .or_else(|| kw("sep"))
+                    .map_or(",; ".to_string(), |v| v.to_xacro_string());
+                let skip_empty = args
+                    .get(2)
+                    .cloned()
+                    .or_else(|| kw("skip_empty"))
+                    .is_none_or(|v| v.is_truthy());
                 let items = s
                     .split(|c| sep.contains(c))
                     .filter(|t| !skip_empty || !t.is_empty())
@@ -609,7 +780,10 @@ impl<'o> Expander<'o> {
                     .collect();
                 Ok(Value::List(Rc::new(items)))
             }
-            "xacro.eval_dirname" => self.dirname().map(|d| Value::Str(d.into())).map_err(|e| self.stash(e)),
+            "xacro.eval_dirname" => self
+                .dirname()
+                .map(|d| Value::Str(d.into()))
+                .map_err(|e| self.stash(e)),
             "xacro.eval_env" => {
                 let n = str_arg(args, 0).unwrap_or_default();
                 match self.env_var(&n) {
@@ -624,7 +798,9 @@ impl<'o> Expander<'o> {
             }
             "xacro.eval_find" => {
                 let n = str_arg(args, 0).unwrap_or_default();
-                self.find_package(&n).map(|p| Value::Str(p.into())).map_err(|e| self.stash(e))
+                self.find_package(&n)
+                    .map(|p| Value::Str(p.into()))
+                    .map_err(|e| self.stash(e))
             }
             _ => return None,
         };
@@ -634,12 +810,20 @@ impl<'o> Expander<'o> {
     fn load_yaml(&self, spec: &str) -> Result<Value, XacroError> {
         let path = include::abs_filename(spec, &self.current_file());
         let text = std::fs::read_to_string(&path).map_err(|e| {
-            XacroError::new(ErrorKind::Io, format!("cannot read YAML file {}: {e}", path.display()))
+            XacroError::new(
+                ErrorKind::Io,
+                format!("cannot read YAML file {}: {e}", path.display()),
+            )
         })?;
-        self.sources.borrow_mut().push(SourceFile::new(path.clone(), text.clone()));
+        self.sources
+            .borrow_mut()
+            .push(SourceFile::new(path.clone(), text.clone()));
         let eval = |s: &str| expr::parse(s.trim()).and_then(|e| expr::eval(&e, &NoScope));
         crate::yaml::load(&text, &eval).map_err(|e| {
-            XacroError::new(ErrorKind::Yaml, format!("{}: {} (in {})", e.kind, e.message, path.display()))
+            XacroError::new(
+                ErrorKind::Yaml,
+                format!("{}: {} (in {})", e.kind, e.message, path.display()),
+            )
         })
     }
 
@@ -661,12 +845,19 @@ impl<'o> Expander<'o> {
             match el.attrs.iter().find(|a| a.name == *name) {
                 Some(a) => out.push(Some(a)),
                 None => {
-                    let e = XacroError::new(ErrorKind::MissingAttribute, format!("{}: missing attribute '{name}'", el.name));
+                    let e = XacroError::new(
+                        ErrorKind::MissingAttribute,
+                        format!("{}: missing attribute '{name}'", el.name),
+                    );
                     return Err(self.locate(e, node.src.loc, ctx));
                 }
             }
         }
-        out.extend(optional.iter().map(|name| el.attrs.iter().find(|a| a.name == *name)));
+        out.extend(
+            optional
+                .iter()
+                .map(|name| el.attrs.iter().find(|a| a.name == *name)),
+        );
         let extra: Vec<&str> = el
             .attrs
             .iter()
@@ -674,14 +865,18 @@ impl<'o> Expander<'o> {
             .filter(|n| !required.contains(n) && !optional.contains(n) && !n.starts_with("xmlns:"))
             .collect();
         if !extra.is_empty() {
-            self.warn(format!("{}: unknown attribute(s): {}", el.name, extra.join(", ")), Some(node.src.loc));
+            self.warn(
+                format!("{}: unknown attribute(s): {}", el.name, extra.join(", ")),
+                Some(node.src.loc),
+            );
         }
         Ok(out)
     }
 
     /// Evaluate an attribute's text, locating errors at the attribute.
     fn eval_attr(&self, attr: &Attr, symbols: &TableRef, ctx: &Ctx) -> Result<Value, XacroError> {
-        self.eval_text(&attr.value, symbols, ctx).map_err(|e| self.locate(e, attr.src.loc, ctx))
+        self.eval_text(&attr.value, symbols, ctx)
+            .map_err(|e| self.locate(e, attr.src.loc, ctx))
     }
 
     /// Python's `eval_all(node)` for an element: evaluate its attributes (dropping `xacro:*` ones and
@@ -694,13 +889,19 @@ impl<'o> Expander<'o> {
         ctx: &Ctx,
     ) -> Result<Built, XacroError> {
         let Kind::Element(el) = &node.kind else {
-            return Err(XacroError::new(ErrorKind::Internal, "internal error: eval_element on a non-element"));
+            return Err(XacroError::new(
+                ErrorKind::Internal,
+                "internal error: eval_element on a non-element",
+            ));
         };
         let depth = self.nesting.get() + 1;
         if depth > self.opts.limits.max_nesting {
             let e = XacroError::new(
                 ErrorKind::Limit,
-                format!("evaluation nested deeper than {} levels", self.opts.limits.max_nesting),
+                format!(
+                    "evaluation nested deeper than {} levels",
+                    self.opts.limits.max_nesting
+                ),
             );
             return Err(self.locate(e, node.src.loc, ctx));
         }
@@ -725,12 +926,29 @@ impl<'o> Expander<'o> {
             }
             let value = self.eval_attr(a, symbols, ctx)?.to_xacro_string();
             self.count_node(value.len())?;
-            attrs.push(Attr { name: a.name.clone(), value, name_loc: a.name_loc, src: a.src.placed(&ctx.frame) });
+            attrs.push(Attr {
+                name: a.name.clone(),
+                value,
+                name_loc: a.name_loc,
+                src: a.src.placed(&ctx.frame),
+            });
         }
         let mut children = Vec::with_capacity(el.children.len());
-        self.process_children(&el.children, &mut children, &mut attrs, macros, symbols, ctx)?;
+        self.process_children(
+            &el.children,
+            &mut children,
+            &mut attrs,
+            macros,
+            symbols,
+            ctx,
+        )?;
         self.count_node(el.name.len())?;
-        Ok(Built { name: el.name.clone(), attrs, children, src: node.src.placed(&ctx.frame) })
+        Ok(Built {
+            name: el.name.clone(),
+            attrs,
+            children,
+            src: node.src.placed(&ctx.frame),
+        })
     }
 
     fn is_live_separator(&self, n: &NodeRef) -> bool {
@@ -756,7 +974,10 @@ impl<'o> Expander<'o> {
                 return false;
             }
             if let Kind::Text(t) = &out[i - 1].kind {
-                if !t.is_empty() && t.chars().all(char::is_whitespace) && t.matches('\n').count() <= 1 {
+                if !t.is_empty()
+                    && t.chars().all(char::is_whitespace)
+                    && t.matches('\n').count() <= 1
+                {
                     i -= 1;
                     skip_stale(&mut i, out);
                 }
@@ -774,7 +995,10 @@ impl<'o> Expander<'o> {
     fn push_separator(&self, out: &mut Vec<NodeRef>, src: &Src) {
         let generation = self.separator.get() + 1;
         self.separator.set(generation);
-        out.push(Rc::new(Node { kind: Kind::Separator(generation), src: src.clone() }));
+        out.push(Rc::new(Node {
+            kind: Kind::Separator(generation),
+            src: src.clone(),
+        }));
     }
 
     /// Lift `xmlns:*` attributes of an expanded macro body or included root to the parent element.
@@ -782,7 +1006,10 @@ impl<'o> Expander<'o> {
         for a in attrs.iter().filter(|a| a.name.starts_with("xmlns:")) {
             match parent_attrs.iter().find(|p| p.name == a.name) {
                 Some(old) if old.value != a.value => self.warn(
-                    format!("inconsistent namespace redefinitions for {}: old: {} new: {}", a.name, old.value, a.value),
+                    format!(
+                        "inconsistent namespace redefinitions for {}: old: {} new: {}",
+                        a.name, old.value, a.value
+                    ),
                     Some(loc),
                 ),
                 Some(_) => {}
@@ -809,7 +1036,16 @@ impl<'o> Expander<'o> {
                 match &node.kind {
                     Kind::Element(el) => {
                         eval_comments = false;
-                        match self.element_child(&node, el, out, parent_attrs, macros, symbols, ctx, has_next)? {
+                        match self.element_child(
+                            &node,
+                            el,
+                            out,
+                            parent_attrs,
+                            macros,
+                            symbols,
+                            ctx,
+                            has_next,
+                        )? {
                             Some(renamed) => {
                                 node = renamed;
                                 continue;
@@ -826,7 +1062,10 @@ impl<'o> Expander<'o> {
                             eval_comments = false;
                         }
                         self.count_node(value.len())?;
-                        out.push(Rc::new(Node { kind: Kind::Text(value), src: node.src.placed(&ctx.frame) }));
+                        out.push(Rc::new(Node {
+                            kind: Kind::Text(value),
+                            src: node.src.placed(&ctx.frame),
+                        }));
                     }
                     Kind::Comment(c) => {
                         if c.contains("xacro:eval-comments") {
@@ -837,7 +1076,10 @@ impl<'o> Expander<'o> {
                                 .map_err(|e| self.locate(e, node.src.loc, ctx))?
                                 .to_xacro_string();
                             self.count_node(value.len())?;
-                            out.push(Rc::new(Node { kind: Kind::Comment(value), src: node.src.placed(&ctx.frame) }));
+                            out.push(Rc::new(Node {
+                                kind: Kind::Comment(value),
+                                src: node.src.placed(&ctx.frame),
+                            }));
                         } else {
                             self.count_node(c.len())?;
                             out.push(node.clone());
@@ -847,7 +1089,10 @@ impl<'o> Expander<'o> {
                     Kind::Separator(_) => {
                         // A block copied with the live separator in it holds a plain "\n\n" text there.
                         if self.is_live_separator(&node) {
-                            out.push(Rc::new(Node { kind: Kind::Text("\n\n".into()), src: node.src.clone() }));
+                            out.push(Rc::new(Node {
+                                kind: Kind::Text("\n\n".into()),
+                                src: node.src.clone(),
+                            }));
                         }
                     }
                 }
@@ -874,13 +1119,20 @@ impl<'o> Expander<'o> {
         match el.name.as_str() {
             "xacro:insert_block" => {
                 let attrs = self.check_attrs(node, el, &["name"], &[], ctx)?;
-                let name = attrs.first().copied().flatten().map_or("", |a| a.value.as_str());
+                let name = attrs
+                    .first()
+                    .copied()
+                    .flatten()
+                    .map_or("", |a| a.value.as_str());
                 let (block, content_only) = match self.block(symbols, &format!("**{name}")) {
                     Some(b) => (b, true),
                     None => match self.block(symbols, &format!("*{name}")) {
                         Some(b) => (b, false),
                         None => {
-                            let e = XacroError::new(ErrorKind::Block, format!("Undefined block \"{name}\""));
+                            let e = XacroError::new(
+                                ErrorKind::Block,
+                                format!("Undefined block \"{name}\""),
+                            );
                             return Err(self.locate(e, loc, ctx));
                         }
                     },
@@ -892,7 +1144,9 @@ impl<'o> Expander<'o> {
                     out.push(built.into_node());
                 }
             }
-            "xacro:include" => self.include(node, el, out, parent_attrs, macros, symbols, ctx, has_next)?,
+            "xacro:include" => {
+                self.include(node, el, out, parent_attrs, macros, symbols, ctx, has_next)?
+            }
             "xacro:property" => {
                 let sep = self.remove_previous_comments(out, has_next);
                 self.property(node, el, symbols, ctx)?;
@@ -921,14 +1175,29 @@ impl<'o> Expander<'o> {
             }
             "xacro:element" => {
                 let attrs = self.check_attrs(node, el, &["xacro:name"], &[], ctx)?;
-                let Some(name_attr) = attrs.first().copied().flatten() else { return Ok(None) };
+                let Some(name_attr) = attrs.first().copied().flatten() else {
+                    return Ok(None);
+                };
                 let name = self.eval_attr(name_attr, symbols, ctx)?.to_xacro_string();
                 if name.is_empty() {
-                    return Err(self.locate(XacroError::new(ErrorKind::Other, "xacro:element: empty name"), loc, ctx));
+                    return Err(self.locate(
+                        XacroError::new(ErrorKind::Other, "xacro:element: empty name"),
+                        loc,
+                        ctx,
+                    ));
                 }
-                let attrs = el.attrs.iter().filter(|a| a.name != "xacro:name").cloned().collect();
+                let attrs = el
+                    .attrs
+                    .iter()
+                    .filter(|a| a.name != "xacro:name")
+                    .cloned()
+                    .collect();
                 return Ok(Some(Rc::new(Node {
-                    kind: Kind::Element(Element { name, attrs, children: el.children.clone() }),
+                    kind: Kind::Element(Element {
+                        name,
+                        attrs,
+                        children: el.children.clone(),
+                    }),
                     src: node.src.clone(),
                 })));
             }
@@ -941,7 +1210,12 @@ impl<'o> Expander<'o> {
                         let e = XacroError::new(ErrorKind::Other, "xacro:attribute: empty name");
                         return Err(self.locate(e, loc, ctx));
                     }
-                    let attr = Attr { name, value, name_loc: name_attr.src.loc, src: value_attr.src.placed(&ctx.frame) };
+                    let attr = Attr {
+                        name,
+                        value,
+                        name_loc: name_attr.src.loc,
+                        src: value_attr.src.placed(&ctx.frame),
+                    };
                     match parent_attrs.iter_mut().find(|a| a.name == attr.name) {
                         Some(existing) => *existing = attr,
                         None => parent_attrs.push(attr),
@@ -997,18 +1271,37 @@ impl<'o> Expander<'o> {
     }
 
     /// `grab_property`.
-    fn property(&self, node: &NodeRef, el: &Element, symbols: &TableRef, ctx: &Ctx) -> Result<(), XacroError> {
+    fn property(
+        &self,
+        node: &NodeRef,
+        el: &Element,
+        symbols: &TableRef,
+        ctx: &Ctx,
+    ) -> Result<(), XacroError> {
         let loc = node.src.loc;
-        let attrs =
-            self.check_attrs(node, el, &["name"], &["value", "default", "remove", "scope", "lazy_eval"], ctx)?;
-        let [Some(name_attr), value, default, remove, scope, lazy_eval] = attrs[..] else { return Ok(()) };
+        let attrs = self.check_attrs(
+            node,
+            el,
+            &["name"],
+            &["value", "default", "remove", "scope", "lazy_eval"],
+            ctx,
+        )?;
+        let [Some(name_attr), value, default, remove, scope, lazy_eval] = attrs[..] else {
+            return Ok(());
+        };
         let name = self.eval_attr(name_attr, symbols, ctx)?.to_xacro_string();
         if !is_valid_name(&name) {
-            let e = XacroError::new(ErrorKind::InvalidName, format!("Property names must be valid python identifiers: {name}"));
+            let e = XacroError::new(
+                ErrorKind::InvalidName,
+                format!("Property names must be valid python identifiers: {name}"),
+            );
             return Err(self.locate(e, name_attr.src.loc, ctx));
         }
         if name.starts_with("__") {
-            let e = XacroError::new(ErrorKind::InvalidName, format!("Property names must not start with double underscore:{name}"));
+            let e = XacroError::new(
+                ErrorKind::InvalidName,
+                format!("Property names must not start with double underscore:{name}"),
+            );
             return Err(self.locate(e, name_attr.src.loc, ctx));
         }
         let bool_attr = |a: Option<&Attr>, default: bool| -> Result<bool, XacroError> {
@@ -1030,7 +1323,9 @@ impl<'o> Expander<'o> {
         if usize::from(value.is_some()) + usize::from(default.is_some()) + usize::from(remove) > 1 {
             let e = XacroError::new(
                 ErrorKind::Other,
-                format!("Property attributes default, value, and remove are mutually exclusive: {name}"),
+                format!(
+                    "Property attributes default, value, and remove are mutually exclusive: {name}"
+                ),
             );
             return Err(self.locate(e, loc, ctx));
         }
@@ -1041,7 +1336,10 @@ impl<'o> Expander<'o> {
         let mut value = value;
         if let Some(d) = default {
             if scope.is_some() {
-                self.warn(format!("{name}: default property value can only be defined on local scope"), Some(loc));
+                self.warn(
+                    format!("{name}: default property value can only be defined on local scope"),
+                    Some(loc),
+                );
             }
             if self.has_symbol(symbols, &name) {
                 return Ok(());
@@ -1090,13 +1388,25 @@ impl<'o> Expander<'o> {
     }
 
     /// `grab_macro`.
-    fn define_macro(&self, node: &NodeRef, el: &Element, macros: &MacroTableRef, ctx: &Ctx) -> Result<(), XacroError> {
+    fn define_macro(
+        &self,
+        node: &NodeRef,
+        el: &Element,
+        macros: &MacroTableRef,
+        ctx: &Ctx,
+    ) -> Result<(), XacroError> {
         let loc = node.src.loc;
         let attrs = self.check_attrs(node, el, &["name"], &["params"], ctx)?;
-        let [Some(name_attr), params] = attrs[..] else { return Ok(()) };
+        let [Some(name_attr), params] = attrs[..] else {
+            return Ok(());
+        };
         let mut name = name_attr.value.as_str();
         if name == "call" {
-            return Err(self.locate(XacroError::new(ErrorKind::Other, "Invalid use of macro name 'call'"), loc, ctx));
+            return Err(self.locate(
+                XacroError::new(ErrorKind::Other, "Invalid use of macro name 'call'"),
+                loc,
+                ctx,
+            ));
         }
         if name.contains('.') {
             let e = XacroError::new(
@@ -1106,17 +1416,27 @@ impl<'o> Expander<'o> {
             return Err(self.locate(e, loc, ctx));
         }
         if let Some(stripped) = name.strip_prefix("xacro:") {
-            self.warn(format!("macro names must not contain prefix 'xacro:': {name}"), Some(loc));
+            self.warn(
+                format!("macro names must not contain prefix 'xacro:': {name}"),
+                Some(loc),
+            );
             name = stripped;
         }
-        let mut m = Macro { params: Vec::new(), defaults: HashMap::new(), body: node.clone() };
+        let mut m = Macro {
+            params: Vec::new(),
+            defaults: HashMap::new(),
+            body: node.clone(),
+        };
         for (param, spec) in parse_params(params.map_or("", |p| p.value.as_str())) {
             if let Some(spec) = spec {
                 m.defaults.insert(param.clone(), spec);
             }
             m.params.push(param);
         }
-        macros.entries.borrow_mut().insert(name.to_string(), MacroEntry::Macro(Rc::new(m)));
+        macros
+            .entries
+            .borrow_mut()
+            .insert(name.to_string(), MacroEntry::Macro(Rc::new(m)));
         Ok(())
     }
 
@@ -1137,10 +1457,14 @@ impl<'o> Expander<'o> {
         }
         let (mut m, mut s) = (macros.clone(), symbols.clone());
         for ns in parts {
-            let MacroEntry::Namespace(next_m) = m.get(ns)? else { return None };
+            let MacroEntry::Namespace(next_m) = m.get(ns)? else {
+                return None;
+            };
             let table = s.find(ns)?;
             let entry = table.entries.borrow().get(ns).cloned();
-            let Some(Entry::Namespace(next_s)) = entry else { return None };
+            let Some(Entry::Namespace(next_s)) = entry else {
+                return None;
+            };
             m = next_m;
             s = next_s;
         }
@@ -1166,26 +1490,44 @@ impl<'o> Expander<'o> {
         let loc = node.src.loc;
         let (name, call_attrs): (String, Vec<&Attr>) = if el.name == "xacro:call" {
             let Some(macro_attr) = el.attrs.iter().find(|a| a.name == "macro") else {
-                let e = XacroError::new(ErrorKind::MissingAttribute, "xacro:call: missing attribute 'macro'");
+                let e = XacroError::new(
+                    ErrorKind::MissingAttribute,
+                    "xacro:call: missing attribute 'macro'",
+                );
                 return Err(self.locate(e, loc, ctx));
             };
             if macro_attr.value.is_empty() {
-                let e = XacroError::new(ErrorKind::MissingAttribute, "xacro:call is missing the 'macro' attribute");
+                let e = XacroError::new(
+                    ErrorKind::MissingAttribute,
+                    "xacro:call is missing the 'macro' attribute",
+                );
                 return Err(self.locate(e, loc, ctx));
             }
             let name = self.eval_attr(macro_attr, symbols, ctx)?.to_xacro_string();
             if name == "call" {
-                let e = XacroError::new(ErrorKind::MissingAttribute, "xacro:call: missing attribute 'macro'");
+                let e = XacroError::new(
+                    ErrorKind::MissingAttribute,
+                    "xacro:call: missing attribute 'macro'",
+                );
                 return Err(self.locate(e, loc, ctx));
             }
-            (name, el.attrs.iter().filter(|a| a.name != "macro").collect())
+            (
+                name,
+                el.attrs.iter().filter(|a| a.name != "macro").collect(),
+            )
         } else {
-            (el.name["xacro:".len()..].to_string(), el.attrs.iter().collect())
+            (
+                el.name["xacro:".len()..].to_string(),
+                el.attrs.iter().collect(),
+            )
         };
         let Some((ns_macros, ns_symbols, m)) = self.resolve_macro(&name, macros, symbols) else {
             let names = macros.visible_names();
             let hint = did_you_mean(&name, names.iter().map(String::as_str));
-            let e = XacroError::new(ErrorKind::UnknownMacro, format!("unknown macro name: xacro:{name}{hint}"));
+            let e = XacroError::new(
+                ErrorKind::UnknownMacro,
+                format!("unknown macro name: xacro:{name}{hint}"),
+            );
             return Err(self.locate(e, loc, ctx));
         };
         if ctx.macro_depth >= self.opts.limits.max_macro_depth {
@@ -1198,8 +1540,17 @@ impl<'o> Expander<'o> {
             );
             return Err(self.locate(e, loc, ctx));
         }
-        let frame = Rc::new(FrameData { kind: FrameKind::Macro, name: name.clone(), loc, parent: ctx.frame.clone() });
-        let call_ctx = Ctx { frame: Some(frame), macro_depth: ctx.macro_depth + 1, include_depth: ctx.include_depth };
+        let frame = Rc::new(FrameData {
+            kind: FrameKind::Macro,
+            name: name.clone(),
+            loc,
+            parent: ctx.frame.clone(),
+        });
+        let call_ctx = Ctx {
+            frame: Some(frame),
+            macro_depth: ctx.macro_depth + 1,
+            include_depth: ctx.include_depth,
+        };
         let scoped_symbols = Table::child(&ns_symbols, false);
         let scoped_macros = MacroTable::child(&ns_macros);
         let mut params = m.params.clone();
@@ -1219,12 +1570,24 @@ impl<'o> Expander<'o> {
         // The call's children (blocks) are evaluated in the caller's scope.
         let mut call_children = Vec::new();
         let mut call_attrs_out = Vec::new();
-        self.process_children(&el.children, &mut call_children, &mut call_attrs_out, macros, symbols, ctx)?;
-        let mut blocks = call_children.iter().filter(|n| matches!(n.kind, Kind::Element(_)));
+        self.process_children(
+            &el.children,
+            &mut call_children,
+            &mut call_attrs_out,
+            macros,
+            symbols,
+            ctx,
+        )?;
+        let mut blocks = call_children
+            .iter()
+            .filter(|n| matches!(n.kind, Kind::Element(_)));
         for param in params.clone() {
             if param.starts_with('*') {
                 let Some(block) = blocks.next() else {
-                    let e = XacroError::new(ErrorKind::Block, format!("Not enough blocks for macro '{name}'"));
+                    let e = XacroError::new(
+                        ErrorKind::Block,
+                        format!("Not enough blocks for macro '{name}'"),
+                    );
                     return Err(self.locate(e, loc, ctx));
                 };
                 params.retain(|p| *p != param);
@@ -1236,7 +1599,10 @@ impl<'o> Expander<'o> {
                 Kind::Element(e) => e.name.clone(),
                 _ => String::new(),
             };
-            let e = XacroError::new(ErrorKind::Block, format!("Unused block \"{tag}\" in call of macro '{name}'"));
+            let e = XacroError::new(
+                ErrorKind::Block,
+                format!("Unused block \"{tag}\" in call of macro '{name}'"),
+            );
             return Err(self.locate(e, extra.src.loc, ctx));
         }
         for param in params.clone() {
@@ -1265,7 +1631,10 @@ impl<'o> Expander<'o> {
         if !params.is_empty() {
             let e = XacroError::new(
                 ErrorKind::MissingParameter,
-                format!("Undefined parameters [{}] in call of macro '{name}'", params.join(",")),
+                format!(
+                    "Undefined parameters [{}] in call of macro '{name}'",
+                    params.join(",")
+                ),
             );
             return Err(self.locate(e, loc, ctx));
         }
@@ -1294,12 +1663,17 @@ impl<'o> Expander<'o> {
     ) -> Result<(), XacroError> {
         let loc = node.src.loc;
         let attrs = self.check_attrs(node, el, &["filename"], &["ns", "optional"], ctx)?;
-        let [Some(filename), ns, optional] = attrs[..] else { return Ok(()) };
+        let [Some(filename), ns, optional] = attrs[..] else {
+            return Ok(());
+        };
         let (ns_macros, ns_symbols) = match ns {
             Some(ns) => {
                 let ns_name = self.eval_attr(ns, symbols, ctx)?.to_xacro_string();
                 let ns_macros: MacroTableRef = Rc::default();
-                macros.entries.borrow_mut().insert(ns_name.clone(), MacroEntry::Namespace(ns_macros.clone()));
+                macros
+                    .entries
+                    .borrow_mut()
+                    .insert(ns_name.clone(), MacroEntry::Namespace(ns_macros.clone()));
                 let ns_symbols = Table::child(symbols, true);
                 symbols.set_entry(&ns_name, Entry::Namespace(ns_symbols.clone()));
                 (ns_macros, ns_symbols)
@@ -1316,8 +1690,15 @@ impl<'o> Expander<'o> {
                 self.locate(e, a.src.loc, ctx)
             })?,
         };
-        if el.children.iter().any(|c| matches!(c.kind, Kind::Element(_))) {
-            self.warn("Child elements of a <xacro:include> tag are ignored".into(), Some(loc));
+        if el
+            .children
+            .iter()
+            .any(|c| matches!(c.kind, Kind::Element(_)))
+        {
+            self.warn(
+                "Child elements of a <xacro:include> tag are ignored".into(),
+                Some(loc),
+            );
         }
         let spec = self.eval_attr(filename, symbols, ctx)?.to_xacro_string();
         let path = include::abs_filename(&spec, &self.current_file());
@@ -1325,7 +1706,10 @@ impl<'o> Expander<'o> {
         let files = if include::is_glob(&path_text) {
             let files = include::glob_files(&path_text);
             if files.is_empty() {
-                self.warn(format!("Include tag's filename spec \"{path_text}\" matched no files."), Some(loc));
+                self.warn(
+                    format!("Include tag's filename spec \"{path_text}\" matched no files."),
+                    Some(loc),
+                );
             }
             files
         } else {
@@ -1336,33 +1720,53 @@ impl<'o> Expander<'o> {
             if ctx.include_depth >= self.opts.limits.max_include_depth {
                 let e = XacroError::new(
                     ErrorKind::Limit,
-                    format!("includes nested deeper than {} levels", self.opts.limits.max_include_depth),
+                    format!(
+                        "includes nested deeper than {} levels",
+                        self.opts.limits.max_include_depth
+                    ),
                 );
                 return Err(self.locate(e, loc, ctx));
             }
             let canonical = std::fs::canonicalize(&file).ok();
             let cycle = canonical.is_some()
-                && self.file_stack.borrow().iter().any(|f| std::fs::canonicalize(f).ok() == canonical);
+                && self
+                    .file_stack
+                    .borrow()
+                    .iter()
+                    .any(|f| std::fs::canonicalize(f).ok() == canonical);
             if cycle {
                 let e = XacroError::new(
                     ErrorKind::IncludeCycle,
-                    format!("include cycle: {} includes itself (directly or through other files)", file.display()),
+                    format!(
+                        "include cycle: {} includes itself (directly or through other files)",
+                        file.display()
+                    ),
                 );
                 return Err(self.locate(e, loc, ctx));
             }
             let doc = match self.load(&file) {
                 Ok(doc) => doc,
-                Err(e) if optional && matches!(e.kind, ErrorKind::IncludeNotFound | ErrorKind::Io) => continue,
+                Err(e)
+                    if optional && matches!(e.kind, ErrorKind::IncludeNotFound | ErrorKind::Io) =>
+                {
+                    continue
+                }
                 Err(e) => return Err(self.locate(e, filename.src.loc, ctx)),
             };
-            let Some(root) = doc.root().cloned() else { continue };
+            let Some(root) = doc.root().cloned() else {
+                continue;
+            };
             let frame = Rc::new(FrameData {
                 kind: FrameKind::Include,
                 name: file.display().to_string(),
                 loc,
                 parent: ctx.frame.clone(),
             });
-            let inc_ctx = Ctx { frame: Some(frame), macro_depth: ctx.macro_depth, include_depth: ctx.include_depth + 1 };
+            let inc_ctx = Ctx {
+                frame: Some(frame),
+                macro_depth: ctx.macro_depth,
+                include_depth: ctx.include_depth + 1,
+            };
             self.file_stack.borrow_mut().push(file);
             let built = self.eval_element(&root, &ns_macros, &ns_symbols, &inc_ctx);
             self.file_stack.borrow_mut().pop();

@@ -27,7 +27,10 @@ pub(crate) fn is_glob(spec: &str) -> bool {
 
 /// The files matching a glob, sorted (Python's `sorted(glob.glob(spec))`).
 pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
-    let opts = glob::MatchOptions { require_literal_leading_dot: true, ..Default::default() };
+    let opts = glob::MatchOptions {
+        require_literal_leading_dot: true,
+        ..Default::default()
+    };
     let mut files: Vec<PathBuf> = match glob::glob_with(spec, opts) {
         Ok(paths) => paths.filter_map(Result::ok).collect(),
         Err(_) => Vec::new(),
@@ -78,7 +81,9 @@ pub(crate) fn find_package(
     if let Some(prefixes) = env("AMENT_PREFIX_PATH") {
         for prefix in prefixes.split(':').filter(|p| !p.is_empty()) {
             let prefix = Path::new(prefix);
-            let marker = prefix.join("share/ament_index/resource_index/packages").join(pkg);
+            let marker = prefix
+                .join("share/ament_index/resource_index/packages")
+                .join(pkg);
             if marker.is_file() {
                 return Ok(prefix.join("share").join(pkg));
             }
@@ -109,7 +114,10 @@ pub(crate) fn find_package(
         }
     }
     if let Some(dir) = start.parent() {
-        searched.push(format!("package.xml files in the ancestors of {}", dir.display()));
+        searched.push(format!(
+            "package.xml files in the ancestors of {}",
+            dir.display()
+        ));
     }
     Err(searched)
 }

@@ -143,7 +143,12 @@ impl Expansion {
     pub fn location(&self, origin: &Origin) -> Option<Location> {
         let file = self.sources.get(origin.file)?;
         let (line, col) = file.line_col(origin.span.start);
-        Some(Location { path: file.path.clone(), line, col, byte: origin.span.start })
+        Some(Location {
+            path: file.path.clone(),
+            line,
+            col,
+            byte: origin.span.start,
+        })
     }
 }
 
@@ -158,7 +163,10 @@ pub fn parse_arg(text: &str) -> Option<(String, String)> {
 /// Expand the xacro file at `path`.
 pub fn expand_file(path: &Path, opts: &Options) -> Result<Expansion, XacroError> {
     let text = std::fs::read_to_string(path).map_err(|e| {
-        XacroError::new(ErrorKind::Io, format!("cannot read {}: {e}", path.display()))
+        XacroError::new(
+            ErrorKind::Io,
+            format!("cannot read {}: {e}", path.display()),
+        )
     })?;
     expand_str(&text, path, opts)
 }
@@ -175,7 +183,10 @@ pub fn expand_str(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
             .spawn_scoped(scope, || expand::run(text, path, opts));
         match worker {
             Ok(handle) => handle.join().unwrap_or_else(|_| {
-                Err(XacroError::new(ErrorKind::Internal, "internal error: the xacro expander panicked"))
+                Err(XacroError::new(
+                    ErrorKind::Internal,
+                    "internal error: the xacro expander panicked",
+                ))
             }),
             Err(_) => expand::run(text, path, opts),
         }

@@ -10,13 +10,16 @@ use regex::Regex;
 
 use crate::document::NodeRef;
 
+/// A parameter's default: the forwarded property name (`:=^`) and the default text.
+pub(crate) type DefaultSpec = (Option<String>, Option<String>);
+
 /// A macro: its parameters in order (`*block` / `**block` included), their defaults, and its body (the
 /// `xacro:macro` element, evaluated afresh at each call).
 #[derive(Debug)]
 pub(crate) struct Macro {
     pub params: Vec<String>,
     /// param -> (forwarded name for `:=^`, default text).
-    pub defaults: HashMap<String, (Option<String>, Option<String>)>,
+    pub defaults: HashMap<String, DefaultSpec>,
     pub body: NodeRef,
 }
 
@@ -40,7 +43,10 @@ pub(crate) struct MacroTable {
 impl MacroTable {
     /// A new scope below `parent`.
     pub fn child(parent: &MacroTableRef) -> MacroTableRef {
-        Rc::new(MacroTable { parent: Some(parent.clone()), ..Default::default() })
+        Rc::new(MacroTable {
+            parent: Some(parent.clone()),
+            ..Default::default()
+        })
     }
 
     /// `macros[name]`: innermost first.
@@ -71,7 +77,8 @@ fn macro_arg_re() -> &'static Regex {
     static RE: OnceLock<Regex> = OnceLock::new();
     RE.get_or_init(|| {
         let default_value = r#"\$\{.*?\}|\$\(.*?\)|(?:'.*?'|".*?"|[^\s'"]+)+|"#;
-        let pattern = format!(r"^\s*([^\s:=]+?)\s*:?=\s*(\^\|?)?({default_value})(?:\s+|$)((?s).*)");
+        let pattern =
+            format!(r"^\s*([^\s:=]+?)\s*:?=\s*(\^\|?)?({default_value})(?:\s+|$)((?s).*)");
         // The pattern is a constant; it compiles.
         Regex::new(&pattern).unwrap_or_else(|_| Regex::new("$^").expect("trivial regex"))
     })
@@ -79,23 +86,31 @@ fn macro_arg_re() -> &'static Regex {
 
 /// Python xacro's `parse_macro_arg`: the first parameter of `s`, its (forward, default) spec when it has
 /// `:=` / `=`, and the rest of the string.
-pub(crate) fn parse_macro_arg(s: &str) -> (String, Option<(Option<String>, Option<String>)>, String) {
+pub(crate) fn parse_macro_arg(s: &str) -> (String, Option<DefaultSpec>, String) {
     if let Some(c) = macro_arg_re().captures(s) {
         let param = c.get(1).map_or("", |m| m.as_str()).to_string();
         let forward = c.get(2).map(|_| param.clone());
-        let default = c.get(3).map(|m| m.as_str()).filter(|d| !d.is_empty()).map(str::to_string);
+        let default = c
+            .get(3)
+            .map(|m| m.as_str())
+            .filter(|d| !d.is_empty())
+            .map(str::to_string);
         let rest = c.get(4).map_or("", |m| m.as_str()).to_string();
         return (param, Some((forward, default)), rest);
     }
     let trimmed = s.trim_start();
     match trimmed.find(char::is_whitespace) {
-        Some(i) => (trimmed[..i].to_string(), None, trimmed[i..].trim_start().to_string()),
+        Some(i) => (
+            trimmed[..i].to_string(),
+            None,
+            trimmed[i..].trim_start().to_string(),
+        ),
         None => (trimmed.to_string(), None, String::new()),
     }
 }
 
 /// All parameters of a `params` attribute.
-pub(crate) fn parse_params(params: &str) -> Vec<(String, Option<(Option<String>, Option<String>)>)> {
+pub(crate) fn parse_params(params: &str) -> Vec<(String, Option<DefaultSpec>)> {
     let mut out = Vec::new();
     let mut rest = params.to_string();
     while !rest.is_empty() {

@@ -38,7 +38,11 @@ pub(crate) struct Table {
 impl Table {
     /// A new scope below `parent`.
     pub fn child(parent: &TableRef, is_namespace: bool) -> TableRef {
-        Rc::new(Table { parent: Some(parent.clone()), is_namespace, ..Default::default() })
+        Rc::new(Table {
+            parent: Some(parent.clone()),
+            is_namespace,
+            ..Default::default()
+        })
     }
 
     /// The table holding `name`, innermost first.
@@ -78,7 +82,9 @@ impl Table {
             Value::Str(s) => eval_literal(&s),
             v => v,
         };
-        self.entries.borrow_mut().insert(name.to_string(), Entry::Value(value));
+        self.entries
+            .borrow_mut()
+            .insert(name.to_string(), Entry::Value(value));
     }
 
     /// Store a block or namespace.
@@ -100,7 +106,14 @@ impl Table {
         let mut names = Vec::new();
         let mut t = Some(self.clone());
         while let Some(table) = t {
-            names.extend(table.entries.borrow().keys().filter(|k| !k.starts_with('*')).cloned());
+            names.extend(
+                table
+                    .entries
+                    .borrow()
+                    .keys()
+                    .filter(|k| !k.starts_with('*'))
+                    .cloned(),
+            );
             t = table.parent.clone();
         }
         names
@@ -149,7 +162,11 @@ pub(crate) fn python_float(text: &str) -> Option<f64> {
         return t.to_ascii_lowercase().parse::<f64>().ok();
     }
     // Rust accepts the same decimal forms ("1.", ".5", "1e5"); reject anything else it might take.
-    if body.is_empty() || !body.bytes().all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-')) {
+    if body.is_empty()
+        || !body
+            .bytes()
+            .all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'))
+    {
         return None;
     }
     t.parse::<f64>().ok()

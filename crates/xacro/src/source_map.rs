@@ -18,8 +18,17 @@ impl SourceFile {
     /// A source file with its text.
     pub fn new(path: PathBuf, text: String) -> Self {
         let mut line_starts = vec![0];
-        line_starts.extend(text.bytes().enumerate().filter(|(_, b)| *b == b'\n').map(|(i, _)| i + 1));
-        SourceFile { path, text, line_starts }
+        line_starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|(_, b)| *b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
+        SourceFile {
+            path,
+            text,
+            line_starts,
+        }
     }
 
     /// The 1-based line and 1-based column (in characters) of byte offset `byte`. Offsets past the end are
@@ -29,7 +38,9 @@ impl SourceFile {
         let line = self.line_starts.partition_point(|&s| s <= byte).max(1);
         let start = self.line_starts.get(line - 1).copied().unwrap_or(0);
         let col = self.text.get(start..).map_or(0, |rest| {
-            rest.char_indices().take_while(|(i, _)| start + i < byte).count()
+            rest.char_indices()
+                .take_while(|(i, _)| start + i < byte)
+                .count()
         });
         (line, col + 1)
     }
@@ -108,20 +119,27 @@ impl SourceMap {
     /// The innermost mapped piece containing `output_byte` (an attribute value or name rather than its start
     /// tag), or `None` for bytes no source produced (indentation, end tags, the banner).
     pub fn origin(&self, output_byte: usize) -> Option<&Origin> {
-        self.entry_at(output_byte).and_then(|e| self.origins.get(e.origin))
+        self.entry_at(output_byte)
+            .and_then(|e| self.origins.get(e.origin))
     }
 
     /// Like [`SourceMap::origin`], with the entry (output range and kind of piece).
     pub fn entry_at(&self, output_byte: usize) -> Option<&Entry> {
         // Entries are sorted by start; only a start tag can contain later entries (its attributes), so the
         // innermost match is the last entry starting at or before the offset, or failing that its start tag.
-        let idx = self.entries.partition_point(|e| e.output.start <= output_byte);
+        let idx = self
+            .entries
+            .partition_point(|e| e.output.start <= output_byte);
         let before = self.entries.get(..idx)?;
         let last = before.last()?;
         if last.output.contains(&output_byte) {
             return Some(last);
         }
-        before.iter().rev().find(|e| e.piece == Piece::StartTag).filter(|e| e.output.contains(&output_byte))
+        before
+            .iter()
+            .rev()
+            .find(|e| e.piece == Piece::StartTag)
+            .filter(|e| e.output.contains(&output_byte))
     }
 
     /// All mapped pieces, in output order.
@@ -150,7 +168,11 @@ impl SourceMap {
     }
 
     pub(crate) fn push_entry(&mut self, output: Range<usize>, piece: Piece, origin: usize) {
-        self.entries.push(Entry { output, piece, origin });
+        self.entries.push(Entry {
+            output,
+            piece,
+            origin,
+        });
     }
 
     pub(crate) fn push_origin(&mut self, origin: Origin) -> usize {

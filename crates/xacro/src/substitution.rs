@@ -32,7 +32,11 @@ pub(crate) fn resolve_args(text: &str, host: &dyn SubstitutionHost) -> Result<St
     resolve_pass(&resolved, host, true)
 }
 
-fn resolve_pass(text: &str, host: &dyn SubstitutionHost, find_only: bool) -> Result<String, XacroError> {
+fn resolve_pass(
+    text: &str,
+    host: &dyn SubstitutionHost,
+    find_only: bool,
+) -> Result<String, XacroError> {
     let mut resolved = text.to_string();
     for a in collect_args(text)? {
         let splits: Vec<&str> = a.split(' ').filter(|s| !s.is_empty()).collect();
@@ -50,26 +54,41 @@ fn resolve_pass(text: &str, host: &dyn SubstitutionHost, find_only: bool) -> Res
         let value = match command {
             "env" => {
                 if args.len() != 1 {
-                    return Err(subst_error(format!("$(env var) command only accepts one argument [{a}]")));
+                    return Err(subst_error(format!(
+                        "$(env var) command only accepts one argument [{a}]"
+                    )));
                 }
-                host.env(args[0])
-                    .ok_or_else(|| subst_error(format!("environment variable '{}' is not set", args[0])))?
+                host.env(args[0]).ok_or_else(|| {
+                    subst_error(format!("environment variable '{}' is not set", args[0]))
+                })?
             }
             "optenv" => {
                 let Some((name, default)) = args.split_first() else {
-                    return Err(subst_error(format!("$(optenv var) must specify an environment variable [{a}]")));
+                    return Err(subst_error(format!(
+                        "$(optenv var) must specify an environment variable [{a}]"
+                    )));
                 };
                 host.env(name).unwrap_or_else(|| default.join(" "))
             }
             "dirname" => host.dirname()?,
             "arg" => match args {
-                [] => return Err(subst_error(format!("$(arg var) must specify a variable name [{a}]"))),
+                [] => {
+                    return Err(subst_error(format!(
+                        "$(arg var) must specify a variable name [{a}]"
+                    )))
+                }
                 [name] => host.arg(name)?,
-                _ => return Err(subst_error(format!("$(arg var) may only specify one arg [{a}]"))),
+                _ => {
+                    return Err(subst_error(format!(
+                        "$(arg var) may only specify one arg [{a}]"
+                    )))
+                }
             },
             _ => {
                 if args.len() != 1 {
-                    return Err(subst_error(format!("$(find pkg) accepts exactly one argument [{a}]")));
+                    return Err(subst_error(format!(
+                        "$(find pkg) accepts exactly one argument [{a}]"
+                    )));
                 }
                 host.find(args[0])?
             }
@@ -104,7 +123,11 @@ fn collect_args(text: &str) -> Result<Vec<String>, XacroError> {
             '(' => match state {
                 State::Dollar => state = State::Lp,
                 State::Out => {}
-                _ => return Err(subst_error(format!("Invalid left parenthesis \"(\" in substitution args [{text}]"))),
+                _ => {
+                    return Err(subst_error(format!(
+                        "Invalid left parenthesis \"(\" in substitution args [{text}]"
+                    )))
+                }
             },
             ')' => {
                 if state == State::In {
@@ -174,8 +197,17 @@ mod tests {
         assert_eq!(resolve_args("$(optenv NOPE a b)", &Host).unwrap(), "a b");
         assert_eq!(resolve_args("$(env HOME)", &Host).unwrap(), "/home/u");
         assert_eq!(resolve_args("$()", &Host).unwrap(), "$()");
-        assert_eq!(resolve_args("$(bogus x)", &Host).unwrap_err().kind, ErrorKind::Substitution);
-        assert_eq!(resolve_args("$(env NOPE)", &Host).unwrap_err().kind, ErrorKind::Substitution);
-        assert_eq!(resolve_args("$(arg zz)", &Host).unwrap_err().kind, ErrorKind::UndefinedArgument);
+        assert_eq!(
+            resolve_args("$(bogus x)", &Host).unwrap_err().kind,
+            ErrorKind::Substitution
+        );
+        assert_eq!(
+            resolve_args("$(env NOPE)", &Host).unwrap_err().kind,
+            ErrorKind::Substitution
+        );
+        assert_eq!(
+            resolve_args("$(arg zz)", &Host).unwrap_err().kind,
+            ErrorKind::UndefinedArgument
+        );
     }
 }

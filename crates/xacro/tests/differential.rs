@@ -13,7 +13,9 @@ fn xacro_files(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
         for e in entries.flatten() {
             let p = e.path();
             if p.is_dir() {
@@ -29,34 +31,53 @@ fn xacro_files(dir: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn pr2_every_xacro_file() {
-    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else { return };
+    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else {
+        return;
+    };
     let pkg = robots.join("pr2/pr2_description");
     let prefix = ament_prefix("pr2", &[("pr2_description", pkg.clone())]);
     let share = prefix.join("share/pr2_description");
     // Through the package path, as `$(find)` sees it (relative includes then agree too).
     let files = xacro_files(&pkg);
-    assert!(files.len() >= 50, "expected the 53 PR2 xacro files, found {}", files.len());
-    let cases: Vec<_> = files.iter().map(|f| (share.join(f.strip_prefix(&pkg).expect("below pkg")), vec![])).collect();
-    assert!(cases.iter().any(|(f, _)| f.ends_with("robots/pr2.urdf.xacro")));
+    assert!(
+        files.len() >= 50,
+        "expected the 53 PR2 xacro files, found {}",
+        files.len()
+    );
+    let cases: Vec<_> = files
+        .iter()
+        .map(|f| (share.join(f.strip_prefix(&pkg).expect("below pkg")), vec![]))
+        .collect();
+    assert!(cases
+        .iter()
+        .any(|(f, _)| f.ends_with("robots/pr2.urdf.xacro")));
     check_all(&oracle, &cases, &env_for(&prefix));
 }
 
 #[test]
 fn franka_frankie() {
-    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else { return };
+    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else {
+        return;
+    };
     let pkg = robots.join("franka_panda/franka_description");
     let prefix = ament_prefix("franka", &[("franka_description", pkg.clone())]);
     let share = prefix.join("share/franka_description/robots");
-    let cases = ["frankie_arm_hand.urdf.xacro", "frankie_arm.xacro", "hand.xacro"]
-        .iter()
-        .map(|f| (share.join(f), vec![]))
-        .collect::<Vec<_>>();
+    let cases = [
+        "frankie_arm_hand.urdf.xacro",
+        "frankie_arm.xacro",
+        "hand.xacro",
+    ]
+    .iter()
+    .map(|f| (share.join(f), vec![]))
+    .collect::<Vec<_>>();
     check_all(&oracle, &cases, &env_for(&prefix));
 }
 
 #[test]
 fn husky_with_and_without_laser() {
-    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else { return };
+    let (Some(oracle), Some(robots)) = (oracle(), shared_robots()) else {
+        return;
+    };
     let husky = robots.join("husky/husky_description");
     let lms = robots.join("husky/lms1xx");
     let prefix = ament_prefix("husky", &[("husky_description", husky), ("lms1xx", lms)]);
@@ -64,18 +85,33 @@ fn husky_with_and_without_laser() {
     let cases = vec![
         (main.clone(), vec![]),
         (main.clone(), vec![("laser_enabled", "true")]),
-        (main.clone(), vec![("laser_enabled", "true"), ("realsense_enabled", "true")]),
-        (prefix.join("share/lms1xx/urdf/sick_lms1xx.urdf.xacro"), vec![]),
+        (
+            main.clone(),
+            vec![("laser_enabled", "true"), ("realsense_enabled", "true")],
+        ),
+        (
+            prefix.join("share/lms1xx/urdf/sick_lms1xx.urdf.xacro"),
+            vec![],
+        ),
     ];
     check_all(&oracle, &cases, &env_for(&prefix));
 }
 
 #[test]
 fn hector_quadrotor() {
-    let (Some(oracle), Some(corpus)) = (oracle(), corpus()) else { return };
+    let (Some(oracle), Some(corpus)) = (oracle(), corpus()) else {
+        return;
+    };
     let files = xacro_files(&corpus.join("hector_description"));
-    assert_eq!(files.len(), 2, "expected example-robot-data's two hector xacros: {files:?}");
-    let prefix = ament_prefix("hector", &[("hector_description", corpus.join("hector_description"))]);
+    assert_eq!(
+        files.len(),
+        2,
+        "expected example-robot-data's two hector xacros: {files:?}"
+    );
+    let prefix = ament_prefix(
+        "hector",
+        &[("hector_description", corpus.join("hector_description"))],
+    );
     let cases: Vec<_> = files.into_iter().map(|f| (f, vec![])).collect();
     check_all(&oracle, &cases, &env_for(&prefix));
 }
@@ -95,13 +131,19 @@ fn fixtures_match_python_xacro() {
         .filter(|p| p.extension().is_some_and(|x| x == "xacro"))
         .collect();
     files.sort();
-    let arg_texts: Vec<String> =
-        files.iter().map(|f| std::fs::read_to_string(f.with_extension("args")).unwrap_or_default()).collect();
+    let arg_texts: Vec<String> = files
+        .iter()
+        .map(|f| std::fs::read_to_string(f.with_extension("args")).unwrap_or_default())
+        .collect();
     let cases: Vec<(PathBuf, Vec<(&str, &str)>)> = files
         .iter()
         .zip(&arg_texts)
         .map(|(f, text)| {
-            let args = text.lines().filter_map(|l| l.split_once(":=")).map(|(k, v)| (k.trim(), v.trim())).collect();
+            let args = text
+                .lines()
+                .filter_map(|l| l.split_once(":="))
+                .map(|(k, v)| (k.trim(), v.trim()))
+                .collect();
             (f.clone(), args)
         })
         .collect();

@@ -26,7 +26,10 @@ pub fn unavailable(what: &str) -> Option<PathBuf> {
 pub fn oracle() -> Option<PathBuf> {
     match std::env::var_os("URDF_VALIDATOR_XACRO").map(PathBuf::from) {
         Some(p) if p.is_file() => Some(p),
-        Some(p) => unavailable(&format!("URDF_VALIDATOR_XACRO={} does not exist; run scripts/test.sh", p.display())),
+        Some(p) => unavailable(&format!(
+            "URDF_VALIDATOR_XACRO={} does not exist; run scripts/test.sh",
+            p.display()
+        )),
         None => unavailable(
             "URDF_VALIDATOR_XACRO is not set: the differential tests against Python xacro need it \
              (bash scripts/test.sh sets it up)",
@@ -46,7 +49,10 @@ pub fn shared_robots() -> Option<PathBuf> {
     if dir.is_dir() {
         Some(dir)
     } else {
-        unavailable(&format!("shared robots not found at {} (set URDF_VALIDATOR_SHARED_ROBOTS)", dir.display()))
+        unavailable(&format!(
+            "shared robots not found at {} (set URDF_VALIDATOR_SHARED_ROBOTS)",
+            dir.display()
+        ))
     }
 }
 
@@ -54,7 +60,9 @@ pub fn shared_robots() -> Option<PathBuf> {
 pub fn corpus() -> Option<PathBuf> {
     match std::env::var_os("URDF_VALIDATOR_CORPUS").map(PathBuf::from) {
         Some(p) if p.is_dir() => Some(p),
-        _ => unavailable("URDF_VALIDATOR_CORPUS is not set or missing (bash scripts/test.sh sets it up)"),
+        _ => unavailable(
+            "URDF_VALIDATOR_CORPUS is not set or missing (bash scripts/test.sh sets it up)",
+        ),
     }
 }
 
@@ -88,8 +96,13 @@ pub fn env_for(prefix: &Path) -> Vec<(String, String)> {
 pub fn options(env: &[(String, String)], args: &[(&str, &str)]) -> Options {
     let env: Vec<(String, String)> = env.to_vec();
     Options {
-        args: args.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
-        env: Some(Arc::new(move |name: &str| env.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone()))),
+        args: args
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect(),
+        env: Some(Arc::new(move |name: &str| {
+            env.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone())
+        })),
         ..Default::default()
     }
 }
@@ -102,7 +115,9 @@ pub fn run_python(
     args: &[(&str, &str)],
 ) -> Result<String, String> {
     let mut cmd = Command::new(oracle);
-    cmd.arg(file).env_clear().env("PATH", std::env::var("PATH").unwrap_or_default());
+    cmd.arg(file)
+        .env_clear()
+        .env("PATH", std::env::var("PATH").unwrap_or_default());
     for (k, v) in env {
         cmd.env(k, v);
     }
@@ -166,7 +181,10 @@ pub fn python_error_kind(message: &str) -> ErrorKind {
         ErrorKind::UndefinedProperty
     } else if has("No such file or directory") {
         ErrorKind::IncludeNotFound
-    } else if has("SubstitutionException") || has("substitution command") || has("environment variable") {
+    } else if has("SubstitutionException")
+        || has("substitution command")
+        || has("environment variable")
+    {
         ErrorKind::Substitution
     } else if has("yaml") || has("YAML") {
         ErrorKind::Yaml
@@ -190,7 +208,11 @@ pub fn python_error_kind(message: &str) -> ErrorKind {
 /// trimmed; comments, processing instructions and whitespace between elements ignored.
 #[derive(Debug, PartialEq)]
 pub enum Canon {
-    Element { name: String, attrs: BTreeMap<String, String>, children: Vec<Canon> },
+    Element {
+        name: String,
+        attrs: BTreeMap<String, String>,
+        children: Vec<Canon>,
+    },
     Text(String),
 }
 
@@ -203,9 +225,21 @@ fn expanded_name(ns: Option<&str>, name: &str) -> String {
 
 fn canon_node(n: roxmltree::Node) -> Option<Canon> {
     if n.is_element() {
-        let attrs = n.attributes().map(|a| (expanded_name(a.namespace(), a.name()), a.value().to_string())).collect();
+        let attrs = n
+            .attributes()
+            .map(|a| {
+                (
+                    expanded_name(a.namespace(), a.name()),
+                    a.value().to_string(),
+                )
+            })
+            .collect();
         let children = n.children().filter_map(canon_node).collect();
-        Some(Canon::Element { name: expanded_name(n.tag_name().namespace(), n.tag_name().name()), attrs, children })
+        Some(Canon::Element {
+            name: expanded_name(n.tag_name().namespace(), n.tag_name().name()),
+            attrs,
+            children,
+        })
     } else if n.is_text() {
         let t = n.text().unwrap_or("").trim();
         (!t.is_empty()).then(|| Canon::Text(t.to_string()))
@@ -223,10 +257,20 @@ pub fn canonical(xml: &str) -> Result<Canon, String> {
 /// The first difference between two canonical trees, as a path and description.
 pub fn first_difference(a: &Canon, b: &Canon, path: &str) -> Option<String> {
     match (a, b) {
-        (Canon::Text(x), Canon::Text(y)) => (x != y).then(|| format!("{path}: text {x:?} != {y:?}")),
+        (Canon::Text(x), Canon::Text(y)) => {
+            (x != y).then(|| format!("{path}: text {x:?} != {y:?}"))
+        }
         (
-            Canon::Element { name: na, attrs: aa, children: ca },
-            Canon::Element { name: nb, attrs: ab, children: cb },
+            Canon::Element {
+                name: na,
+                attrs: aa,
+                children: ca,
+            },
+            Canon::Element {
+                name: nb,
+                attrs: ab,
+                children: cb,
+            },
         ) => {
             let here = format!("{path}/{na}");
             if na != nb {
@@ -257,14 +301,21 @@ pub enum Outcome {
 }
 
 /// Expand `file` with both and compare.
-pub fn compare(oracle: &Path, file: &Path, env: &[(String, String)], args: &[(&str, &str)]) -> Outcome {
+pub fn compare(
+    oracle: &Path,
+    file: &Path,
+    env: &[(String, String)],
+    args: &[(&str, &str)],
+) -> Outcome {
     let python = run_python(oracle, file, env, args);
     let ours = xacro::expand_file(file, &options(env, args));
     match (python, ours) {
         (Ok(py), Ok(ours)) => {
             let (a, b) = match (canonical(&py), canonical(&ours.xml)) {
                 (Ok(a), Ok(b)) => (a, b),
-                (Err(e), _) => return Outcome::Differs(format!("python output does not parse: {e}")),
+                (Err(e), _) => {
+                    return Outcome::Differs(format!("python output does not parse: {e}"))
+                }
                 (_, Err(e)) => return Outcome::Differs(format!("our output does not parse: {e}")),
             };
             match first_difference(&a, &b, "") {
@@ -282,11 +333,17 @@ pub fn compare(oracle: &Path, file: &Path, env: &[(String, String)], args: &[(&s
             if kind == ours_kind {
                 Outcome::SameError(kind)
             } else {
-                Outcome::Differs(format!("python failed with {kind:?} ({}) but ours with {:?} ({ours})", py.trim(), ours.kind))
+                Outcome::Differs(format!(
+                    "python failed with {kind:?} ({}) but ours with {:?} ({ours})",
+                    py.trim(),
+                    ours.kind
+                ))
             }
         }
         (Ok(_), Err(ours)) => Outcome::Differs(format!("python succeeded, ours failed: {ours}")),
-        (Err(py), Ok(_)) => Outcome::Differs(format!("ours succeeded, python failed: {}", py.trim())),
+        (Err(py), Ok(_)) => {
+            Outcome::Differs(format!("ours succeeded, python failed: {}", py.trim()))
+        }
     }
 }
 
@@ -304,6 +361,15 @@ pub fn check_all(oracle: &Path, cases: &[(PathBuf, Vec<(&str, &str)>)], env: &[(
             Outcome::Differs(d) => failures.push(format!("{} {args:?}: {d}", file.display())),
         }
     }
-    eprintln!("{same} identical, {same_err} same error, {} different", failures.len());
-    assert!(failures.is_empty(), "{} of {} cases differ:\n{}", failures.len(), cases.len(), failures.join("\n"));
+    eprintln!(
+        "{same} identical, {same_err} same error, {} different",
+        failures.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} of {} cases differ:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
 }

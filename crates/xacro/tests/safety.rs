@@ -1,0 +1,169 @@
+//! Safety: expressions cannot run code, and runaway inputs stop at the limits with an error (never a
+//! panic, a hang or an unbounded allocation).
+
+use std::path::Path;
+
+use xacro::{expand_str, ErrorKind, Limits, Options};
+
+fn doc(body: &str) -> String {
+    format!("<?xml version=\"1.0\"?>\n<robot name=\"r\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n{body}\n</robot>\n")
+}
+
+fn expand(body: &str) -> Result<xacro::Expansion, xacro::XacroError> {
+    expand_str(
+        &doc(body),
+        Path::new("/nonexistent/safety.urdf.xacro"),
+        &Options::default(),
+    )
+}
+
+#[test]
+fn code_execution_is_rejected_and_nothing_runs() {
+    let marker = Path::new(env!("CARGO_TARGET_TMPDIR")).join("xacro_pwned");
+    let _ = std::fs::remove_file(&marker);
+    let m = marker.display();
+    let payloads = [
+        format!("${{__import__('os').system('touch {m}')}}"),
+        format!("${{__builtins__['__import__']('os').system('touch {m}')}}"),
+        "${().__class__.__bases__[0].__subclasses__()}".to_string(),
+        "${[c for c in ().__class__.__base__.__subclasses__()]}".to_string(),
+        format!("${{open('{m}', 'w').write('x')}}"),
+        format!("${{eval(\"__import__('os').system('touch {m}')\")}}"),
+        "${exec('import os')}".to_string(),
+        "${compile('1', 'x', 'eval')}".to_string(),
+        "${globals()}".to_string(),
+        "${getattr(xacro, 'load_yaml')}".to_string(),
+        "${xacro.__dict__}".to_string(),
+        "${python.vars()}".to_string(),
+        format!("$(eval __import__('os').system('touch {m}'))"),
+        format!("$(eval open('{m}', 'w'))"),
+        "${(lambda: 1).__globals__}".to_string(),
+        "${type('x', (), {})}".to_string(),
+    ];
+    for p in &payloads {
+        let result = expand(&format!("<link name=\"{}\"/>", p.replace('"', "&quot;")));
+        assert!(
+            result.is_err(),
+            "accepted: {p} -> {:?}",
+            result.map(|x| x.xml)
+        );
+        assert!(!marker.exists(), "{p} created {m}");
+    }
+    // In element text and property values too.
+    let result = expand(&format!(
+        "<xacro:property name=\"p\" value=\"${{__import__('os').system('touch {m}')}}\"/><link name=\"${{p}}\"/>"
+    ));
+    assert_eq!(result.map(|_| ()).unwrap_err().kind, ErrorKind::InvalidName);
+    assert!(!marker.exists());
+}
+
+#[test]
+fn runaway_recursion_stops_with_the_call_stack() {
+    let e = expand(
+        r#"<xacro:macro name="f" params="n"><xacro:f n="${n}"/></xacro:macro><xacro:f n="1"/>"#,
+    )
+    .map(|_| ())
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Limit, "{e}");
+    assert_eq!(e.stack.len(), Limits::default().max_macro_depth);
+    assert!(e.to_string().contains("in macro 'f' called at"), "{e}");
+}
+
+#[test]
+fn exponential_expansion_hits_the_node_limit() {
+    let mut body = String::from(r#"<xacro:macro name="m0" params=""><a/></xacro:macro>"#);
+    for i in 1..40 {
+        body.push_str(&format!(
+            r#"<xacro:macro name="m{i}" params=""><xacro:m{p}/><xacro:m{p}/></xacro:macro>"#,
+            p = i - 1
+        ));
+    }
+    body.push_str("<xacro:m39/>");
+    let e = expand(&body).map(|_| ()).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Limit, "{e}");
+}
+
+#[test]
+fn string_doubling_hits_the_size_limit() {
+    let mut body = String::from(r#"<xacro:property name="p0" value="xxxxxxxxxxxxxxxx"/>"#);
+    for i in 1..40 {
+        body.push_str(&format!(
+            r#"<xacro:property name="p{i}" value="${{p{p}}}${{p{p}}}"/>"#,
+            p = i - 1
+        ));
+    }
+    body.push_str(r#"<link name="${p39}"/>"#);
+    let e = expand(&body).map(|_| ()).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Limit, "{e}");
+}
+
+#[test]
+fn output_size_limit_is_configurable() {
+    let opts = Options {
+        limits: Limits {
+            max_output_bytes: 1000,
+            ..Limits::default()
+        },
+        ..Options::default()
+    };
+    let body: String = (0..200)
+        .map(|i| format!("<link name=\"link_{i}\"/>"))
+        .collect();
+    let e = expand_str(&doc(&body), Path::new("x.xacro"), &opts)
+        .map(|_| ())
+        .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Limit, "{e}");
+}
+
+#[test]
+fn dtds_are_refused() {
+    let text = "<?xml version=\"1.0\"?>\n<!DOCTYPE r [<!ENTITY a \"aaaa\"><!ENTITY b \"&a;&a;&a;\">]>\n<robot>&b;</robot>";
+    let e = expand_str(text, Path::new("dtd.xacro"), &Options::default())
+        .map(|_| ())
+        .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::XmlParse, "{e}");
+    assert!(e.location.is_some());
+}
+
+#[test]
+fn deep_nesting_is_an_error_not_a_crash() {
+    let depth = 50_000;
+    let text = format!(
+        "<robot>{}{}</robot>",
+        "<a>".repeat(depth),
+        "</a>".repeat(depth)
+    );
+    let result = expand_str(&text, Path::new("deep.xacro"), &Options::default());
+    assert!(result.is_err());
+}
+
+#[test]
+fn truncated_and_mangled_inputs_never_panic() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    for entry in std::fs::read_dir(&dir).expect("fixtures").flatten() {
+        let path = entry.path();
+        if path.extension().is_none_or(|x| x != "xacro") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("read");
+        let cuts: Vec<usize> = (0..text.len())
+            .step_by(7)
+            .filter(|&i| text.is_char_boundary(i))
+            .collect();
+        for cut in cuts {
+            for variant in [
+                text[..cut].to_string(),
+                text[..cut].to_string() + &text[cut..].replacen('}', "", 1),
+            ] {
+                if let Err(e) = expand_str(&variant, &path, &Options::default()) {
+                    assert_ne!(
+                        e.kind,
+                        ErrorKind::Internal,
+                        "{} cut at {cut}: {e}",
+                        path.display()
+                    );
+                }
+            }
+        }
+    }
+}
