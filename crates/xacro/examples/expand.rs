@@ -44,7 +44,10 @@ fn main() -> ExitCode {
             times.push(t.elapsed().as_secs_f64());
         }
         times.sort_by(f64::total_cmp);
-        eprintln!("median {:.3} ms over {repeat} runs", times[repeat / 2] * 1e3);
+        eprintln!(
+            "median {:.3} ms over {repeat} runs",
+            times[repeat / 2] * 1e3
+        );
         return ExitCode::SUCCESS;
     }
     match xacro::expand_file(&file, &opts) {
@@ -57,10 +60,20 @@ fn main() -> ExitCode {
                 }
             }
             if origins {
-                for e in x.map.entries().iter().filter(|e| e.piece == xacro::Piece::StartTag) {
-                    let Some(origin) = x.map.origins().get(e.origin) else { continue };
+                for e in x
+                    .map
+                    .entries()
+                    .iter()
+                    .filter(|e| e.piece == xacro::Piece::StartTag)
+                {
+                    let Some(origin) = x.map.origins().get(e.origin) else {
+                        continue;
+                    };
                     let tag = x.xml.get(e.output.clone()).unwrap_or("");
-                    let loc = x.location(origin).map(|l| l.to_string()).unwrap_or_default();
+                    let loc = x
+                        .location(origin)
+                        .map(|l| l.to_string())
+                        .unwrap_or_default();
                     let stack: Vec<String> = x
                         .map
                         .stack(origin)
@@ -72,7 +85,11 @@ fn main() -> ExitCode {
                             format!("{:?} {} at {}", f.kind, f.name, at.unwrap_or_default())
                         })
                         .collect();
-                    println!("{loc}  {}  [{}]", tag.chars().take(60).collect::<String>(), stack.join(" <- "));
+                    println!(
+                        "{loc}  {}  [{}]",
+                        tag.chars().take(60).collect::<String>(),
+                        stack.join(" <- ")
+                    );
                 }
             }
             ExitCode::SUCCESS
