@@ -7,7 +7,10 @@ use urdf_validator::kinematics::{forward_kinematics, Data};
 use urdf_validator::{checks, classify, geometry, model::Model, parse, Options};
 
 fn main() {
-    let options = Options::default();
+    let options = Options {
+        resolver: urdf_validator::resolve::PackageResolver::from_env(Vec::new()),
+        ..Options::default()
+    };
     for arg in std::env::args().skip(1) {
         let path = Path::new(&arg);
         let text = match parse::read_text(path) {
@@ -36,6 +39,12 @@ fn main() {
         forward_kinematics(&model, &model.zero_configuration(), &mut data);
         let c = classify::classify(&robot, &model, &data, &supports);
         println!("{arg}: {} ({})", c.robot_type.as_str(), c.evidence);
+        for w in &c.wheels {
+            println!("  wheel {}", robot.links[w.0].name.value);
+        }
+        for leg in &c.legs {
+            println!("  leg from {}", robot.joints[leg.top_joint.0].name.value);
+        }
         for arm in &c.arms {
             let first = arm
                 .first_joint(&model)

@@ -61,6 +61,8 @@ const FINGER_PARTS: [&str; 6] = ["finger", "fngr", "thumb", "knuckle", "claw", "
 /// Whole words (between `_`, `.`, `-` or digits) that mark a finger: `hand_index_flex_1`, `ring_joint`.
 const FINGER_WORDS: [&str; 5] = ["index", "middle", "ring", "little", "jaw"];
 const SENSOR_PARTS: [&str; 5] = ["head", "neck", "eye", "camera", "pan_tilt"];
+/// Parts of names of tool frames.
+const TOOL_WORDS: [&str; 6] = ["tcp", "tool", "grasp", "end_effector", "ee_", "_ee"];
 /// Whole words of virtual base joints (a planar base modelled with joints) that belong to the body.
 const BASE_WORDS: [&str; 4] = ["base", "world", "odom", "virtual"];
 
@@ -187,8 +189,10 @@ struct Detector<'a> {
     arms: Vec<Arm>,
 }
 
-/// At a split with this many limb branches the chain has reached a hand (fingers), not a torso.
+/// A split into this many limb branches, none longer than [`FINGER_JOINTS`], is a hand, not a torso.
 const HAND_BRANCHES: usize = 4;
+/// The most joints a finger has.
+const FINGER_JOINTS: usize = 4;
 
 impl Detector<'_> {
     /// Child joints of `link` that move a limb, with their limb-joint counts.
@@ -240,14 +244,14 @@ impl Detector<'_> {
             self.is_base_joint(first) || !self.model.joint_data[first.0].is_actuated();
         loop {
             let branches = self.limb_branches(link);
+            let hand = branches.len() >= HAND_BRANCHES
+                && branches.iter().all(|(_, n)| *n <= FINGER_JOINTS);
             let torso = self.carries_locomotion(link)
                 || (leading_base
                     && path.iter().all(|&j| {
                         self.is_base_joint(j) || !self.model.joint_data[j.0].is_actuated()
                     }))
-                || (branches.len() >= 2
-                    && branches.len() < HAND_BRANCHES
-                    && branches.iter().any(|(_, n)| *n >= 3));
+                || (branches.len() >= 2 && !hand && branches.iter().any(|(_, n)| *n >= 3));
             if torso && !branches.is_empty() {
                 // What was followed so far is body: the arms start here.
                 self.visit_body(link, depth);
@@ -311,16 +315,25 @@ impl Detector<'_> {
                     .collect()
             })
             .unwrap_or_default();
-        const TOOL_WORDS: [&str; 6] = ["tcp", "tool", "grasp", "end_effector", "ee_", "_ee"];
+        // A tool frame (tcp, tool, grasp, end effector) beats a `tip` link; deeper beats shallower. Links
+        // named like fingers are fingers when the arm has a hand.
+        let tool_score = |link: LinkId| -> usize {
+            let name = self.robot.links[link.0].name.value.to_ascii_lowercase();
+            if hand.is_some() && finger_link_name(&name) {
+                0
+            } else if has_part(&name, &TOOL_WORDS)
+                || has_word(&name, &["ee"])
+                || name.ends_with("ee_link")
+            {
+                2
+            } else {
+                usize::from(has_word(&name, &["tip"]))
+            }
+        };
         let tool = welded
             .iter()
-            .filter(|(l, _)| {
-                let name = self.robot.links[l.0].name.value.to_ascii_lowercase();
-                has_part(&name, &TOOL_WORDS)
-                    || has_word(&name, &["tip", "ee"])
-                    || name.ends_with("ee_link")
-            })
-            .max_by_key(|(_, via)| via.len());
+            .filter(|(l, _)| tool_score(*l) > 0)
+            .max_by_key(|(l, via)| (tool_score(*l), via.len()));
         let (tip, via) = match (tool, hand) {
             (Some((tool, via)), _) => (*tool, via.clone()),
             (None, Some(hand)) => welded

@@ -418,7 +418,12 @@ pub fn classify(
         })
         .map(LinkId)
         .collect();
-    let leg_tops: Vec<JointId> = legs.iter().map(|leg| leg.top_joint).collect();
+    // One "leg" is an arm resting on the ground, not locomotion.
+    let leg_tops: Vec<JointId> = if legs.len() >= 2 {
+        legs.iter().map(|leg| leg.top_joint).collect()
+    } else {
+        Vec::new()
+    };
     let arms = detect_arms(
         robot,
         model,

@@ -208,7 +208,13 @@ impl Model {
 
 /// Fill `data.link_placement` for configuration `q` (mimic relations must already be applied).
 pub fn forward_kinematics(model: &Model, q: &[f64], data: &mut Data) {
-    for &link in &model.topological_order {
+    forward_kinematics_links(model, q, &model.topological_order, data);
+}
+
+/// Update the placements of `links` only (parents before children, e.g. a subtree in topological order),
+/// keeping every other link where `data` has it.
+pub fn forward_kinematics_links(model: &Model, q: &[f64], links: &[LinkId], data: &mut Data) {
+    for &link in links {
         data.link_placement[link.0] = match model.parent_joint[link.0]
             .and_then(|j| model.joint_links[j.0].map(|(p, _)| (j, p)))
         {

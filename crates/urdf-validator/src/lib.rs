@@ -38,6 +38,7 @@ pub mod statics_section;
 pub mod suggest;
 pub mod support_polygon;
 pub mod timestamp;
+pub mod workspace;
 
 use std::path::Path;
 
@@ -59,6 +60,8 @@ pub struct Options {
     pub resolver: PackageResolver,
     /// Pose and payload for statics.
     pub statics: statics_section::StaticsOptions,
+    /// Samples, task and orientation for the workspace.
+    pub workspace: workspace::WorkspaceOptions,
     /// What the user declares instead of heuristics.
     pub overrides: physics::Overrides,
     /// Meshes loaded so far (shared by every file of a run).
@@ -116,18 +119,20 @@ pub fn validate_text(
             .iter()
             .map(|link| geometry::link_supports(link, &|uri| ctx.mesh_points(uri)))
             .collect();
-        let physics = physics::analyse(
-            &robot,
-            &model,
-            path,
-            &supports,
-            &options.statics,
-            &options.overrides,
-        )
-        .map_err(|message| LoadError::Usage {
-            path: path.to_path_buf(),
-            message,
-        })?;
+        let mesh_points = |uri: &str| ctx.mesh_points(uri);
+        let inputs = physics::Inputs {
+            urdf_path: path,
+            supports: &supports,
+            mesh_points: &mesh_points,
+            statics: &options.statics,
+            workspace: &options.workspace,
+            overrides: &options.overrides,
+        };
+        let physics =
+            physics::analyse(&robot, &model, &inputs).map_err(|message| LoadError::Usage {
+                path: path.to_path_buf(),
+                message,
+            })?;
         Some(physics)
     } else {
         None
@@ -157,6 +162,12 @@ fn unknowns(analyses: &physics::Physics) -> Vec<String> {
         lines.push(format!(
             "Stability: {}",
             analyses.stability.reason.as_deref().unwrap_or("no result")
+        ));
+    }
+    if analyses.workspace.status == Status::Unknown {
+        lines.push(format!(
+            "Workspace: {}",
+            analyses.workspace.reason.as_deref().unwrap_or("no result")
         ));
     }
     lines
@@ -193,6 +204,7 @@ fn build_report(
         schema_status
             .worst(a.statics.status)
             .worst(a.stability.status)
+            .worst(a.workspace.status)
     });
     Report {
         urdf_path: path.display().to_string(),
@@ -225,6 +237,7 @@ fn build_report(
         physics: summary,
         links,
         statics: analyses.as_ref().map(|a| a.statics.clone()),
+        workspace: analyses.as_ref().map(|a| a.workspace.clone()),
         stability: analyses.map(|a| a.stability),
         findings: findings.iter().map(|f| finding_report(f, source)).collect(),
     }

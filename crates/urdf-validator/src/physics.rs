@@ -1,21 +1,25 @@
 //! Runs the physics analyses in order — statics at the chosen pose, classification at the reference pose,
-//! stability at the chosen pose — and applies the user's declarations (`--robot-type`, `--contact-links`,
-//! `--arm-root`/`--arm-tip`), keeping the heuristics as a cross-check.
+//! stability at the chosen pose, then the workspace of every arm around the chosen pose — and applies the
+//! user's declarations (`--robot-type`, `--contact-links`, `--arm-root`/`--arm-tip`), keeping the
+//! heuristics as a cross-check.
 
 use std::path::Path;
 
 use nalgebra::Vector3;
 
+use crate::arms::{self, Arm};
 use crate::classify::{classify, RobotType};
+use crate::collision::disabled_collisions;
 use crate::geometry::LinkSupports;
 use crate::kinematics::{forward_kinematics, Data};
 use crate::model::{LinkId, Model};
 use crate::pose::{self, PoseOptions};
-use crate::report::{Confidence, StabilitySection, StaticsSection};
+use crate::report::{Confidence, StabilitySection, StaticsSection, WorkspaceSection};
 use crate::robot::Robot;
 use crate::stability_section::{self, PlacedRobot};
 use crate::statics_section::{self, StaticsOptions};
 use crate::suggest::did_you_mean;
+use crate::workspace::{self, CollisionSetup, Scene, WorkspaceOptions};
 
 /// What the user declares instead of letting heuristics guess.
 #[derive(Clone, Debug, Default)]
@@ -37,6 +41,8 @@ pub struct Physics {
     pub statics: StaticsSection,
     /// Stability at the chosen pose.
     pub stability: StabilitySection,
+    /// Reach, task, orientation and self-collision around the chosen pose.
+    pub workspace: WorkspaceSection,
     /// The type the capability profile uses.
     pub robot_type: RobotType,
     /// `exact` when declared.
@@ -58,41 +64,57 @@ fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
     })
 }
 
-/// Check `--arm-root`/`--arm-tip`: both or neither, existing links, the tip below the root.
-fn check_arm(model: &Model, overrides: &Overrides) -> Result<(), String> {
+/// The arm declared with `--arm-root`/`--arm-tip`: both or neither, existing links, the tip below the root.
+fn declared_arm(
+    robot: &Robot,
+    model: &Model,
+    overrides: &Overrides,
+) -> Result<Option<Arm>, String> {
     match (&overrides.arm_root, &overrides.arm_tip) {
-        (None, None) => Ok(()),
+        (None, None) => Ok(None),
         (Some(_), None) | (None, Some(_)) => {
             Err("--arm-root and --arm-tip must be given together".to_string())
         }
         (Some(root), Some(tip)) => {
             let root_id = link_id(model, "--arm-root", root)?;
-            let mut current = link_id(model, "--arm-tip", tip)?;
-            while current != root_id {
-                match model.parent_joint[current.0].and_then(|j| model.joint_links[j.0]) {
-                    Some((parent, _)) => current = parent,
-                    None => {
-                        return Err(format!(
+            let tip_id = link_id(model, "--arm-tip", tip)?;
+            arms::declared(robot, model, root_id, tip_id)
+                .map(Some)
+                .ok_or_else(|| {
+                    format!(
                         "--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree"
-                    ))
-                    }
-                }
-            }
-            Ok(())
+                    )
+                })
         }
     }
 }
 
+/// What the analyses need besides the robot.
+pub struct Inputs<'a> {
+    /// The file (for SRDF lookup and messages).
+    pub urdf_path: &'a Path,
+    /// Ground-contact shapes per link.
+    pub supports: &'a [LinkSupports],
+    /// Hull points of a mesh URI (mesh frame, before scale), `None` when unusable.
+    pub mesh_points: &'a dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+    /// Pose and payload.
+    pub statics: &'a StaticsOptions,
+    /// Samples, task and orientation.
+    pub workspace: &'a WorkspaceOptions,
+    /// Declarations.
+    pub overrides: &'a Overrides,
+}
+
 /// Run the analyses.
-pub fn analyse(
-    robot: &Robot,
-    model: &Model,
-    urdf_path: &Path,
-    supports: &[LinkSupports],
-    statics_options: &StaticsOptions,
-    overrides: &Overrides,
-) -> Result<Physics, String> {
-    check_arm(model, overrides)?;
+pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics, String> {
+    let Inputs {
+        urdf_path,
+        supports,
+        statics: statics_options,
+        overrides,
+        ..
+    } = *inputs;
+    let declared = declared_arm(robot, model, overrides)?;
     let declared_contacts = match &overrides.contact_links {
         Some(names) => Some(
             names
@@ -143,13 +165,65 @@ pub fn analyse(
     if let (Some(ground), Some(com)) = (stability.ground_height, com) {
         statics.com_height_above_ground = Some(com.z - ground);
     }
+    let arms = match declared {
+        Some(arm) => vec![arm],
+        None if robot_type == RobotType::GroundVehicle => Vec::new(),
+        None => classification.arms,
+    };
+    let ground = stability
+        .ground_height
+        .or(classification.ground_z)
+        .unwrap_or(0.0);
+    let scene = Scene {
+        robot,
+        model,
+        q: &q,
+        data: &data,
+        ground,
+        support_polygon: if stability.stable.is_some() {
+            &stability.support_polygon
+        } else {
+            &[]
+        },
+        robot_type,
+    };
+    let collision = (!arms.is_empty())
+        .then(|| collision_setup(robot, model, &data, inputs))
+        .transpose()?;
+    let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
     Ok(Physics {
         statics,
         stability,
+        workspace,
         robot_type,
         robot_type_confidence: confidence,
         detected,
         evidence: classification.evidence,
         warnings,
     })
+}
+
+/// The collision model at the chosen pose, with the SRDF's `disable_collisions` (`--srdf`, else the one
+/// beside the URDF) applied.
+fn collision_setup(
+    robot: &Robot,
+    model: &Model,
+    data: &Data,
+    inputs: &Inputs,
+) -> Result<CollisionSetup, String> {
+    let disabled = match pose::find_srdf(inputs.urdf_path, inputs.statics.pose.srdf.as_deref()) {
+        Some(path) => {
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| format!("cannot read SRDF {}: {e}", path.display()))?;
+            disabled_collisions(&text).map_err(|e| format!("{}: {e}", path.display()))?
+        }
+        None => Vec::new(),
+    };
+    Ok(CollisionSetup::new(
+        robot,
+        model,
+        data,
+        inputs.mesh_points,
+        &disabled,
+    ))
 }

@@ -141,6 +141,9 @@ pub struct Report {
     /// Support polygon and tipping (absent when the file is not a robot).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stability: Option<StabilitySection>,
+    /// Reach, task, orientation and self-collision of every arm (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub workspace: Option<WorkspaceSection>,
     /// Every finding with its rule and source position.
     pub findings: Vec<FindingReport>,
 }
@@ -343,4 +346,105 @@ pub struct RaisedContact {
     pub link: String,
     /// Its lowest point above the ground, mm.
     pub height_mm: f64,
+}
+
+/// The `workspace` section: what the arms reach, sampled uniformly within the joint limits.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct WorkspaceSection {
+    /// PASS; WARN when fewer than 95% of sampled poses are free of self-collision or the orientation is
+    /// met by fewer than 5% of samples; FAIL when the task height is out of reach or the robot tips over
+    /// while reaching; N/A without arms.
+    pub status: Status,
+    /// Largest distance from an arm's first joint to its tip, metres (maximum over arms).
+    pub max_reach: Option<f64>,
+    /// Highest tip position above the ground, metres.
+    pub vertical_reach: Option<f64>,
+    /// Largest horizontal distance from an arm's first joint to its tip, metres.
+    pub horizontal_reach: Option<f64>,
+    /// Largest distance from the robot's root frame to a tip, metres.
+    pub reach_from_base: Option<f64>,
+    /// `estimated`: Monte Carlo maxima approach the true ones from below.
+    pub reach_confidence: Confidence,
+    /// Samples per arm.
+    pub samples: usize,
+    /// Seed of the sampling.
+    pub seed: u64,
+    /// Per arm.
+    pub arms: Vec<ArmWorkspace>,
+    /// `--task`.
+    pub task: Option<String>,
+    /// Height of the task above the ground, metres.
+    pub task_target_height_m: Option<f64>,
+    /// Whether some arm's tip can be at the task height (tip heights vary continuously over the joint
+    /// space, so lying between the lowest and highest sampled tip is enough).
+    pub task_height_reachable: Option<bool>,
+    /// Whether the whole-body COM stays over the support polygon at the sampled pose that reaches
+    /// furthest horizontally at the task height (null when the robot cannot tip: fixed base, no polygon).
+    pub task_com_stable_during_reach: Option<bool>,
+    /// Horizontal COM displacement from the reference pose to that pose, metres.
+    pub task_com_shift_estimate_m: Option<f64>,
+    /// Stability margin at that pose, mm (positive inside the polygon).
+    pub task_com_margin_mm: Option<f64>,
+    /// `--orientation`.
+    pub orientation: Option<String>,
+    /// Whether at least 5% of samples (within 5 cm of the task height when a task is given) meet the
+    /// orientation.
+    pub orientation_reachable: Option<bool>,
+    /// Fraction of those samples meeting the orientation (best arm).
+    pub orientation_fraction: Option<f64>,
+    /// Tolerance on the approach direction, degrees.
+    pub orientation_tolerance_deg: f64,
+    /// Fraction of sampled poses (all arms) free of self-collision.
+    pub self_collision_free_fraction: Option<f64>,
+    /// Smallest distance between two links over the collision-free sampled poses, mm.
+    pub self_collision_min_clearance_mm: Option<f64>,
+    /// The pair colliding in the most samples, else the pair with the smallest clearance.
+    pub self_collision_worst_pair: Option<[String; 2]>,
+    /// Link pairs already in contact at the reference pose: excluded from sampling.
+    pub self_collision_touching_at_reference: Vec<[String; 2]>,
+    /// Link pairs excluded by the SRDF's `disable_collisions`.
+    pub self_collision_srdf_disabled: usize,
+    /// Why the status is N/A or UNKNOWN, or what lowered it.
+    pub reason: Option<String>,
+}
+
+/// The reach of one arm.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct ArmWorkspace {
+    /// The link the arm hangs from.
+    pub root_link: String,
+    /// The end-effector frame whose reach is measured.
+    pub tip_link: String,
+    /// The first actuated joint (reach is measured from its origin).
+    pub first_joint: Option<String>,
+    /// The sampled joints, shoulder first.
+    pub joints: Vec<String>,
+    /// `exact` when declared with `--arm-root`/`--arm-tip`, else `estimated` (detected).
+    pub confidence: Confidence,
+    /// Where the fingers attach, when the arm has a gripper.
+    pub hand_link: Option<String>,
+    /// The tool's approach axis in the tip frame, and how it was chosen (`declared`, `fingers`, `z`).
+    pub approach_axis: [f64; 3],
+    /// How the approach axis was chosen.
+    pub approach_axis_source: String,
+    /// Largest distance from the first joint to the tip, metres.
+    pub max_reach: f64,
+    /// Highest tip above the ground, metres.
+    pub vertical_reach: f64,
+    /// Lowest tip above the ground, metres.
+    pub lowest_tip_height: f64,
+    /// Largest horizontal distance from the first joint, metres.
+    pub horizontal_reach: f64,
+    /// Largest distance from the root frame, metres.
+    pub reach_from_base: f64,
+    /// Whether the tip can be at the task height.
+    pub task_height_reachable: Option<bool>,
+    /// Samples within 5 cm of the task height.
+    pub task_band_samples: Option<usize>,
+    /// Fraction of samples meeting `--orientation` (within the task band when a task is given).
+    pub orientation_fraction: Option<f64>,
+    /// Fraction of this arm's samples free of self-collision.
+    pub self_collision_free_fraction: Option<f64>,
+    /// Smallest clearance over this arm's collision-free samples, mm.
+    pub self_collision_min_clearance_mm: Option<f64>,
 }

@@ -1,0 +1,619 @@
+//! The workspace section: every arm's reach envelope by Monte Carlo sampling within the joint limits,
+//! task-height reachability with the whole-body COM checked at the reaching pose, orientation
+//! reachability, and self-collision over the same samples.
+//!
+//! Each arm is sampled on its own (its joints uniform within their limits, continuous joints over a full
+//! turn, everything else at the reference pose). Sample `i` of arm `a` is drawn from a generator seeded
+//! by (seed, a, i / CHUNK), so results do not depend on the number of threads.
+
+pub mod chain;
+pub mod target;
+
+use std::collections::HashMap;
+
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+use crate::arms::{subtree_links, Arm};
+use crate::classify::RobotType;
+use crate::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
+use crate::kinematics::{forward_kinematics_links, Configuration, Data};
+use crate::model::{LinkId, Model};
+use crate::report::{ArmWorkspace, Confidence, Status, WorkspaceSection};
+use crate::rng::SplitMix64;
+use crate::robot::Robot;
+use crate::statics::{evaluate, mass_and_com, StaticsData};
+use crate::support_polygon::{margin, Point2};
+
+use chain::ArmChain;
+use target::{Orientation, OrientationMatcher, Task};
+
+/// Samples per parallel work unit (and per generator seed).
+const CHUNK: usize = 1024;
+/// Half-width of the height band around a task height, metres.
+pub const TASK_BAND: f64 = 0.05;
+/// Fraction of samples that must meet an orientation.
+pub const ORIENTATION_PASS_FRACTION: f64 = 0.05;
+/// Fraction of samples that must be free of self-collision.
+pub const COLLISION_FREE_PASS_FRACTION: f64 = 0.95;
+
+/// What the workspace analysis is asked.
+#[derive(Clone, Debug)]
+pub struct WorkspaceOptions {
+    /// Samples per arm (`--samples`).
+    pub samples: usize,
+    /// Seed (`--seed`).
+    pub seed: u64,
+    /// `--task` / `--height`.
+    pub task: Option<Task>,
+    /// `--orientation`.
+    pub orientation: Option<Orientation>,
+    /// `--orientation-tolerance`, degrees.
+    pub orientation_tolerance_deg: f64,
+    /// `--approach-axis` (tip frame); default: towards the fingers, else +z.
+    pub approach_axis: Option<Vector3<f64>>,
+}
+
+impl Default for WorkspaceOptions {
+    fn default() -> Self {
+        WorkspaceOptions {
+            samples: 30_000,
+            seed: 7,
+            task: None,
+            orientation: None,
+            orientation_tolerance_deg: 15.0,
+            approach_axis: None,
+        }
+    }
+}
+
+/// The robot at its reference pose, and what the other sections found about it.
+pub struct Scene<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Its tree.
+    pub model: &'a Model,
+    /// The reference configuration (the statics pose).
+    pub q: &'a [f64],
+    /// Placements at `q`.
+    pub data: &'a Data,
+    /// Height of the ground in the root frame.
+    pub ground: f64,
+    /// The support polygon at `q` (counter-clockwise), empty when the robot cannot tip.
+    pub support_polygon: &'a [Point2],
+    /// The robot category (for the N/A reason).
+    pub robot_type: RobotType,
+}
+
+/// Self-collision set-up: the model with its allowed pairs, and what was excluded.
+pub struct CollisionSetup {
+    /// Shapes and allowed-collision matrix (touching-at-reference pairs already allowed).
+    pub model: CollisionModel,
+    /// Pairs in contact at the reference pose.
+    pub touching: Vec<(LinkId, LinkId)>,
+    /// Pairs disabled by an SRDF.
+    pub srdf_disabled: usize,
+}
+
+impl CollisionSetup {
+    /// Build the collision model and exclude what is in contact at the reference placements.
+    pub fn new(
+        robot: &Robot,
+        model: &Model,
+        reference: &Data,
+        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+        srdf_disabled: &[crate::collision::DisabledPair],
+    ) -> CollisionSetup {
+        let mut collision = CollisionModel::build(robot, model, mesh_points);
+        let before = collision.all_pairs().len();
+        collision.allow_disabled(model, srdf_disabled);
+        let srdf_disabled = before - collision.all_pairs().len();
+        let touching = collision.touching_pairs(&reference.link_placement);
+        collision.allow(&touching, Allowed::Touching);
+        CollisionSetup {
+            model: collision,
+            touching,
+            srdf_disabled,
+        }
+    }
+}
+
+/// One arm prepared for sampling.
+struct ArmJob<'a> {
+    arm: &'a Arm,
+    chain: ArmChain,
+    approach: Vector3<f64>,
+    approach_source: &'static str,
+    /// Links whose placement changes with the arm's joints (parents first).
+    moving_links: Vec<LinkId>,
+    pairs: Option<PairSet>,
+}
+
+/// What the samples of one arm (or one chunk of them) showed.
+#[derive(Clone, Debug)]
+struct ArmStats {
+    samples: usize,
+    max_reach: f64,
+    max_height: f64,
+    min_height: f64,
+    max_horizontal: f64,
+    max_from_base: f64,
+    band_samples: usize,
+    /// Furthest horizontal reach within the task band: (distance, sample index, arm values).
+    band_best: Option<(f64, usize, Vec<f64>)>,
+    orientation_ok: usize,
+    orientation_considered: usize,
+    collision_free: usize,
+    min_clearance: Option<(f64, (LinkId, LinkId))>,
+    colliding: HashMap<(LinkId, LinkId), usize>,
+}
+
+impl ArmStats {
+    fn new() -> Self {
+        ArmStats {
+            samples: 0,
+            max_reach: f64::NEG_INFINITY,
+            max_height: f64::NEG_INFINITY,
+            min_height: f64::INFINITY,
+            max_horizontal: f64::NEG_INFINITY,
+            max_from_base: f64::NEG_INFINITY,
+            band_samples: 0,
+            band_best: None,
+            orientation_ok: 0,
+            orientation_considered: 0,
+            collision_free: 0,
+            min_clearance: None,
+            colliding: HashMap::new(),
+        }
+    }
+
+    fn merge(mut self, other: ArmStats) -> ArmStats {
+        self.samples += other.samples;
+        self.max_reach = self.max_reach.max(other.max_reach);
+        self.max_height = self.max_height.max(other.max_height);
+        self.min_height = self.min_height.min(other.min_height);
+        self.max_horizontal = self.max_horizontal.max(other.max_horizontal);
+        self.max_from_base = self.max_from_base.max(other.max_from_base);
+        self.band_samples += other.band_samples;
+        self.band_best = match (self.band_best.take(), other.band_best) {
+            (Some(a), Some(b)) => Some(
+                if (b.0, std::cmp::Reverse(b.1)) > (a.0, std::cmp::Reverse(a.1)) {
+                    b
+                } else {
+                    a
+                },
+            ),
+            (a, b) => a.or(b),
+        };
+        self.orientation_ok += other.orientation_ok;
+        self.orientation_considered += other.orientation_considered;
+        self.collision_free += other.collision_free;
+        self.min_clearance = match (self.min_clearance, other.min_clearance) {
+            (Some(a), Some(b)) => Some(if b.0 < a.0 || (b.0 == a.0 && b.1 < a.1) {
+                b
+            } else {
+                a
+            }),
+            (a, b) => a.or(b),
+        };
+        for (pair, count) in other.colliding {
+            *self.colliding.entry(pair).or_default() += count;
+        }
+        self
+    }
+}
+
+/// What one sample needs besides the arm.
+struct SampleContext<'a> {
+    scene: &'a Scene<'a>,
+    options: &'a WorkspaceOptions,
+    matcher: Option<OrientationMatcher>,
+    collision: Option<&'a CollisionModel>,
+}
+
+fn chunk_seed(seed: u64, arm: usize, chunk: usize) -> u64 {
+    let mut mix = SplitMix64::new(seed ^ ((arm as u64) << 40) ^ chunk as u64);
+    mix.next_u64()
+}
+
+fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usize) -> ArmStats {
+    let scene = ctx.scene;
+    let start = chunk * CHUNK;
+    let count = CHUNK.min(ctx.options.samples.saturating_sub(start));
+    let mut stats = ArmStats::new();
+    let mut rng = SplitMix64::new(chunk_seed(ctx.options.seed, arm_index, chunk));
+    let mut q = vec![0.0; job.chain.dof()];
+    // Collision scratch: a full configuration and placements, updated on the moving links only.
+    let mut collision_state = match (ctx.collision, &job.pairs) {
+        (Some(model), Some(pairs)) if !pairs.is_empty() => Some((
+            model,
+            pairs,
+            scene.q.to_vec(),
+            scene.data.clone(),
+            CheckScratch::new(model),
+        )),
+        _ => None,
+    };
+    let target_height = ctx.options.task.map(|t| scene.ground + t.height());
+    let shoulder = job.chain.shoulder;
+    for i in 0..count {
+        for (value, (_, lo, hi)) in q.iter_mut().zip(&job.chain.sampled) {
+            *value = rng.uniform(*lo, *hi);
+        }
+        let tip = job.chain.tip(&q, &job.approach);
+        let p = tip.position;
+        let offset = p - shoulder;
+        let horizontal = offset.x.hypot(offset.y);
+        stats.samples += 1;
+        stats.max_reach = stats.max_reach.max(offset.norm());
+        stats.max_height = stats.max_height.max(p.z - scene.ground);
+        stats.min_height = stats.min_height.min(p.z - scene.ground);
+        stats.max_horizontal = stats.max_horizontal.max(horizontal);
+        stats.max_from_base = stats.max_from_base.max(p.norm());
+        let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
+        if in_band == Some(true) {
+            stats.band_samples += 1;
+            if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
+                stats.band_best = Some((horizontal, start + i, q.clone()));
+            }
+        }
+        if let Some(matcher) = &ctx.matcher {
+            if in_band != Some(false) {
+                stats.orientation_considered += 1;
+                stats.orientation_ok += usize::from(matcher.accepts(&tip.approach));
+            }
+        }
+        if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
+            for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
+                q_full[joint.0] = *value;
+            }
+            scene.model.apply_mimic(q_full);
+            forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
+            let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
+            let check = model.check(pairs, &data.link_placement, cutoff, scratch);
+            if check.is_free() {
+                stats.collision_free += 1;
+                if let Some(clearance) = check.min_clearance {
+                    stats.min_clearance = Some(clearance);
+                }
+            }
+            for pair in check.colliding {
+                *stats.colliding.entry(pair).or_default() += 1;
+            }
+        }
+    }
+    stats
+}
+
+/// The tool's approach axis in the tip frame: declared, else from the hand towards its fingers, else +z.
+fn approach_axis(
+    arm: &Arm,
+    data: &Data,
+    declared: Option<Vector3<f64>>,
+) -> (Vector3<f64>, &'static str) {
+    if let Some(axis) = declared {
+        return (axis, "declared");
+    }
+    if let (Some(hand), false) = (arm.hand, arm.fingers.is_empty()) {
+        let centroid = arm
+            .fingers
+            .iter()
+            .map(|f| data.link_placement[f.0].translation.vector)
+            .sum::<Vector3<f64>>()
+            / arm.fingers.len() as f64;
+        let from_hand = centroid - data.link_placement[hand.0].translation.vector;
+        let tip = data.link_placement[arm.tip.0];
+        if let Some(direction) = (tip.rotation.inverse() * from_hand).try_normalize(1e-4) {
+            return (direction, "fingers");
+        }
+    }
+    (Vector3::z(), "z")
+}
+
+fn names(robot: &Robot, pair: (LinkId, LinkId)) -> [String; 2] {
+    [
+        robot.links[pair.0 .0].name.value.clone(),
+        robot.links[pair.1 .0].name.value.clone(),
+    ]
+}
+
+fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSection {
+    WorkspaceSection {
+        status: Status::NotApplicable,
+        max_reach: None,
+        vertical_reach: None,
+        horizontal_reach: None,
+        reach_from_base: None,
+        reach_confidence: Confidence::Missing,
+        samples: options.samples,
+        seed: options.seed,
+        arms: Vec::new(),
+        task: options.task.map(|t| t.name().to_string()),
+        task_target_height_m: options.task.map(Task::height),
+        task_height_reachable: None,
+        task_com_stable_during_reach: None,
+        task_com_shift_estimate_m: None,
+        task_com_margin_mm: None,
+        orientation: options.orientation.map(|o| o.label()),
+        orientation_reachable: None,
+        orientation_fraction: None,
+        orientation_tolerance_deg: options.orientation_tolerance_deg,
+        self_collision_free_fraction: None,
+        self_collision_min_clearance_mm: None,
+        self_collision_worst_pair: None,
+        self_collision_touching_at_reference: Vec::new(),
+        self_collision_srdf_disabled: 0,
+        reason: Some(reason),
+    }
+}
+
+/// The workspace section for `arms` (detected or declared). `collision` is `None` when self-collision is
+/// not assessed.
+pub fn analyse(
+    scene: &Scene,
+    arms: &[Arm],
+    collision: Option<&CollisionSetup>,
+    options: &WorkspaceOptions,
+) -> WorkspaceSection {
+    let model = scene.model;
+    if arms.is_empty() {
+        let reason = format!(
+            "not applicable — no arm chain detected (robot type '{}'); declare one with --arm-root/--arm-tip",
+            scene.robot_type.as_str()
+        );
+        return not_applicable(options, reason);
+    }
+    let tolerance = options.orientation_tolerance_deg.to_radians();
+    let jobs: Vec<ArmJob> = arms
+        .iter()
+        .filter_map(|arm| {
+            let chain = ArmChain::new(model, arm, scene.data, scene.q)?;
+            let (approach, approach_source) = approach_axis(arm, scene.data, options.approach_axis);
+            let first = arm.first_joint(model)?;
+            let moving_root = model.joint_links[first.0]?.1;
+            let moving_links: Vec<LinkId> = {
+                let set = subtree_links(model, moving_root);
+                model
+                    .topological_order
+                    .iter()
+                    .copied()
+                    .filter(|l| set.contains(l))
+                    .collect()
+            };
+            let pairs = collision.map(|c| c.model.pairs_moved_by(&arm.sampled_joints(model)));
+            Some(ArmJob {
+                arm,
+                chain,
+                approach,
+                approach_source,
+                moving_links,
+                pairs,
+            })
+        })
+        .collect();
+    if jobs.is_empty() {
+        return not_applicable(options, "no arm has a joint that moves".to_string());
+    }
+    let chunks = options.samples.div_ceil(CHUNK);
+    let per_arm: Vec<ArmStats> = jobs
+        .iter()
+        .enumerate()
+        .map(|(arm_index, job)| {
+            let ctx = SampleContext {
+                scene,
+                options,
+                matcher: options
+                    .orientation
+                    .map(|o| o.matcher(&job.approach, tolerance)),
+                collision: collision.map(|c| &c.model),
+            };
+            (0..chunks)
+                .into_par_iter()
+                .map(|chunk| sample_chunk(&ctx, job, arm_index, chunk))
+                .reduce(ArmStats::new, ArmStats::merge)
+        })
+        .collect();
+    summarize(scene, &jobs, &per_arm, collision, options)
+}
+
+fn fraction(part: usize, whole: usize) -> Option<f64> {
+    (whole > 0).then(|| part as f64 / whole as f64)
+}
+
+fn summarize(
+    scene: &Scene,
+    jobs: &[ArmJob],
+    per_arm: &[ArmStats],
+    collision: Option<&CollisionSetup>,
+    options: &WorkspaceOptions,
+) -> WorkspaceSection {
+    let robot = scene.robot;
+    let model = scene.model;
+    let target = options.task.map(Task::height);
+    let mut arms = Vec::new();
+    for (job, stats) in jobs.iter().zip(per_arm) {
+        let link_name = |l: LinkId| robot.links[l.0].name.value.clone();
+        let checked = job.pairs.as_ref().is_some_and(|p| !p.is_empty());
+        arms.push(ArmWorkspace {
+            root_link: link_name(job.arm.base),
+            tip_link: link_name(job.arm.tip),
+            first_joint: job
+                .arm
+                .first_joint(model)
+                .map(|j| robot.joints[j.0].name.value.clone()),
+            joints: job
+                .chain
+                .sampled
+                .iter()
+                .map(|(j, _, _)| robot.joints[j.0].name.value.clone())
+                .collect(),
+            confidence: if job.arm.declared {
+                Confidence::Exact
+            } else {
+                Confidence::Estimated
+            },
+            hand_link: job.arm.hand.map(link_name),
+            approach_axis: [job.approach.x, job.approach.y, job.approach.z],
+            approach_axis_source: job.approach_source.to_string(),
+            max_reach: stats.max_reach,
+            vertical_reach: stats.max_height,
+            lowest_tip_height: stats.min_height,
+            horizontal_reach: stats.max_horizontal,
+            reach_from_base: stats.max_from_base,
+            task_height_reachable: target.map(|h| stats.min_height <= h && h <= stats.max_height),
+            task_band_samples: target.map(|_| stats.band_samples),
+            orientation_fraction: options
+                .orientation
+                .and_then(|_| fraction(stats.orientation_ok, stats.orientation_considered)),
+            self_collision_free_fraction: checked
+                .then(|| fraction(stats.collision_free, stats.samples))
+                .flatten(),
+            self_collision_min_clearance_mm: checked
+                .then(|| stats.min_clearance.map(|c| c.0 * 1000.0))
+                .flatten(),
+        });
+    }
+    let max = |f: fn(&ArmWorkspace) -> f64| arms.iter().map(f).reduce(f64::max);
+    let mut status = Status::Pass;
+    let mut reasons = Vec::new();
+
+    // Task: reachable by some arm; COM at the furthest horizontal reach at that height.
+    let task_height_reachable =
+        target.map(|_| arms.iter().any(|a| a.task_height_reachable == Some(true)));
+    let (mut com_stable, mut com_shift, mut com_margin) = (None, None, None);
+    if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
+        if !reachable {
+            status = status.worst(Status::Fail);
+            reasons.push(format!(
+                "no arm reaches the {} height ({:.2} m above the ground)",
+                task.name(),
+                task.height()
+            ));
+        }
+        let best = jobs
+            .iter()
+            .zip(per_arm)
+            .filter_map(|(job, stats)| stats.band_best.as_ref().map(|b| (job, b)))
+            .max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+        if let (Some((job, (_, _, q_arm))), false) = (best, scene.support_polygon.is_empty()) {
+            if let Some((stable, shift, margin_mm)) = com_at(scene, job, q_arm) {
+                com_stable = Some(stable);
+                com_shift = Some(shift);
+                com_margin = Some(margin_mm);
+                if !stable {
+                    status = status.worst(Status::Fail);
+                    reasons.push(format!(
+                        "the robot tips over while reaching for the {} height (COM {:.1} mm outside the support polygon)",
+                        task.name(),
+                        -margin_mm
+                    ));
+                }
+            }
+        }
+    }
+
+    // Orientation: the best arm's fraction.
+    let orientation_fraction = arms
+        .iter()
+        .filter_map(|a| a.orientation_fraction)
+        .reduce(f64::max);
+    let orientation_reachable = options
+        .orientation
+        .map(|_| orientation_fraction.is_some_and(|f| f >= ORIENTATION_PASS_FRACTION));
+    if orientation_reachable == Some(false) {
+        status = status.worst(Status::Warn);
+        reasons.push(format!(
+            "orientation {} is met by {:.1}% of samples (< {:.0}%)",
+            options.orientation.map(|o| o.label()).unwrap_or_default(),
+            orientation_fraction.unwrap_or(0.0) * 100.0,
+            ORIENTATION_PASS_FRACTION * 100.0
+        ));
+    }
+
+    // Self-collision over every arm's samples.
+    let checked: Vec<&ArmStats> = jobs
+        .iter()
+        .zip(per_arm)
+        .filter(|(job, _)| job.pairs.as_ref().is_some_and(|p| !p.is_empty()))
+        .map(|(_, s)| s)
+        .collect();
+    let total: usize = checked.iter().map(|s| s.samples).sum();
+    let free: usize = checked.iter().map(|s| s.collision_free).sum();
+    let free_fraction = fraction(free, total);
+    let mut colliding: HashMap<(LinkId, LinkId), usize> = HashMap::new();
+    for stats in &checked {
+        for (pair, count) in &stats.colliding {
+            *colliding.entry(*pair).or_default() += count;
+        }
+    }
+    let min_clearance = checked
+        .iter()
+        .filter_map(|s| s.min_clearance)
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let worst_pair = colliding
+        .iter()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+        .map(|(pair, _)| *pair)
+        .or(min_clearance.map(|c| c.1));
+    if let Some(f) = free_fraction.filter(|f| *f < COLLISION_FREE_PASS_FRACTION) {
+        status = status.worst(Status::Warn);
+        reasons.push(format!(
+            "{:.1}% of sampled poses are free of self-collision (< {:.0}%){}",
+            f * 100.0,
+            COLLISION_FREE_PASS_FRACTION * 100.0,
+            worst_pair.map_or(String::new(), |p| {
+                let [a, b] = names(robot, p);
+                format!("; most often {a} × {b}")
+            })
+        ));
+    }
+    WorkspaceSection {
+        status,
+        max_reach: max(|a| a.max_reach),
+        vertical_reach: max(|a| a.vertical_reach),
+        horizontal_reach: max(|a| a.horizontal_reach),
+        reach_from_base: max(|a| a.reach_from_base),
+        reach_confidence: Confidence::Estimated,
+        samples: options.samples,
+        seed: options.seed,
+        arms,
+        task: options.task.map(|t| t.name().to_string()),
+        task_target_height_m: target,
+        task_height_reachable,
+        task_com_stable_during_reach: com_stable,
+        task_com_shift_estimate_m: com_shift,
+        task_com_margin_mm: com_margin,
+        orientation: options.orientation.map(|o| o.label()),
+        orientation_reachable,
+        orientation_fraction,
+        orientation_tolerance_deg: options.orientation_tolerance_deg,
+        self_collision_free_fraction: free_fraction,
+        self_collision_min_clearance_mm: min_clearance.map(|c| c.0 * 1000.0),
+        self_collision_worst_pair: worst_pair.map(|p| names(robot, p)),
+        self_collision_touching_at_reference: collision
+            .map(|c| c.touching.iter().map(|&p| names(robot, p)).collect())
+            .unwrap_or_default(),
+        self_collision_srdf_disabled: collision.map_or(0, |c| c.srdf_disabled),
+        reason: (!reasons.is_empty()).then(|| reasons.join("; ")),
+    }
+}
+
+/// Whole-body COM at the reference pose with `job`'s arm at `q_arm`: (over the polygon, horizontal shift
+/// from the reference COM in metres, margin in mm).
+fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)> {
+    let model = scene.model;
+    let mut q: Configuration = scene.q.to_vec();
+    let mut statics = StaticsData::new(model);
+    evaluate(model, &q, &mut statics);
+    let (_, reference_com) = mass_and_com(model, &statics);
+    for (value, (joint, _, _)) in q_arm.iter().zip(&job.chain.sampled) {
+        q[joint.0] = *value;
+    }
+    model.apply_mimic(&mut q);
+    evaluate(model, &q, &mut statics);
+    let (_, com) = mass_and_com(model, &statics);
+    let (reference_com, com) = (reference_com?, com?);
+    let m = margin(scene.support_polygon, [com.x, com.y])?;
+    let shift = (com.xy() - reference_com.xy()).norm();
+    Some((m.distance >= 0.0, shift, m.distance * 1000.0))
+}
