@@ -330,7 +330,9 @@ pub fn compare(
                 ErrorKind::Io => ErrorKind::IncludeNotFound,
                 k => k,
             };
-            if kind == ours_kind {
+            // xacro.fatal(...) raises a bare XacroException with the caller's message.
+            let fatal = ours.kind == ErrorKind::Fatal && py.contains(&ours.message);
+            if kind == ours_kind || fatal {
                 Outcome::SameError(kind)
             } else {
                 Outcome::Differs(format!(
