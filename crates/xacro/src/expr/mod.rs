@@ -13,6 +13,19 @@
 use std::fmt;
 use std::rc::Rc;
 
+mod builtins;
+mod eval;
+mod format;
+#[cfg(test)]
+mod golden_tests;
+mod lexer;
+mod math;
+mod ops;
+mod parser;
+#[cfg(test)]
+mod tests;
+mod value;
+
 /// A Python value.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -42,7 +55,7 @@ pub enum Value {
 /// A parsed expression (opaque to the host).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
-    // Filled in by the evaluator's implementation.
+    root: parser::Node,
 }
 
 /// Why an expression could not be parsed or evaluated.
@@ -68,6 +81,18 @@ impl fmt::Display for EvalError {
 
 impl std::error::Error for EvalError {}
 
+impl EvalError {
+    /// An error of Python class `kind` (e.g. `"ValueError"`) with `message`, without name or offset.
+    pub fn new(kind: &'static str, message: impl Into<String>) -> Self {
+        EvalError {
+            kind,
+            message: message.into(),
+            undefined_name: None,
+            offset: None,
+        }
+    }
+}
+
 /// What an expression can see beyond the built-ins.
 pub trait Scope {
     /// The value of property `name`, `Ok(None)` when no property has that name (then built-ins are tried).
@@ -83,36 +108,42 @@ pub trait Scope {
 }
 
 /// Parse the text of one `${...}` expression (without the delimiters).
+///
+/// Errors are `SyntaxError` (with the byte offset), `XacroException` for names or attributes starting
+/// with `__` (refused like xacro's `safe_eval`), or `OverflowError` for integer literals beyond 64 bits.
+/// Nesting deeper than 200 levels is a `SyntaxError`, never a stack overflow.
 pub fn parse(text: &str) -> Result<Expr, EvalError> {
-    let _ = text;
-    Err(EvalError {
-        kind: "SyntaxError",
-        message: "expression evaluation is not implemented yet".into(),
-        undefined_name: None,
-        offset: None,
-    })
+    parser::parse_expression(text).map(|root| Expr { root })
 }
 
 /// Evaluate a parsed expression.
+///
+/// Resource use is bounded: strings above 16 MiB, containers above 1M items, integers beyond i64 and
+/// evaluations above 10M loop steps are errors (`MemoryError` / `OverflowError`).
 pub fn eval(expr: &Expr, scope: &dyn Scope) -> Result<Value, EvalError> {
-    let _ = (expr, scope);
-    Err(EvalError {
-        kind: "SyntaxError",
-        message: "expression evaluation is not implemented yet".into(),
-        undefined_name: None,
-        offset: None,
-    })
+    eval::Ctx::new(scope).eval(&expr.root)
 }
 
-impl Value {
-    /// Python's `str(value)`: floats as `repr` (`1.0`, `0.1`, `1e-05`, `inf`), `True`/`False`, lists as
-    /// `[1, 'a']`, dicts as `{'a': 1}`.
-    pub fn to_xacro_string(&self) -> String {
-        String::new()
+/// Parse and evaluate `text` in one step.
+pub fn eval_str(text: &str, scope: &dyn Scope) -> Result<Value, EvalError> {
+    eval(&parse(text)?, scope)
+}
+
+/// A [`Scope`] without properties or host functions: only the built-ins are visible.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EmptyScope;
+
+impl Scope for EmptyScope {
+    fn lookup(&self, _name: &str) -> Result<Option<Value>, EvalError> {
+        Ok(None)
     }
 
-    /// Python truthiness.
-    pub fn is_truthy(&self) -> bool {
-        false
+    fn call_host(
+        &self,
+        _name: &str,
+        _args: &[Value],
+        _kwargs: &[(String, Value)],
+    ) -> Option<Result<Value, EvalError>> {
+        None
     }
 }

@@ -1,0 +1,1 @@
+//! Differential tests against Python xacro (generated goldens).
