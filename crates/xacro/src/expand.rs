@@ -54,6 +54,8 @@ pub(crate) struct Expander<'o> {
     args: RefCell<HashMap<String, String>>,
     /// Python's `filestack`: the files being processed (includes), innermost last.
     file_stack: RefCell<Vec<PathBuf>>,
+    /// The canonical paths of `file_stack` (include cycles).
+    open_files: RefCell<Vec<Option<PathBuf>>>,
     /// The detailed error behind an `EvalError` returned to the evaluator through [`Scope`].
     pending: RefCell<Option<XacroError>>,
     warnings: RefCell<Vec<Warning>>,
@@ -73,6 +75,7 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         docs: RefCell::default(),
         args: RefCell::new(opts.args.iter().cloned().collect()),
         file_stack: RefCell::new(vec![path.to_path_buf()]),
+        open_files: RefCell::new(vec![std::fs::canonicalize(path).ok()]),
         pending: RefCell::default(),
         warnings: RefCell::default(),
         nodes: Cell::new(0),
@@ -924,7 +927,11 @@ impl<'o> Expander<'o> {
             if a.name.starts_with("xacro:") || a.name == "xmlns:xacro" {
                 continue;
             }
-            let value = self.eval_attr(a, symbols, ctx)?.to_xacro_string();
+            let value = if a.value.contains('$') {
+                self.eval_attr(a, symbols, ctx)?.to_xacro_string()
+            } else {
+                a.value.clone()
+            };
             self.count_node(value.len())?;
             attrs.push(Attr {
                 name: a.name.clone(),
@@ -1054,10 +1061,13 @@ impl<'o> Expander<'o> {
                         }
                     }
                     Kind::Text(t) => {
-                        let value = self
-                            .eval_text(t, symbols, ctx)
-                            .map_err(|e| self.locate(e, node.src.loc, ctx))?
-                            .to_xacro_string();
+                        let value = if t.contains('$') {
+                            self.eval_text(t, symbols, ctx)
+                                .map_err(|e| self.locate(e, node.src.loc, ctx))?
+                                .to_xacro_string()
+                        } else {
+                            t.clone()
+                        };
                         if !value.trim().is_empty() {
                             eval_comments = false;
                         }
@@ -1728,12 +1738,7 @@ impl<'o> Expander<'o> {
                 return Err(self.locate(e, loc, ctx));
             }
             let canonical = std::fs::canonicalize(&file).ok();
-            let cycle = canonical.is_some()
-                && self
-                    .file_stack
-                    .borrow()
-                    .iter()
-                    .any(|f| std::fs::canonicalize(f).ok() == canonical);
+            let cycle = canonical.is_some() && self.open_files.borrow().contains(&canonical);
             if cycle {
                 let e = XacroError::new(
                     ErrorKind::IncludeCycle,
@@ -1768,8 +1773,10 @@ impl<'o> Expander<'o> {
                 include_depth: ctx.include_depth + 1,
             };
             self.file_stack.borrow_mut().push(file);
+            self.open_files.borrow_mut().push(canonical);
             let built = self.eval_element(&root, &ns_macros, &ns_symbols, &inc_ctx);
             self.file_stack.borrow_mut().pop();
+            self.open_files.borrow_mut().pop();
             let built = built?;
             self.import_namespaces(parent_attrs, &built.attrs, loc);
             included.extend(built.children);
