@@ -9,7 +9,7 @@ use super::eval::{add, Args, Ctx};
 use super::format;
 use super::math;
 use super::ops::{check_items, check_str_len, int_divmod, int_overflow, too_large};
-use super::value::{as_num, py_cmp, py_eq, Num};
+use super::value::{as_num, py_cmp, py_eq, Num, TWO_POW_63};
 use super::{EvalError, Value};
 
 /// Builtins that xacro exposes without a namespace.
@@ -480,7 +480,7 @@ fn call_xacro(ctx: &mut Ctx, short: &str, args: Args) -> Result<Value, EvalError
             let skip = pos
                 .get(2)
                 .or(kw_get(&kw, "skip_empty"))
-                .map_or(true, Value::is_truthy);
+                .is_none_or(Value::is_truthy);
             let (Value::Str(s), Value::Str(sep)) = (s, &sep) else {
                 return Err(type_err("tokenize() expects strings"));
             };
@@ -652,7 +652,7 @@ pub(crate) fn float_to_int(f: f64) -> Result<i64, EvalError> {
         ));
     }
     let t = f.trunc();
-    if !(-9.223_372_036_854_775_808e18..9.223_372_036_854_775_808e18).contains(&t) {
+    if !(-TWO_POW_63..TWO_POW_63).contains(&t) {
         return Err(int_overflow());
     }
     Ok(t as i64)

@@ -873,7 +873,7 @@ mod tests {
             ),
             "     1|ab  |  x  "
         );
-        assert_eq!(f("{:08.3f}", vec![Value::Float(-3.14159)]), "-003.142");
+        assert_eq!(f("{:08.3f}", vec![Value::Float(-3.25159)]), "-003.252");
         assert_eq!(f("{:,}", vec![Value::Int(1234567)]), "1,234,567");
         assert_eq!(f("{:.3}", vec![Value::Float(1.0)]), "1.0");
         assert_eq!(f("{:.3}", vec![Value::Float(1234.5)]), "1.23e+03");

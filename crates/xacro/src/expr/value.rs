@@ -297,15 +297,18 @@ pub(crate) fn as_num(v: &Value) -> Option<Num> {
     }
 }
 
+/// 2**63 as a float (the first float above `i64::MAX`).
+pub(crate) const TWO_POW_63: f64 = (1u64 << 63) as f64;
+
 /// Exact comparison of an int with a float (no precision loss for large ints).
 pub(crate) fn cmp_int_float(i: i64, f: f64) -> Option<Ordering> {
     if f.is_nan() {
         return None;
     }
-    if f >= 9.223_372_036_854_775_808e18 {
+    if f >= TWO_POW_63 {
         return Some(Ordering::Less);
     }
-    if f < -9.223_372_036_854_775_808e18 {
+    if f < -TWO_POW_63 {
         return Some(Ordering::Greater);
     }
     let t = f.trunc();
@@ -427,10 +430,7 @@ mod tests {
         assert!(py_eq(&Value::Int(1), &Value::Float(1.0)));
         assert!(py_eq(&Value::Bool(true), &Value::Int(1)));
         assert!(!py_eq(&Value::list(vec![]), &Value::tuple(vec![])));
-        assert_eq!(
-            cmp_int_float(i64::MAX, 9.223372036854775807e18),
-            Some(Ordering::Less)
-        );
+        assert_eq!(cmp_int_float(i64::MAX, TWO_POW_63), Some(Ordering::Less));
         assert_eq!(cmp_int_float(3, 3.5), Some(Ordering::Less));
         assert_eq!(cmp_int_float(-3, -3.5), Some(Ordering::Greater));
         assert!(py_cmp(&Value::Int(1), &Value::str("a"), "<").is_err());
