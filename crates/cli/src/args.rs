@@ -41,8 +41,8 @@ pub struct Args {
     #[arg(long, value_name = "NAME", default_value = "home")]
     pub state: String,
 
-    /// Samples for --pose worst.
-    #[arg(long, value_name = "N", default_value_t = 5000)]
+    /// Samples per arm for the workspace (reach, task, orientation, self-collision), and for --pose worst.
+    #[arg(long, value_name = "N", default_value_t = 30_000)]
     pub samples: usize,
 
     /// Seed of the sampling (same seed, same report).
@@ -72,6 +72,33 @@ pub struct Args {
     /// End-effector link of the arm chain (with --arm-root).
     #[arg(long, value_name = "LINK", requires = "arm_root")]
     pub arm_tip: Option<String>,
+
+    /// Task reachability: pick_from_ground (0.05 m above the ground), pick_from_table (0.75 m),
+    /// push_button (1.0 m), custom (--height).
+    #[arg(long, value_name = "TASK", value_parser = ["pick_from_ground", "pick_from_table", "push_button", "custom"])]
+    pub task: Option<String>,
+
+    /// Target height above the ground for --task custom, metres.
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub height: Option<f64>,
+
+    /// Tool orientation to reach: top_down, side, "r,p,y" (radians) or "qw,qx,qy,qz"; PASS when at least
+    /// 5% of samples (at the task height, with --task) meet it.
+    #[arg(long, value_name = "ORIENTATION", allow_hyphen_values = true)]
+    pub orientation: Option<String>,
+
+    /// Tolerance on the approach direction for --orientation, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 30.0)]
+    pub orientation_tolerance: f64,
+
+    /// The tool's approach axis in the arm's tip frame: x, y, z, -x, -y, -z or "ax,ay,az" (default: from
+    /// the hand towards its fingers, else z).
+    #[arg(long, value_name = "AXIS", allow_hyphen_values = true)]
+    pub approach_axis: Option<String>,
+
+    /// Print the per-arm workspace table.
+    #[arg(long)]
+    pub detailed: bool,
 
     /// What to print on stdout: the text report, or the JSON report(s).
     #[arg(long, value_enum, default_value_t = Format::Text)]

@@ -14,6 +14,8 @@ use urdf_validator::pose::PoseOptions;
 use urdf_validator::render::{render_text, TextOptions};
 use urdf_validator::resolve::PackageResolver;
 use urdf_validator::statics_section::StaticsOptions;
+use urdf_validator::workspace::target::{parse_axis, Orientation, Task};
+use urdf_validator::workspace::WorkspaceOptions;
 use urdf_validator::{rules, Options};
 
 use args::{Args, ColorChoice, Format};
@@ -69,8 +71,16 @@ fn run(args: Args) -> u8 {
             .num_threads(jobs)
             .build_global();
     }
+    let workspace = match workspace_options(&args) {
+        Ok(workspace) => workspace,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return 2;
+        }
+    };
     let (files, input_errors) = inputs::expand(&args.inputs);
     let options = Options {
+        workspace,
         resolver: PackageResolver::from_env(args.package_path.clone()),
         statics: StaticsOptions {
             pose: PoseOptions {
@@ -158,6 +168,7 @@ fn print_outcomes(args: &Args, outcomes: &[Outcome], input_errors: &[String]) {
                     Ok(validation) if !args.quiet => {
                         let options = TextOptions {
                             verbose: args.verbose,
+                            detailed: args.detailed,
                             report_path: outcome.written.clone(),
                         };
                         let _ = write!(stdout, "{}", render_text(validation, &options));
@@ -176,4 +187,31 @@ fn print_outcomes(args: &Args, outcomes: &[Outcome], input_errors: &[String]) {
             }
         }
     }
+}
+
+/// The workspace flags, checked.
+fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
+    let task = match (&args.task, args.height) {
+        (Some(name), height) => Some(Task::parse(name, height)?),
+        (None, Some(_)) => return Err("--height needs --task custom".to_string()),
+        (None, None) => None,
+    };
+    let tolerance = args.orientation_tolerance;
+    if !(tolerance.is_finite() && (0.0..=180.0).contains(&tolerance)) {
+        return Err(format!(
+            "--orientation-tolerance must be between 0 and 180 degrees, not {tolerance}"
+        ));
+    }
+    Ok(WorkspaceOptions {
+        samples: args.samples,
+        seed: args.seed,
+        task,
+        orientation: args
+            .orientation
+            .as_deref()
+            .map(Orientation::parse)
+            .transpose()?,
+        orientation_tolerance_deg: tolerance,
+        approach_axis: args.approach_axis.as_deref().map(parse_axis).transpose()?,
+    })
 }

@@ -133,6 +133,7 @@ pub fn validate_text(
                 path: path.to_path_buf(),
                 message,
             })?;
+        findings.extend(physics.findings.iter().cloned());
         Some(physics)
     } else {
         None

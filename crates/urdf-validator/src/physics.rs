@@ -10,12 +10,14 @@ use nalgebra::Vector3;
 use crate::arms::{self, Arm};
 use crate::classify::{classify, RobotType};
 use crate::collision::disabled_collisions;
+use crate::finding::Finding;
 use crate::geometry::LinkSupports;
 use crate::kinematics::{forward_kinematics, Data};
 use crate::model::{LinkId, Model};
 use crate::pose::{self, PoseOptions};
 use crate::report::{Confidence, StabilitySection, StaticsSection, WorkspaceSection};
 use crate::robot::Robot;
+use crate::rules;
 use crate::stability_section::{self, PlacedRobot};
 use crate::statics_section::{self, StaticsOptions};
 use crate::suggest::did_you_mean;
@@ -53,6 +55,8 @@ pub struct Physics {
     pub evidence: String,
     /// Disagreements between declarations and heuristics.
     pub warnings: Vec<String>,
+    /// Findings of the analyses (link pairs in contact at the reference pose).
+    pub findings: Vec<Finding>,
 }
 
 fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
@@ -191,6 +195,10 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         .then(|| collision_setup(robot, model, &data, inputs))
         .transpose()?;
     let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
+    let findings = collision
+        .as_ref()
+        .map(|c| contact_findings(robot, &c.touching, statics_options.pose.kind.as_str()))
+        .unwrap_or_default();
     Ok(Physics {
         statics,
         stability,
@@ -200,6 +208,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         detected,
         evidence: classification.evidence,
         warnings,
+        findings,
     })
 }
 
@@ -226,4 +235,23 @@ fn collision_setup(
         inputs.mesh_points,
         &disabled,
     ))
+}
+
+/// One U601 finding per link pair in contact at the reference pose, at the second link's collision.
+fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)], pose: &str) -> Vec<Finding> {
+    touching
+        .iter()
+        .map(|&(a, b)| {
+            let (a, b) = (&robot.links[a.0], &robot.links[b.0]);
+            let span = b.collisions.first().map_or(b.span, |c| c.span);
+            Finding::new(
+                &rules::CONTACT_AT_REFERENCE,
+                span,
+                format!(
+                    "Links '{}' and '{}' have collision geometry in contact at the {pose} pose — left out of self-collision sampling",
+                    a.name.value, b.name.value
+                ),
+            )
+        })
+        .collect()
 }

@@ -8,7 +8,7 @@ use anstyle::{AnsiColor, Style};
 
 use crate::finding::Severity;
 use crate::report::{
-    FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
+    FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status, WorkspaceSection,
 };
 use crate::Validation;
 
@@ -17,6 +17,8 @@ use crate::Validation;
 pub struct TextOptions {
     /// List every finding, with a snippet for each CRITICAL and WARN.
     pub verbose: bool,
+    /// Print the per-arm workspace table.
+    pub detailed: bool,
     /// Where the JSON report was written, for the closing line.
     pub report_path: Option<String>,
 }
@@ -67,6 +69,9 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     }
     if let Some(stability) = &report.stability {
         stability_section(&mut out, report, stability);
+    }
+    if let Some(workspace) = &report.workspace {
+        workspace_section(&mut out, workspace, options.detailed);
     }
     // Declarations that disagree with the heuristics (they do not change the status).
     let schema_warnings = report.schema.warnings.len();
@@ -469,5 +474,136 @@ fn stability_section(out: &mut String, report: &Report, stability: &StabilitySec
                 )
             )
         );
+    }
+}
+
+fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: bool) {
+    let head = paint(BOLD, "[WORKSPACE]");
+    let indent = " ".repeat(13);
+    let (Some(reach), Some(vertical), Some(horizontal), Some(from_base)) = (
+        workspace.max_reach,
+        workspace.vertical_reach,
+        workspace.horizontal_reach,
+        workspace.reach_from_base,
+    ) else {
+        let reason = workspace.reason.as_deref().unwrap_or("no arm");
+        let _ = writeln!(out, "{head}  {} — {reason}", workspace.status.label());
+        return;
+    };
+    let _ = writeln!(
+        out,
+        "{head}  max reach {reach:.3} m  vertical {vertical:.3} m  horizontal {horizontal:.3} m  ({})",
+        confidence_label(workspace.reach_confidence)
+    );
+    let tips: Vec<&str> = workspace.arms.iter().map(|a| a.tip_link.as_str()).collect();
+    let _ = writeln!(
+        out,
+        "{indent}from base {from_base:.3} m  {} arm{}: {}  ({} samples each)",
+        tips.len(),
+        if tips.len() == 1 { "" } else { "s" },
+        tips.join(", "),
+        workspace.samples
+    );
+    if let (Some(task), Some(height), Some(reachable)) = (
+        &workspace.task,
+        workspace.task_target_height_m,
+        workspace.task_height_reachable,
+    ) {
+        let verdict = if reachable {
+            paint(GREEN, "✓ reachable")
+        } else {
+            paint(RED, "✗ out of reach")
+        };
+        let mut line = format!("task {task} ({height:.2} m): {verdict}");
+        match (
+            workspace.task_com_stable_during_reach,
+            workspace.task_com_margin_mm,
+        ) {
+            (Some(stable), Some(margin)) => {
+                let shift = workspace.task_com_shift_estimate_m.unwrap_or_default();
+                let style = if stable { GREEN } else { RED };
+                line.push_str(&format!(
+                    "  COM margin {} at full reach (COM shift {shift:.3} m)",
+                    paint(style, &format!("{margin:.1} mm"))
+                ));
+            }
+            _ if reachable => line.push_str("  COM over the base: not assessed (cannot tip)"),
+            _ => {}
+        }
+        let _ = writeln!(out, "{indent}{line}");
+    }
+    if let (Some(orientation), Some(reachable)) =
+        (&workspace.orientation, workspace.orientation_reachable)
+    {
+        let fraction = workspace.orientation_fraction.unwrap_or(0.0) * 100.0;
+        let verdict = if reachable {
+            paint(GREEN, "✓")
+        } else {
+            paint(YELLOW, "⚠ < 5%")
+        };
+        let _ = writeln!(
+            out,
+            "{indent}orientation {orientation} ±{:.0}°: {fraction:.1}% of samples {verdict}",
+            workspace.orientation_tolerance_deg
+        );
+    }
+    if let Some(free) = workspace.self_collision_free_fraction {
+        let style = if free >= crate::workspace::COLLISION_FREE_PASS_FRACTION {
+            GREEN
+        } else {
+            YELLOW
+        };
+        let mut line = format!(
+            "self-collision: {} of sampled poses free",
+            paint(style, &format!("{:.1}%", free * 100.0))
+        );
+        if let Some(clearance) = workspace.self_collision_min_clearance_mm {
+            line.push_str(&format!("  min clearance {clearance:.1} mm"));
+        }
+        if let Some([a, b]) = &workspace.self_collision_worst_pair {
+            line.push_str(&format!("  worst pair {a} × {b}"));
+        }
+        let _ = writeln!(out, "{indent}{line}");
+    }
+    let touching = workspace.self_collision_touching_at_reference.len();
+    if touching > 0 {
+        let _ = writeln!(
+            out,
+            "{indent}{touching} link pair(s) already in contact at the reference pose: not checked (U601)"
+        );
+    }
+    if let (Some(reason), true) = (&workspace.reason, workspace.status != Status::Pass) {
+        let _ = writeln!(
+            out,
+            "{indent}{}",
+            paint(
+                status_style(workspace.status),
+                &format!("{} — {reason}", workspace.status.label())
+            )
+        );
+    }
+    if detailed {
+        let _ = writeln!(
+            out,
+            "{indent}{:<28} {:<24} {:>3} {:>7} {:>7} {:>7} {:>7} {:>6}",
+            "arm tip", "first joint", "dof", "reach", "vert", "horiz", "base", "free"
+        );
+        for arm in &workspace.arms {
+            let free = arm
+                .self_collision_free_fraction
+                .map_or("-".to_string(), |f| format!("{:.1}%", f * 100.0));
+            let _ = writeln!(
+                out,
+                "{indent}{:<28} {:<24} {:>3} {:>7.3} {:>7.3} {:>7.3} {:>7.3} {:>6}",
+                truncate(&arm.tip_link, 28),
+                truncate(arm.first_joint.as_deref().unwrap_or("-"), 24),
+                arm.joints.len(),
+                arm.max_reach,
+                arm.vertical_reach,
+                arm.horizontal_reach,
+                arm.reach_from_base,
+                free
+            );
+        }
     }
 }

@@ -250,6 +250,11 @@ rules! {
         why: "Simulators fail to load the link's geometry; contact and collision checks leave the link out.",
         fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
     }
+    CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
+        what: "Two links that are not joined to each other have collision geometry in contact at the reference pose.",
+        why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",
+        fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
+    }
 }
 
 /// Look a rule up by code (`U205`, any case) or name (`inertia-not-positive-definite`).

@@ -37,8 +37,14 @@ mod shape;
 mod srdf;
 
 use std::ops::Range;
+/// debug
+pub static LINK_TESTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+/// debug
+pub static SHAPE_TESTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+/// debug
+pub static CONTACTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
-use nalgebra::{Isometry3, Point3, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use parry3d_f64::math::Pose;
 use parry3d_f64::query::gjk::VoronoiSimplex;
 
@@ -49,7 +55,7 @@ use crate::robot::Robot;
 pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
 pub use srdf::{disabled_collisions, DisabledPair};
 
-use shape::{enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
+use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
 
 /// Why a pair of links is never checked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -145,8 +151,8 @@ impl PoseCheck {
 pub struct CheckScratch {
     /// Per link: the world centre of its bounding sphere, when its placement is usable.
     centre: Vec<Option<Vector3<f64>>>,
-    /// Per shape: its world placement and bounding-sphere centre, valid when `stamp` matches.
-    placed: Vec<(u32, Pose, Vector3<f64>)>,
+    /// Per shape: where it is in the current pose, valid when `stamp` matches.
+    placed: Vec<(u32, Placed)>,
     stamp: u32,
     simplex: VoronoiSimplex,
 }
@@ -156,7 +162,7 @@ impl CheckScratch {
     pub fn new(model: &CollisionModel) -> Self {
         CheckScratch {
             centre: vec![None; model.bodies.len()],
-            placed: vec![(0, Pose::IDENTITY, Vector3::zeros()); model.shapes.len()],
+            placed: vec![(0, Placed::default()); model.shapes.len()],
             stamp: 0,
             simplex: VoronoiSimplex::new(),
         }
@@ -168,6 +174,27 @@ impl CheckScratch {
         if self.stamp == 0 {
             self.placed.iter_mut().for_each(|p| p.0 = 0);
             self.stamp = 1;
+        }
+    }
+}
+
+/// A shape in the world.
+#[derive(Clone, Copy, Debug)]
+struct Placed {
+    /// The shape frame, for GJK.
+    pose: Pose,
+    /// The bounding-sphere centre.
+    centre: Vector3<f64>,
+    /// The bounding box: centre and axes.
+    obb: (Vector3<f64>, Matrix3<f64>),
+}
+
+impl Default for Placed {
+    fn default() -> Self {
+        Placed {
+            pose: Pose::IDENTITY,
+            centre: Vector3::zeros(),
+            obb: (Vector3::zeros(), Matrix3::identity()),
         }
     }
 }
@@ -471,6 +498,7 @@ impl CollisionModel {
             if gap >= margin {
                 continue;
             }
+            LINK_TESTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             match self.link_proximity(a, b, placements, margin, scratch) {
                 Proximity::Contact => {
                     result.colliding.push((a, b));
@@ -500,15 +528,18 @@ impl CollisionModel {
     ) -> Proximity {
         let mut best = Proximity::Beyond;
         for i in self.bodies[a.0].shapes.clone() {
-            let (pose_a, centre_a) = self.placed_shape(i, &placements[a.0], scratch);
+            let pa = self.placed_shape(i, &placements[a.0], scratch);
             for j in self.bodies[b.0].shapes.clone() {
-                let (pose_b, centre_b) = self.placed_shape(j, &placements[b.0], scratch);
+                let pb = self.placed_shape(j, &placements[b.0], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
-                if (centre_a - centre_b).norm() - sa.bound - sb.bound >= margin {
+                if (pa.centre - pb.centre).norm() - sa.bound - sb.bound >= margin
+                    || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
+                {
                     continue;
                 }
-                match proximity(sa, &pose_a, sb, &pose_b, margin, &mut scratch.simplex) {
-                    Proximity::Contact => return Proximity::Contact,
+                SHAPE_TESTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                match proximity(sa, &pa.pose, sb, &pb.pose, margin, &mut scratch.simplex) {
+                    Proximity::Contact => {CONTACTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed); return Proximity::Contact},
                     Proximity::Apart(d) => {
                         best = Proximity::Apart(d);
                         margin = d;
@@ -520,21 +551,18 @@ impl CollisionModel {
         best
     }
 
-    /// World placement and bounding-sphere centre of shape `index` of a link placed at `link`, cached for
-    /// the current pose.
-    fn placed_shape(
-        &self,
-        index: usize,
-        link: &Isometry3<f64>,
-        scratch: &mut CheckScratch,
-    ) -> (Pose, Vector3<f64>) {
-        let (stamp, pose, centre) = &mut scratch.placed[index];
+    /// Where shape `index` of a link placed at `link` is, cached for the current pose.
+    fn placed_shape(&self, index: usize, link: &Isometry3<f64>, scratch: &mut CheckScratch) -> Placed {
+        let (stamp, placed) = &mut scratch.placed[index];
         if *stamp != scratch.stamp {
             let shape = &self.shapes[index];
             *stamp = scratch.stamp;
-            *pose = to_pose(&(link * shape.frame));
-            *centre = link.transform_point(&Point3::from(shape.centre)).coords;
+            *placed = Placed {
+                pose: to_pose(&(link * shape.frame)),
+                centre: link.transform_point(&Point3::from(shape.centre)).coords,
+                obb: shape.obb.placed(link),
+            };
         }
-        (*pose, *centre)
+        *placed
     }
 }

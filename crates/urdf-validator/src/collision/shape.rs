@@ -5,7 +5,9 @@
 //! cores (parry's implementation, statically dispatched over [`Core`]) and the radii are subtracted
 //! afterwards, which is exact for rounded shapes and converges faster than GJK on curved support maps.
 
-use nalgebra::{Isometry3, Point3, Vector3};
+use std::cell::Cell;
+
+use nalgebra::{Isometry3, Matrix3, Point3, SymmetricEigen, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::details::closest_points_support_map_support_map_with_params;
 use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
@@ -37,8 +39,150 @@ pub enum Core {
         /// Half length.
         half: f64,
     },
-    /// The convex hull of these points.
-    Hull(Vec<Vector>),
+    /// A convex hull.
+    Hull(Hull),
+}
+
+/// A convex hull as its vertices, with the edges between them when a closed convex triangulation could be
+/// built: support queries then climb along edges from a starting vertex instead of scanning every vertex.
+#[derive(Clone, Debug)]
+pub struct Hull {
+    points: Vec<Vector>,
+    /// `neighbours[offsets[v]..offsets[v + 1]]` are joined to vertex `v` by an edge; empty: scan.
+    offsets: Vec<usize>,
+    neighbours: Vec<u32>,
+}
+
+/// Below this many vertices a scan is as fast as a climb.
+const CLIMB_FROM: usize = 16;
+
+impl Hull {
+    /// The hull of `points` (its vertices or more; the support map is the same).
+    pub fn new(points: Vec<Vector>) -> Hull {
+        if points.len() >= CLIMB_FROM {
+            if let Some(hull) = Self::triangulated(&points) {
+                return hull;
+            }
+        }
+        Hull {
+            points,
+            offsets: Vec::new(),
+            neighbours: Vec::new(),
+        }
+    }
+
+    /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
+    /// convex and contains every point to within a nanometre (quickhull can fail on coplanar points).
+    fn triangulated(points: &[Vector]) -> Option<Hull> {
+        let result = std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
+        let (vertices, triangles) = result.ok()?.ok()?;
+        let n = vertices.len();
+        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 3);
+        for t in &triangles {
+            if t.iter().any(|&v| v as usize >= n) {
+                return None;
+            }
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.push((a.min(b), a.max(b)));
+            }
+        }
+        edges.sort_unstable();
+        // Closed: every edge is shared by exactly two triangles.
+        let closed = edges.chunks(2).all(|pair| pair.len() == 2 && pair[0] == pair[1])
+            && edges.windows(3).all(|w| w[0] != w[2]);
+        if !closed || n < 4 {
+            return None;
+        }
+        let centroid = vertices.iter().copied().sum::<Vector>() / n as f64;
+        for t in &triangles {
+            let [a, b, c] = t.map(|v| vertices[v as usize]);
+            let mut normal = (b - a).cross(c - a);
+            if normal.dot(centroid - a) > 0.0 {
+                normal = -normal;
+            }
+            let Some(normal) = normal.try_normalize() else {
+                continue;
+            };
+            if points.iter().any(|p| normal.dot(*p - a) > 1e-9) {
+                return None;
+            }
+        }
+        edges.dedup();
+        let mut adjacency = vec![Vec::new(); n];
+        for (a, b) in edges {
+            adjacency[a as usize].push(b);
+            adjacency[b as usize].push(a);
+        }
+        let mut offsets = vec![0];
+        let mut neighbours = Vec::new();
+        for list in adjacency {
+            neighbours.extend(list);
+            offsets.push(neighbours.len());
+        }
+        Some(Hull {
+            points: vertices,
+            offsets,
+            neighbours,
+        })
+    }
+
+    /// The vertices (possibly with points inside the hull, when it could not be triangulated).
+    pub fn points(&self) -> &[Vector] {
+        &self.points
+    }
+
+    /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known.
+    fn support_index(&self, dir: Vector, start: usize) -> usize {
+        if self.offsets.is_empty() {
+            let mut best = 0;
+            let mut best_dot = f64::NEG_INFINITY;
+            for (i, p) in self.points.iter().enumerate() {
+                let d = p.dot(dir);
+                if d > best_dot {
+                    best_dot = d;
+                    best = i;
+                }
+            }
+            return best;
+        }
+        let mut vertex = start.min(self.points.len() - 1);
+        let mut best_dot = self.points[vertex].dot(dir);
+        loop {
+            let from = vertex;
+            for &next in &self.neighbours[self.offsets[from]..self.offsets[from + 1]] {
+                let d = self.points[next as usize].dot(dir);
+                if d > best_dot {
+                    best_dot = d;
+                    vertex = next as usize;
+                }
+            }
+            if vertex == from {
+                return vertex;
+            }
+        }
+    }
+}
+
+/// A core whose hull support queries start from the vertex the previous query ended at (successive GJK
+/// directions are close, so the climb is short).
+struct Warm<'a> {
+    core: &'a Core,
+    vertex: Cell<usize>,
+}
+
+impl SupportMap for Warm<'_> {
+    #[inline]
+    fn local_support_point(&self, dir: Vector) -> Vector {
+        match self.core {
+            Core::Hull(hull) => {
+                let vertex = hull.support_index(dir, self.vertex.get());
+                self.vertex.set(vertex);
+                hull.points[vertex]
+            }
+            core => core.local_support_point(dir),
+        }
+    }
 }
 
 impl SupportMap for Core {
@@ -56,18 +200,8 @@ impl SupportMap for Core {
                 };
                 Vector::new(x, y, half.copysign(dir.z))
             }
-            Core::Hull(points) => {
-                let mut best = Vector::ZERO;
-                let mut best_dot = f64::NEG_INFINITY;
-                for p in points {
-                    let d = p.dot(dir);
-                    if d > best_dot {
-                        best_dot = d;
-                        best = *p;
-                    }
-                }
-                best
-            }
+            Core::Hull(hull) if hull.points.is_empty() => Vector::ZERO,
+            Core::Hull(hull) => hull.points[hull.support_index(dir, 0)],
         }
     }
 }
@@ -86,6 +220,118 @@ pub struct ConvexShape {
     pub centre: Vector3<f64>,
     /// Radius of that bounding sphere.
     pub bound: f64,
+    /// A box around the grown core, in the link frame.
+    pub obb: Obb,
+}
+
+/// An oriented box: `frame` places its centre and axes, `half` its half extents along them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Obb {
+    /// Centre and axes.
+    pub frame: Isometry3<f64>,
+    /// Half extents.
+    pub half: Vector3<f64>,
+}
+
+impl Obb {
+    /// The box placed by `placement`, as (centre, axes as columns).
+    pub fn placed(&self, placement: &Isometry3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+        let frame = placement * self.frame;
+        (
+            frame.translation.vector,
+            *frame.rotation.to_rotation_matrix().matrix(),
+        )
+    }
+
+    /// The volume, for choosing the tighter of two boxes.
+    fn volume(&self) -> f64 {
+        self.half.x * self.half.y * self.half.z
+    }
+}
+
+/// The tighter of the axis-aligned and the principal-axes box of points of the link frame.
+fn fitted_box(points: &[Vector3<f64>]) -> Option<Obb> {
+    let aligned = box_along(points, UnitQuaternion::identity())?;
+    let n = points.len() as f64;
+    let mean = points.iter().sum::<Vector3<f64>>() / n;
+    let covariance = points
+        .iter()
+        .map(|p| (p - mean) * (p - mean).transpose())
+        .sum::<Matrix3<f64>>()
+        / n;
+    let eigen = SymmetricEigen::new(covariance);
+    let mut axes = eigen.eigenvectors;
+    if axes.determinant() < 0.0 {
+        axes.column_mut(2).neg_mut();
+    }
+    let principal = nalgebra::Rotation3::from_matrix_eps(&axes, 1e-12, 100, nalgebra::Rotation3::identity());
+    let principal = box_along(points, UnitQuaternion::from_rotation_matrix(&principal));
+    Some(match principal {
+        Some(p) if p.volume() < aligned.volume() => p,
+        _ => aligned,
+    })
+}
+
+/// The smallest box with axes `rotation` around `points`.
+fn box_along(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> Option<Obb> {
+    let local: Vec<Vector3<f64>> = points.iter().map(|p| rotation.inverse_transform_vector(p)).collect();
+    let first = local.first()?;
+    let (lo, hi) = local
+        .iter()
+        .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let centre = rotation * ((lo + hi) / 2.0);
+    let obb = Obb {
+        frame: Isometry3::from_parts(Translation3::from(centre), rotation),
+        half: (hi - lo) / 2.0,
+    };
+    obb.half.iter().all(|v| v.is_finite()).then_some(obb)
+}
+
+/// True when a separating axis of the two boxes (centre, axes as columns, half extents) shows them at
+/// least `margin` apart (the separating-axis test of Gottschalk et al. with a gap).
+pub fn boxes_apart(
+    a: &(Vector3<f64>, Matrix3<f64>),
+    half_a: &Vector3<f64>,
+    b: &(Vector3<f64>, Matrix3<f64>),
+    half_b: &Vector3<f64>,
+    margin: f64,
+) -> bool {
+    // Everything in A's frame; the epsilon keeps near-parallel edges conservative.
+    let r = a.1.transpose() * b.1;
+    let abs = r.abs().add_scalar(1e-12);
+    let t = a.1.transpose() * (b.0 - a.0);
+    for i in 0..3 {
+        let reach = half_a[i] + half_b.dot(&abs.row(i).transpose());
+        if t[i].abs() - reach >= margin {
+            return true;
+        }
+    }
+    for j in 0..3 {
+        let reach = half_a.dot(&abs.column(j)) + half_b[j];
+        if t.dot(&r.column(j)).abs() - reach >= margin {
+            return true;
+        }
+    }
+    for i in 0..3 {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        for j in 0..3 {
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            // |A_i × B_j| = sin of their angle; parallel edges are covered by the face axes.
+            let length = (1.0 - r[(i, j)] * r[(i, j)]).max(0.0).sqrt();
+            if length < 1e-6 {
+                continue;
+            }
+            let reach = half_a[i1] * abs[(i2, j)]
+                + half_a[i2] * abs[(i1, j)]
+                + half_b[j1] * abs[(i, j2)]
+                + half_b[j2] * abs[(i, j1)];
+            let distance = (t[i2] * r[(i1, j)] - t[i1] * r[(i2, j)]).abs();
+            if distance - reach >= margin * length {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 impl ConvexShape {
@@ -95,7 +341,7 @@ impl ConvexShape {
             Support::Points(points) => {
                 let points: Vec<Vector> =
                     points.iter().map(|p| Vector::new(p.x, p.y, p.z)).collect();
-                (Core::Hull(points), 0.0, Isometry3::identity())
+                (Core::Hull(Hull::new(points)), 0.0, Isometry3::identity())
             }
             Support::Rounded {
                 frame,
@@ -123,12 +369,35 @@ impl ConvexShape {
             ),
         };
         let (centre, bound) = bounding_sphere(&core, radius, &frame)?;
+        let obb = match &core {
+            Core::Hull(hull) => {
+                let placed: Vec<Vector3<f64>> = hull
+                    .points
+                    .iter()
+                    .map(|p| frame.transform_point(&Point3::new(p.x, p.y, p.z)).coords)
+                    .collect();
+                fitted_box(&placed)?
+            }
+            Core::Point => Obb {
+                frame,
+                half: Vector3::repeat(radius),
+            },
+            Core::Segment { half } => Obb {
+                frame,
+                half: Vector3::new(radius, radius, half + radius),
+            },
+            Core::Cylinder { radius, half } => Obb {
+                frame,
+                half: Vector3::new(*radius, *radius, *half),
+            },
+        };
         Some(ConvexShape {
             core,
             radius,
             frame,
             centre,
             bound,
+            obb,
         })
     }
 }
@@ -143,8 +412,9 @@ fn bounding_sphere(
         Core::Point => (frame.translation.vector, 0.0),
         Core::Segment { half } => (frame.translation.vector, *half),
         Core::Cylinder { radius, half } => (frame.translation.vector, radius.hypot(*half)),
-        Core::Hull(points) => {
-            let placed: Vec<Vector3<f64>> = points
+        Core::Hull(hull) => {
+            let placed: Vec<Vector3<f64>> = hull
+                .points
                 .iter()
                 .map(|p| frame.transform_point(&Point3::new(p.x, p.y, p.z)).coords)
                 .collect();
@@ -222,8 +492,14 @@ pub fn proximity(
         let pos12 = pose_a.inv_mul(pose_b);
         match closest_points_support_map_support_map_with_params(
             &pos12,
-            &a.core,
-            &b.core,
+            &Warm {
+                core: &a.core,
+                vertex: Cell::new(0),
+            },
+            &Warm {
+                core: &b.core,
+                vertex: Cell::new(0),
+            },
             margin + rounding,
             simplex,
             None,

@@ -61,7 +61,7 @@ impl Default for WorkspaceOptions {
             seed: 7,
             task: None,
             orientation: None,
-            orientation_tolerance_deg: 15.0,
+            orientation_tolerance_deg: 30.0,
             approach_axis: None,
         }
     }
