@@ -9,6 +9,23 @@
 //!   `load_yaml` / `xacro.load_yaml`, `xacro.abs_filename`, `xacro.arg`, `xacro.message`, `xacro.warning`,
 //!   `xacro.error`, `xacro.fatal`, `xacro.print_location`, `xacro.dotify`.
 //! - [`Value::to_xacro_string`] is Python's `str()` of the value, which is what xacro writes into attributes.
+//!
+//! SEMANTICS (Python 3.11 as xacro 2.1.1 evaluates it; checked against Python by `golden_tests`):
+//! - Grammar: literals (ints with `0x`/`0o`/`0b`/underscores, floats, strings with escapes, `r''`, implicit
+//!   concatenation), lists, tuples, dicts, list/dict comprehensions and generator arguments, all operators
+//!   with Python precedence (chained comparisons, `in`, `is`, short-circuit `and`/`or` returning operands,
+//!   `x if c else y`), indexing, slicing, attributes, calls with `*args`/`**kwargs`.
+//! - Bare names: `list dict map len str float int bool min max round sorted range`, every `math` name,
+//!   `load_yaml abs_filename dotify`; everything else lives under `python.`, `math.` or `xacro.` exactly as
+//!   in xacro (so bare `abs` is a `NameError`, as in Python xacro).
+//! - Deliberate differences: integers are 64-bit (`OverflowError` beyond); `range`, `map`, `zip`,
+//!   `enumerate`, `filter`, `reversed`, `dict.keys()/values()/items()` produce lists; every dict allows
+//!   `d.key` (xacro's YAML wrapper) and a missing key is `KeyError` on `d[k]`, `AttributeError` on `d.k`;
+//!   `lambda`, f-strings, bytes, complex numbers, sets and `math.erf/erfc/gamma/lgamma` are not supported.
+//! - Safety: there is nothing that can run code, open files or reach object internals; names or
+//!   attributes starting with `__` are refused at parse time (`XacroException`, as xacro's `safe_eval`),
+//!   other `_x` attributes do not exist. Nesting is limited to 200 levels, results to 16 MiB / 1M items,
+//!   evaluation to 10M loop steps; no input makes the evaluator panic.
 
 use std::fmt;
 use std::rc::Rc;
