@@ -1,0 +1,438 @@
+//! Workspace: reach, task heights, orientation and self-collision on robots whose answers are known on
+//! paper; arm detection and maximum reach on real robots against an optimiser (scripts/oracle/max_reach.py).
+
+mod common;
+
+use std::path::Path;
+
+use urdf_validator::classify::RobotType;
+use urdf_validator::physics::Overrides;
+use urdf_validator::report::{Confidence, Report, Status, WorkspaceSection};
+use urdf_validator::resolve::PackageResolver;
+use urdf_validator::workspace::target::{Orientation, Task};
+use urdf_validator::workspace::WorkspaceOptions;
+use urdf_validator::{validate, validate_text, Options};
+
+fn inertial(mass: f64, xyz: [f64; 3]) -> String {
+    format!(
+        r#"<inertial><origin xyz="{} {} {}"/><mass value="{mass}"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#,
+        xyz[0], xyz[1], xyz[2]
+    )
+}
+
+/// A planar two-link arm (links `l1`, `l2`, both joints continuous about y) on a 0.2 m box base standing on
+/// the ground, shoulder at height `h`; the tip frame `tip` is at the end of link 2. The base weighs
+/// `base_mass`, the tip carries `tip_mass`.
+fn planar_arm(l1: f64, l2: f64, h: f64, base_mass: f64, tip_mass: f64) -> String {
+    format!(
+        r#"<robot name="planar">
+  <link name="base">{base}<collision><origin xyz="0 0 0.1"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <joint name="shoulder" type="continuous"><parent link="base"/><child link="upper"/><origin xyz="0 0 {h}"/><axis xyz="0 1 0"/><limit effort="1000" velocity="1"/></joint>
+  <link name="upper">{upper}</link>
+  <joint name="elbow" type="continuous"><parent link="upper"/><child link="lower"/><origin xyz="0 0 {l1}"/><axis xyz="0 1 0"/><limit effort="1000" velocity="1"/></joint>
+  <link name="lower">{lower}</link>
+  <joint name="tip_joint" type="fixed"><parent link="lower"/><child link="tip"/><origin xyz="0 0 {l2}"/></joint>
+  <link name="tip">{tip}</link>
+</robot>"#,
+        base = inertial(base_mass, [0.0, 0.0, 0.1]),
+        upper = inertial(0.001, [0.0, 0.0, l1 / 2.0]),
+        lower = inertial(0.001, [0.0, 0.0, l2 / 2.0]),
+        tip = inertial(tip_mass, [0.0; 3]),
+    )
+}
+
+fn declared_arm(root: &str, tip: &str) -> Overrides {
+    Overrides {
+        arm_root: Some(root.to_string()),
+        arm_tip: Some(tip.to_string()),
+        ..Overrides::default()
+    }
+}
+
+/// The arm declared, standing on its base box (a mobile base that can tip, not a bolted-down arm).
+fn standing_arm(root: &str, tip: &str) -> Overrides {
+    Overrides {
+        robot_type: Some(RobotType::Unknown),
+        contact_links: Some(vec![root.to_string()]),
+        ..declared_arm(root, tip)
+    }
+}
+
+fn workspace_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -> WorkspaceSection {
+    let options = Options {
+        overrides,
+        workspace,
+        ..Options::default()
+    };
+    validate_text(urdf.to_string(), Path::new("t.urdf"), &options)
+        .expect("loads")
+        .report
+        .workspace
+        .expect("a robot has a workspace section")
+}
+
+#[test]
+fn planar_arm_reach_is_the_sum_of_its_links() {
+    let (l1, l2, h) = (0.5, 0.3, 1.0);
+    let ws = workspace_of(
+        &planar_arm(l1, l2, h, 10.0, 0.1),
+        declared_arm("base", "tip"),
+        WorkspaceOptions::default(),
+    );
+    assert_eq!(ws.arms.len(), 1);
+    let arm = &ws.arms[0];
+    assert_eq!(arm.confidence, Confidence::Exact);
+    assert_eq!(arm.joints, ["shoulder", "elbow"]);
+    // Reach from the shoulder is √(l1² + l2² + 2·l1·l2·cos q2): its maximum l1 + l2 is approached from
+    // below. With 30,000 uniform samples of q2 over a full turn, P(min |q2| > 0.002) = (1 − 0.002/π)^30000
+    // < 1e-8, and |q2| ≤ 0.002 costs at most l1·l2·q2²/(2(l1 + l2)) < 4e-7 m.
+    let reach = l1 + l2;
+    let max_reach = ws.max_reach.unwrap();
+    assert!(max_reach <= reach + 1e-12 && max_reach >= reach - 4e-7, "{max_reach}");
+    // Horizontal, vertical and from-base maxima also need the arm's direction φ right: the deficit is
+    // about 0.094·q2² + 0.4·δφ², below ε with probability ε/(4π·√(0.094·0.4)) ≈ 0.41·ε per sample, so
+    // P(deficit > 2e-3) = (1 − 8.2e-4)^30000 < 1e-10.
+    for (what, value, exact) in [
+        ("horizontal", ws.horizontal_reach.unwrap(), reach),
+        // The ground is the bottom of the base box (z = 0), the shoulder at h.
+        ("vertical", ws.vertical_reach.unwrap(), h + reach),
+        ("from base", ws.reach_from_base.unwrap(), h + reach),
+    ] {
+        assert!(
+            value <= exact + 1e-12 && value >= exact - 2e-3,
+            "{what}: {value} vs {exact}"
+        );
+    }
+    // Lowest tip: h − (l1 + l2) = 0.2 m above the ground.
+    assert!((arm.lowest_tip_height - (h - reach)).abs() < 1e-3);
+    assert_eq!(ws.reach_confidence, Confidence::Estimated);
+    assert_eq!(ws.status, Status::Pass);
+}
+
+#[test]
+fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
+    let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
+    let run = |task: Task| {
+        workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                task: Some(task),
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    // Tip heights span [0.2, 1.8] m above the ground.
+    let table = run(Task::PickFromTable);
+    assert_eq!(table.task_height_reachable, Some(true));
+    assert_eq!(table.task_target_height_m, Some(0.75));
+    let floor = run(Task::PickFromGround);
+    assert_eq!(floor.task_height_reachable, Some(false));
+    assert_eq!(floor.status, Status::Fail);
+    assert!(floor.reason.unwrap().contains("pick_from_ground"));
+    let high = run(Task::Custom(1.9));
+    assert_eq!(high.task_height_reachable, Some(false));
+    let just = run(Task::Custom(1.79));
+    assert_eq!(just.task_height_reachable, Some(true));
+}
+
+#[test]
+fn reaching_with_a_heavy_tool_tips_a_light_base_over() {
+    let task = WorkspaceOptions {
+        task: Some(Task::Custom(1.0)),
+        ..WorkspaceOptions::default()
+    };
+    // At 1.0 m (the shoulder's height) the furthest horizontal reach is the arm stretched out, 0.8 m from
+    // a 0.2 m base: a 10 kg tool on a 1 kg base takes the COM ~0.7 m out, far beyond the base's 0.1 m edge.
+    let light = workspace_of(
+        &planar_arm(0.5, 0.3, 1.0, 1.0, 10.0),
+        standing_arm("base", "tip"),
+        task.clone(),
+    );
+    assert_eq!(light.task_height_reachable, Some(true));
+    assert_eq!(light.task_com_stable_during_reach, Some(false));
+    let margin = light.task_com_margin_mm.unwrap();
+    // COM x = (10·0.8 + small) / 11.002 ≈ 0.727 m; margin = 0.1 − 0.727 → about −627 mm.
+    assert!((-640.0..-600.0).contains(&margin), "margin {margin}");
+    assert_eq!(light.status, Status::Fail);
+    // A 1000 kg base keeps it: COM x ≈ 10·0.8/1010 ≈ 7.9 mm, margin ≈ 92 mm.
+    let heavy = workspace_of(
+        &planar_arm(0.5, 0.3, 1.0, 1000.0, 10.0),
+        standing_arm("base", "tip"),
+        task,
+    );
+    assert_eq!(heavy.task_com_stable_during_reach, Some(true));
+    let margin = heavy.task_com_margin_mm.unwrap();
+    assert!((88.0..96.0).contains(&margin), "margin {margin}");
+    let shift = heavy.task_com_shift_estimate_m.unwrap();
+    assert!((0.0075..0.0085).contains(&shift), "shift {shift}");
+}
+
+#[test]
+fn orientation_fraction_matches_the_swept_angle() {
+    // Both joints turn about y, so the tool's z axis points at angle q1 + q2 in the x-z plane, uniform
+    // over the circle: top-down within 30° holds for 60/360 of samples; a sideways approach (horizontal
+    // within 30°) for 2·60/360.
+    let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
+    let run = |orientation: &str| {
+        workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                orientation: Some(Orientation::parse(orientation).unwrap()),
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    // Binomial standard deviation with 30,000 samples: √(p(1−p)/n) < 0.003; allow 4σ.
+    let down = run("top_down");
+    assert!((down.orientation_fraction.unwrap() - 1.0 / 6.0).abs() < 0.012);
+    assert_eq!(down.orientation_reachable, Some(true));
+    assert_eq!(down.orientation_tolerance_deg, 30.0);
+    let side = run("side");
+    assert!((side.orientation_fraction.unwrap() - 1.0 / 3.0).abs() < 0.012);
+    // A quaternion target equal to identity: z up.
+    let up = run("1,0,0,0");
+    assert!((up.orientation_fraction.unwrap() - 1.0 / 6.0).abs() < 0.012);
+    // Within 1°: 2/360 of samples, below 5% → WARN.
+    let tight = workspace_of(
+        &urdf,
+        declared_arm("base", "tip"),
+        WorkspaceOptions {
+            orientation: Some(Orientation::TopDown),
+            orientation_tolerance_deg: 1.0,
+            ..WorkspaceOptions::default()
+        },
+    );
+    assert_eq!(tight.orientation_reachable, Some(false));
+    assert_eq!(tight.status, Status::Warn);
+}
+
+/// A ball on a rod turning about y over a box base; the ball hits the base when the rod points down far
+/// enough. The mount (a small sphere at the pivot) keeps the base and the ball from being adjacent.
+fn swinging_ball(height: f64, length: f64, radius: f64) -> String {
+    format!(
+        r#"<robot name="swing">
+  <link name="base">{m}<collision><origin xyz="0 0 -0.05"/><geometry><box size="2 2 0.1"/></geometry></collision></link>
+  <joint name="mount_joint" type="fixed"><parent link="base"/><child link="mount"/><origin xyz="0 0 {height}"/></joint>
+  <link name="mount">{m}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="swing" type="continuous"><parent link="mount"/><child link="rod"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/></joint>
+  <link name="rod">{m}<collision><origin xyz="0 0 {length}"/><geometry><sphere radius="{radius}"/></geometry></collision></link>
+</robot>"#,
+        m = inertial(1.0, [0.0; 3])
+    )
+}
+
+#[test]
+fn self_collision_fraction_matches_the_colliding_arc() {
+    // Ball centre height h + L·cos q hits the base top (z = 0) when h + L·cos q < r, i.e. cos q < (r − h)/L:
+    // an arc of 2·acos((h − r)/L) out of 2π.
+    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
+    let colliding = 2.0 * ((h - r) / l).acos() / std::f64::consts::TAU;
+    let ws = workspace_of(
+        &swinging_ball(h, l, r),
+        declared_arm("mount", "rod"),
+        WorkspaceOptions::default(),
+    );
+    let free = ws.self_collision_free_fraction.unwrap();
+    // σ = √(p(1−p)/30000) ≈ 0.0024; allow 4σ.
+    assert!(
+        (free - (1.0 - colliding)).abs() < 0.01,
+        "free {free} vs {}",
+        1.0 - colliding
+    );
+    assert_eq!(ws.self_collision_worst_pair.as_ref().unwrap(), &["base", "rod"]);
+    assert_eq!(ws.status, Status::Warn, "{:?}", ws.reason);
+    assert!(ws.self_collision_touching_at_reference.is_empty());
+    // Clearance over free poses approaches 0 (the ball grazes the base).
+    assert!(ws.self_collision_min_clearance_mm.unwrap() < 5.0);
+}
+
+#[test]
+fn a_pair_touching_at_the_reference_pose_is_reported_and_not_sampled() {
+    // The ball rests on the base at the zero pose (rod pointing down).
+    let urdf = swinging_ball(0.5, -0.5, 0.05);
+    let options = Options {
+        overrides: declared_arm("mount", "rod"),
+        ..Options::default()
+    };
+    let report = validate_text(urdf, Path::new("t.urdf"), &options)
+        .unwrap()
+        .report;
+    let ws = report.workspace.unwrap();
+    assert_eq!(ws.self_collision_touching_at_reference, [["base", "rod"]]);
+    // Nothing else can collide: no pair is sampled.
+    assert_eq!(ws.self_collision_free_fraction, None);
+    assert!(report
+        .findings
+        .iter()
+        .any(|f| f.rule == "U601" && f.message.contains("'base' and 'rod'")));
+}
+
+#[test]
+fn sampling_is_reproducible_and_independent_of_threads() {
+    let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
+    let run = || {
+        workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                samples: 5000,
+                task: Some(Task::PickFromTable),
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    let many = run();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(run);
+    let again = run();
+    let key = |w: &WorkspaceSection| {
+        (
+            w.max_reach,
+            w.vertical_reach,
+            w.horizontal_reach,
+            w.task_com_margin_mm,
+        )
+    };
+    assert_eq!(key(&many), key(&one));
+    assert_eq!(key(&many), key(&again));
+    let other_seed = workspace_of(
+        &urdf,
+        declared_arm("base", "tip"),
+        WorkspaceOptions {
+            samples: 5000,
+            seed: 8,
+            ..WorkspaceOptions::default()
+        },
+    );
+    assert_ne!(other_seed.max_reach, many.max_reach);
+}
+
+#[test]
+fn a_robot_without_arms_has_no_workspace() {
+    let urdf = format!(
+        r#"<robot name="box"><link name="base">{}<collision><geometry><box size="1 1 1"/></geometry></collision></link></robot>"#,
+        inertial(1.0, [0.0; 3])
+    );
+    let ws = workspace_of(&urdf, Overrides::default(), WorkspaceOptions::default());
+    assert_eq!(ws.status, Status::NotApplicable);
+    assert!(ws.reason.unwrap().contains("no arm chain"));
+    assert_eq!(ws.max_reach, None);
+}
+
+fn real_report(path: &Path) -> Report {
+    let options = Options {
+        resolver: PackageResolver::default(),
+        workspace: WorkspaceOptions {
+            samples: 30_000,
+            ..WorkspaceOptions::default()
+        },
+        ..Options::default()
+    };
+    validate(path, &options)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .report
+}
+
+/// The maximum reach found by the optimiser (tests/golden/reach), for the link our detection picks as tip.
+#[test]
+fn monte_carlo_reach_is_within_half_a_percent_of_the_optimum_and_never_above() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let golden_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/reach");
+    for robot in ["ur5", "panda", "z1", "kinova"] {
+        let text = std::fs::read_to_string(golden_dir.join(format!("{robot}.json"))).unwrap();
+        let golden: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let urdf = corpus.join(golden["urdf"].as_str().unwrap());
+        let report = real_report(&urdf);
+        let ws = report.workspace.unwrap();
+        assert_eq!(ws.arms.len(), 1, "{robot}: {:?}", ws.arms);
+        let arm = &ws.arms[0];
+        assert_eq!(
+            arm.first_joint.as_deref(),
+            golden["root_joint"].as_str(),
+            "{robot}: reach is measured from a different joint"
+        );
+        let optimum = golden["links"][&arm.tip_link]["max_reach_m"]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{robot}: no golden for tip {}", arm.tip_link));
+        let ratio = arm.max_reach / optimum;
+        eprintln!(
+            "{robot}: tip {} Monte Carlo {:.6} m, optimum {optimum:.6} m ({:.3}%)",
+            arm.tip_link,
+            arm.max_reach,
+            (1.0 - ratio) * 100.0
+        );
+        assert!(arm.max_reach <= optimum + 1e-9, "{robot}: above the optimum");
+        assert!(ratio >= 0.995, "{robot}: {ratio}");
+    }
+}
+
+#[test]
+fn arms_are_found_on_multi_arm_and_legged_robots() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let cases: [(&str, &[&str]); 6] = [
+        (
+            "baxter_description/urdf/baxter.urdf",
+            &["right_s0", "left_s0"],
+        ),
+        (
+            "tiago_description/robots/tiago_dual.urdf",
+            &["arm_left_1_joint", "arm_right_1_joint"],
+        ),
+        (
+            "talos_data/robots/talos_full_v2.urdf",
+            &["arm_left_1_joint", "arm_right_1_joint"],
+        ),
+        (
+            "anymal_b_simple_description/robots/anymal-kinova.urdf",
+            &["j2s6s200_joint_1"],
+        ),
+        ("b1_description/urdf/b1-z1.urdf", &["joint1"]),
+        ("panda_description/urdf/panda.urdf", &["panda_joint1"]),
+    ];
+    for (file, first_joints) in cases {
+        let ws = real_report(&corpus.join(file)).workspace.unwrap();
+        let mut found: Vec<&str> = ws
+            .arms
+            .iter()
+            .filter_map(|a| a.first_joint.as_deref())
+            .collect();
+        found.sort_unstable();
+        let mut expected = first_joints.to_vec();
+        expected.sort_unstable();
+        assert_eq!(found, expected, "{file}");
+        assert!(ws.arms.iter().all(|a| a.max_reach > 0.3), "{file}");
+    }
+}
+
+#[test]
+fn pr2_reports_both_arms_to_their_tool_frames() {
+    let Some(shared) = common::shared_robots() else {
+        return;
+    };
+    let report = real_report(&shared.join("pr2/pr2_description/robots/pr2.urdf"));
+    let ws = report.workspace.unwrap();
+    let tips: Vec<&str> = ws.arms.iter().map(|a| a.tip_link.as_str()).collect();
+    assert_eq!(tips, ["r_gripper_tool_frame", "l_gripper_tool_frame"]);
+    for arm in &ws.arms {
+        assert_eq!(arm.joints.len(), 7);
+        assert_eq!(arm.approach_axis_source, "fingers");
+        // The PR2 gripper approaches along its tool frame's x axis.
+        assert!(arm.approach_axis[0] > 0.99, "{:?}", arm.approach_axis);
+        // Shoulder to tool frame: 0.1 + 0.4 + 0.321 + 0.18 = 1.001 m at full stretch.
+        assert!((0.99..=1.0012).contains(&arm.max_reach), "{}", arm.max_reach);
+        assert!(arm.self_collision_free_fraction.is_some());
+    }
+    // The wheels sit inside the base's collision box: reported, not sampled.
+    assert!(ws
+        .self_collision_touching_at_reference
+        .contains(&["base_link".to_string(), "fl_caster_l_wheel_link".to_string()]));
+}
