@@ -5,6 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
+use urdf_validator::kinematics::{forward_kinematics, Data};
+use urdf_validator::model::Model;
+use urdf_validator::parse::parse_urdf;
+use urdf_validator::workspace::chain::ArmChain;
+use urdf_validator::workspace::{CollisionSetup, Scene, WorkspaceOptions};
 use urdf_validator::{validate_text, Options};
 
 fn main() {
@@ -105,5 +110,88 @@ fn pr2_with_meshes_cold(bencher: divan::Bencher) {
     bencher.bench(|| {
         validate_text(divan::black_box(text.clone()), &path, &Options::default())
             .map(|v| v.report.findings.len())
+    });
+}
+
+/// Random configurations of `chain`'s sampled joints, uniform within their intervals.
+fn chain_samples(chain: &ArmChain, count: usize) -> Vec<Vec<f64>> {
+    let mut rng = urdf_validator::rng::SplitMix64::new(1);
+    (0..count)
+        .map(|_| {
+            chain
+                .sampled
+                .iter()
+                .map(|(_, lo, hi)| rng.uniform(*lo, *hi))
+                .collect()
+        })
+        .collect()
+}
+
+/// Workspace forward kinematics of a 7-DOF chain: tip position and approach axis, 1,000 configurations per
+/// iteration (divan reports the throughput per core).
+#[divan::bench(counters = [divan::counter::ItemsCount::new(1000usize)])]
+fn tip_kinematics_7dof(bencher: divan::Bencher) {
+    let text = seven_dof_arm();
+    let (robot, _) = parse_urdf(&text, Path::new("bench.urdf")).expect("parses");
+    let (model, _) = Model::build(&robot);
+    let q = model.zero_configuration();
+    let mut data = Data::new(&model);
+    forward_kinematics(&model, &q, &mut data);
+    let (base, tip) = (model.link("base").unwrap(), model.link("l7").unwrap());
+    let arm = urdf_validator::arms::declared(&robot, &model, base, tip).expect("an arm");
+    let chain = ArmChain::new(&model, &arm, &data, &q).expect("a chain");
+    let samples = chain_samples(&chain, 1000);
+    let approach = nalgebra::Vector3::z();
+    bencher.bench_local(|| {
+        samples
+            .iter()
+            .map(|q| chain.tip(divan::black_box(q), &approach).position.x)
+            .sum::<f64>()
+    });
+}
+
+/// The whole PR2 workspace: both arms, 30,000 samples each, reach metrics and self-collision of every
+/// moving pair (the collision model and mesh hulls are built once, outside the timing, as the other
+/// sections share them); `false`: reach metrics only.
+#[divan::bench(sample_count = 10, args = [true, false])]
+fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
+    let (path, text) = robot("pr2/pr2_description/robots/pr2.urdf");
+    let (robot, _) = parse_urdf(&text, &path).expect("parses");
+    let (model, _) = Model::build(&robot);
+    let options = Options::default();
+    let ctx = urdf_validator::checks::CheckContext {
+        urdf_dir: path.parent().unwrap_or(Path::new(".")),
+        resolver: &options.resolver,
+        meshes: &options.meshes,
+    };
+    let mesh_points = |uri: &str| ctx.mesh_points(uri);
+    let supports: Vec<_> = robot
+        .links
+        .iter()
+        .map(|l| urdf_validator::geometry::link_supports(l, &mesh_points))
+        .collect();
+    let q = model.zero_configuration();
+    let mut data = Data::new(&model);
+    forward_kinematics(&model, &q, &mut data);
+    let classification = urdf_validator::classify::classify(&robot, &model, &data, &supports);
+    let collision = CollisionSetup::new(&robot, &model, &data, &mesh_points, &[]);
+    let scene = Scene {
+        robot: &robot,
+        model: &model,
+        q: &q,
+        data: &data,
+        ground: classification.ground_z.unwrap_or(0.0),
+        support_polygon: &[],
+        robot_type: classification.robot_type,
+    };
+    let workspace = WorkspaceOptions::default();
+    bencher.bench_local(|| {
+        urdf_validator::workspace::analyse(
+            &scene,
+            &classification.arms,
+            self_collision.then_some(&collision),
+            &workspace,
+        )
+        .self_collision_free_fraction
     });
 }

@@ -398,7 +398,8 @@ pub struct WorkspaceSection {
     pub self_collision_free_fraction: Option<f64>,
     /// Smallest distance between two links over the collision-free sampled poses, mm.
     pub self_collision_min_clearance_mm: Option<f64>,
-    /// The pair colliding in the most samples, else the pair with the smallest clearance.
+    /// The pair found in contact in the most colliding samples (each colliding sample counts its first
+    /// contact in a fixed pair order), else the pair with the smallest clearance.
     pub self_collision_worst_pair: Option<[String; 2]>,
     /// Link pairs already in contact at the reference pose: excluded from sampling.
     pub self_collision_touching_at_reference: Vec<[String; 2]>,

@@ -88,7 +88,10 @@ fn planar_arm_reach_is_the_sum_of_its_links() {
     // < 1e-8, and |q2| ≤ 0.002 costs at most l1·l2·q2²/(2(l1 + l2)) < 4e-7 m.
     let reach = l1 + l2;
     let max_reach = ws.max_reach.unwrap();
-    assert!(max_reach <= reach + 1e-12 && max_reach >= reach - 4e-7, "{max_reach}");
+    assert!(
+        max_reach <= reach + 1e-12 && max_reach >= reach - 4e-7,
+        "{max_reach}"
+    );
     // Horizontal, vertical and from-base maxima also need the arm's direction φ right: the deficit is
     // about 0.094·q2² + 0.4·δφ², below ε with probability ε/(4π·√(0.094·0.4)) ≈ 0.41·ε per sample, so
     // P(deficit > 2e-3) = (1 − 8.2e-4)^30000 < 1e-10.
@@ -241,7 +244,10 @@ fn self_collision_fraction_matches_the_colliding_arc() {
         "free {free} vs {}",
         1.0 - colliding
     );
-    assert_eq!(ws.self_collision_worst_pair.as_ref().unwrap(), &["base", "rod"]);
+    assert_eq!(
+        ws.self_collision_worst_pair.as_ref().unwrap(),
+        &["base", "rod"]
+    );
     assert_eq!(ws.status, Status::Warn, "{:?}", ws.reason);
     assert!(ws.self_collision_touching_at_reference.is_empty());
     // Clearance over free poses approaches 0 (the ball grazes the base).
@@ -368,7 +374,10 @@ fn monte_carlo_reach_is_within_half_a_percent_of_the_optimum_and_never_above() {
             arm.max_reach,
             (1.0 - ratio) * 100.0
         );
-        assert!(arm.max_reach <= optimum + 1e-9, "{robot}: above the optimum");
+        assert!(
+            arm.max_reach <= optimum + 1e-9,
+            "{robot}: above the optimum"
+        );
         assert!(ratio >= 0.995, "{robot}: {ratio}");
     }
 }
@@ -428,11 +437,16 @@ fn pr2_reports_both_arms_to_their_tool_frames() {
         // The PR2 gripper approaches along its tool frame's x axis.
         assert!(arm.approach_axis[0] > 0.99, "{:?}", arm.approach_axis);
         // Shoulder to tool frame: 0.1 + 0.4 + 0.321 + 0.18 = 1.001 m at full stretch.
-        assert!((0.99..=1.0012).contains(&arm.max_reach), "{}", arm.max_reach);
+        assert!(
+            (0.99..=1.0012).contains(&arm.max_reach),
+            "{}",
+            arm.max_reach
+        );
         assert!(arm.self_collision_free_fraction.is_some());
     }
     // The wheels sit inside the base's collision box: reported, not sampled.
-    assert!(ws
-        .self_collision_touching_at_reference
-        .contains(&["base_link".to_string(), "fl_caster_l_wheel_link".to_string()]));
+    assert!(ws.self_collision_touching_at_reference.contains(&[
+        "base_link".to_string(),
+        "fl_caster_l_wheel_link".to_string()
+    ]));
 }

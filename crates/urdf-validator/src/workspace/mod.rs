@@ -145,6 +145,7 @@ struct ArmStats {
     orientation_considered: usize,
     collision_free: usize,
     min_clearance: Option<(f64, (LinkId, LinkId))>,
+    /// Per pair, the colliding samples where it was the first contact found.
     colliding: HashMap<(LinkId, LinkId), usize>,
 }
 
@@ -277,7 +278,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                     stats.min_clearance = Some(clearance);
                 }
             }
-            for pair in check.colliding {
+            if let Some(pair) = check.contact {
                 *stats.colliding.entry(pair).or_default() += 1;
             }
         }
