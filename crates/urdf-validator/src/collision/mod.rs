@@ -37,15 +37,9 @@ mod shape;
 mod srdf;
 
 use std::ops::Range;
-/// debug
-pub static LINK_TESTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-/// debug
-pub static SHAPE_TESTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-/// debug
-pub static CONTACTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
-use parry3d_f64::math::Pose;
+use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::gjk::VoronoiSimplex;
 
 use crate::geometry::link_supports;
@@ -128,10 +122,11 @@ impl PairSet {
 }
 
 /// The outcome of checking one pose.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PoseCheck {
-    /// Pairs in contact (overlapping or closer than [`CONTACT_DISTANCE`]), in [`PairSet`] order.
-    pub colliding: Vec<(LinkId, LinkId)>,
+    /// The first pair (in [`PairSet`] order) in contact: overlapping or closer than
+    /// [`CONTACT_DISTANCE`].
+    pub contact: Option<(LinkId, LinkId)>,
     /// When no pair is in contact: the smallest distance (metres) between the links of a pair and that
     /// pair, if it is below the `clearance_cutoff` given to [`CollisionModel::check`].
     pub min_clearance: Option<(f64, (LinkId, LinkId))>,
@@ -142,18 +137,20 @@ pub struct PoseCheck {
 impl PoseCheck {
     /// True when no pair is in contact.
     pub fn is_free(&self) -> bool {
-        self.colliding.is_empty()
+        self.contact.is_none()
     }
 }
 
 /// Per-thread working memory of [`CollisionModel::check`].
 #[derive(Clone, Debug)]
 pub struct CheckScratch {
-    /// Per link: the world centre of its bounding sphere, when its placement is usable.
-    centre: Vec<Option<Vector3<f64>>>,
+    /// Per link: the world centre of its bounding sphere; NaN when its placement is not usable.
+    centre: Vec<Vector3<f64>>,
     /// Per shape: where it is in the current pose, valid when `stamp` matches.
     placed: Vec<(u32, Placed)>,
     stamp: u32,
+    /// Per pair of the last pair set: the last GJK direction (see [`shape::proximity`]).
+    axis: Vec<Vector>,
     simplex: VoronoiSimplex,
 }
 
@@ -161,9 +158,10 @@ impl CheckScratch {
     /// Scratch sized for `model`.
     pub fn new(model: &CollisionModel) -> Self {
         CheckScratch {
-            centre: vec![None; model.bodies.len()],
+            centre: vec![Vector3::zeros(); model.bodies.len()],
             placed: vec![(0, Placed::default()); model.shapes.len()],
             stamp: 0,
+            axis: Vec::new(),
             simplex: VoronoiSimplex::new(),
         }
     }
@@ -356,6 +354,14 @@ impl CollisionModel {
         false
     }
 
+    /// A pair set, largest links first: big links (a base, a torso) are the likeliest to be hit, and
+    /// [`check`](Self::check) stops at the first contact.
+    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>) -> PairSet {
+        let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
+        pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
+        PairSet::new(pairs)
+    }
+
     /// Why `a` and `b` are never checked, if they are not.
     pub fn allowed(&self, a: LinkId, b: LinkId) -> Option<Allowed> {
         let n = self.bodies.len();
@@ -409,7 +415,7 @@ impl CollisionModel {
 
     /// Every pair of links with geometry that is not allowed to collide.
     pub fn all_pairs(&self) -> PairSet {
-        PairSet::new(
+        self.pair_set(
             self.geometric_pairs()
                 .filter(|&(a, b)| self.allowed(a, b).is_none())
                 .collect(),
@@ -441,7 +447,7 @@ impl CollisionModel {
                 break;
             }
         }
-        PairSet::new(
+        self.pair_set(
             self.geometric_pairs()
                 .filter(|&(a, b)| {
                     self.allowed(a, b).is_none() && self.path_has(a, b, |j| varies[j.0])
@@ -455,23 +461,29 @@ impl CollisionModel {
     /// broken collision geometry: report them, then [`allow`](Self::allow) them as
     /// [`Allowed::Touching`].
     pub fn touching_pairs(&self, placements: &[Isometry3<f64>]) -> Vec<(LinkId, LinkId)> {
-        self.check(
+        let mut touching = Vec::new();
+        self.check_pairs(
             &self.all_pairs(),
             placements,
             0.0,
             &mut CheckScratch::new(self),
-        )
-        .colliding
+            &mut |pair| {
+                touching.push(pair);
+                true
+            },
+        );
+        touching
     }
 
-    /// Check every pair of `pairs` with the links at `placements`.
+    /// Check the pairs of `pairs` with the links at `placements` (world placements indexed by link, as
+    /// [`crate::kinematics::Data::link_placement`]), stopping at the first pair in contact.
     ///
-    /// Bounding spheres first, then GJK on the shapes of pairs whose spheres are closer than the current
-    /// margin: [`CONTACT_DISTANCE`] once a contact is found, else the smallest distance found so far in
-    /// this pose, starting at `clearance_cutoff`. Pass the smallest clearance seen over earlier poses as
-    /// `clearance_cutoff` (`f64::INFINITY` at first): then distances are only computed for pairs that can
-    /// beat it, and [`PoseCheck::min_clearance`] is `Some` only when they do. Pairs with a link whose
-    /// placement is not usable are skipped and counted.
+    /// Bounding spheres first, then bounding boxes, then GJK on the shapes, each stage only for pairs
+    /// that may be closer than the current margin: the smallest distance found so far in this pose,
+    /// starting at `clearance_cutoff`. Pass the smallest clearance seen over earlier poses as
+    /// `clearance_cutoff` (`f64::INFINITY` at first; 0 when clearance does not matter): distances are then
+    /// only computed for pairs that can beat it, and [`PoseCheck::min_clearance`] is `Some` only when one
+    /// does. Pairs with a link whose placement is not usable are skipped and counted.
     pub fn check(
         &self,
         pairs: &PairSet,
@@ -479,30 +491,64 @@ impl CollisionModel {
         clearance_cutoff: f64,
         scratch: &mut CheckScratch,
     ) -> PoseCheck {
+        let mut contact = None;
+        let mut result =
+            self.check_pairs(pairs, placements, clearance_cutoff, scratch, &mut |pair| {
+                contact = Some(pair);
+                false
+            });
+        result.contact = contact;
+        result
+    }
+
+    /// [`check`](Self::check), calling `on_contact` for each pair in contact and going on while it
+    /// returns true (`contact` of the result is left empty).
+    fn check_pairs(
+        &self,
+        pairs: &PairSet,
+        placements: &[Isometry3<f64>],
+        clearance_cutoff: f64,
+        scratch: &mut CheckScratch,
+        on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
+    ) -> PoseCheck {
         scratch.next_pose();
+        let mut result = PoseCheck::default();
+        let mut all_usable = true;
         for &link in &pairs.links {
-            scratch.centre[link.0] = placements.get(link.0).filter(|p| usable(p)).map(|p| {
+            let placement = placements.get(link.0).filter(|p| usable(p));
+            all_usable &= placement.is_some();
+            scratch.centre[link.0] = placement.map_or(Vector3::repeat(f64::NAN), |p| {
                 p.transform_point(&Point3::from(self.bodies[link.0].centre))
                     .coords
             });
         }
+        if !all_usable {
+            result.skipped = pairs
+                .pairs
+                .iter()
+                .filter(|(a, b)| scratch.centre[a.0].x.is_nan() || scratch.centre[b.0].x.is_nan())
+                .count();
+        }
+        if scratch.axis.len() < pairs.len() {
+            scratch.axis.resize(pairs.len(), Vector::ZERO);
+        }
         let mut margin = clearance_cutoff.max(CONTACT_DISTANCE);
-        let mut result = PoseCheck::default();
         let mut nearest = None;
-        for &(a, b) in &pairs.pairs {
-            let (Some(ca), Some(cb)) = (scratch.centre[a.0], scratch.centre[b.0]) else {
-                result.skipped += 1;
-                continue;
-            };
-            let gap = (ca - cb).norm() - self.bodies[a.0].radius - self.bodies[b.0].radius;
-            if gap >= margin {
+        let mut in_contact = false;
+        for (index, &(a, b)) in pairs.pairs.iter().enumerate() {
+            // Squared, so no root; NaN centres are unusable placements.
+            let reach = self.bodies[a.0].radius + self.bodies[b.0].radius + margin;
+            let squared = (scratch.centre[a.0] - scratch.centre[b.0]).norm_squared();
+            if squared >= reach * reach || squared.is_nan() {
                 continue;
             }
-            LINK_TESTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            match self.link_proximity(a, b, placements, margin, scratch) {
+            match self.link_proximity(a, b, index, placements, margin, scratch) {
                 Proximity::Contact => {
-                    result.colliding.push((a, b));
+                    in_contact = true;
                     margin = CONTACT_DISTANCE;
+                    if !on_contact((a, b)) {
+                        break;
+                    }
                 }
                 Proximity::Apart(d) => {
                     nearest = Some((d, (a, b)));
@@ -511,7 +557,7 @@ impl CollisionModel {
                 Proximity::Beyond => {}
             }
         }
-        if result.colliding.is_empty() {
+        if !in_contact {
             result.min_clearance = nearest;
         }
         result
@@ -522,6 +568,7 @@ impl CollisionModel {
         &self,
         a: LinkId,
         b: LinkId,
+        pair_index: usize,
         placements: &[Isometry3<f64>],
         mut margin: f64,
         scratch: &mut CheckScratch,
@@ -532,14 +579,22 @@ impl CollisionModel {
             for j in self.bodies[b.0].shapes.clone() {
                 let pb = self.placed_shape(j, &placements[b.0], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
-                if (pa.centre - pb.centre).norm() - sa.bound - sb.bound >= margin
+                let reach = sa.bound + sb.bound + margin;
+                if (pa.centre - pb.centre).norm_squared() >= reach * reach
                     || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
                 {
                     continue;
                 }
-                SHAPE_TESTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                match proximity(sa, &pa.pose, sb, &pb.pose, margin, &mut scratch.simplex) {
-                    Proximity::Contact => {CONTACTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed); return Proximity::Contact},
+                match proximity(
+                    sa,
+                    &pa.pose,
+                    sb,
+                    &pb.pose,
+                    margin,
+                    &mut scratch.axis[pair_index],
+                    &mut scratch.simplex,
+                ) {
+                    Proximity::Contact => return Proximity::Contact,
                     Proximity::Apart(d) => {
                         best = Proximity::Apart(d);
                         margin = d;
@@ -552,7 +607,12 @@ impl CollisionModel {
     }
 
     /// Where shape `index` of a link placed at `link` is, cached for the current pose.
-    fn placed_shape(&self, index: usize, link: &Isometry3<f64>, scratch: &mut CheckScratch) -> Placed {
+    fn placed_shape(
+        &self,
+        index: usize,
+        link: &Isometry3<f64>,
+        scratch: &mut CheckScratch,
+    ) -> Placed {
         let (stamp, placed) = &mut scratch.placed[index];
         if *stamp != scratch.stamp {
             let shape = &self.shapes[index];

@@ -51,6 +51,14 @@ pub struct Hull {
     /// `neighbours[offsets[v]..offsets[v + 1]]` are joined to vertex `v` by an edge; empty: scan.
     offsets: Vec<usize>,
     neighbours: Vec<u32>,
+    /// Per octant of directions (bit k set when component k is positive): the vertex furthest along the
+    /// octant's diagonal, where climbs start.
+    starts: [usize; 8],
+}
+
+/// The octant of `dir`, as indexed by [`Hull::starts`].
+fn octant(dir: Vector) -> usize {
+    usize::from(dir.x > 0.0) | usize::from(dir.y > 0.0) << 1 | usize::from(dir.z > 0.0) << 2
 }
 
 /// Below this many vertices a scan is as fast as a climb.
@@ -68,13 +76,15 @@ impl Hull {
             points,
             offsets: Vec::new(),
             neighbours: Vec::new(),
+            starts: [0; 8],
         }
     }
 
     /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
     /// convex and contains every point to within a nanometre (quickhull can fail on coplanar points).
     fn triangulated(points: &[Vector]) -> Option<Hull> {
-        let result = std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
+        let result =
+            std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
         let (vertices, triangles) = result.ok()?.ok()?;
         let n = vertices.len();
         let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 3);
@@ -89,7 +99,9 @@ impl Hull {
         }
         edges.sort_unstable();
         // Closed: every edge is shared by exactly two triangles.
-        let closed = edges.chunks(2).all(|pair| pair.len() == 2 && pair[0] == pair[1])
+        let closed = edges
+            .chunks(2)
+            .all(|pair| pair.len() == 2 && pair[0] == pair[1])
             && edges.windows(3).all(|w| w[0] != w[2]);
         if !closed || n < 4 {
             return None;
@@ -120,19 +132,21 @@ impl Hull {
             neighbours.extend(list);
             offsets.push(neighbours.len());
         }
-        Some(Hull {
+        let mut hull = Hull {
             points: vertices,
             offsets,
             neighbours,
-        })
+            starts: [0; 8],
+        };
+        hull.starts = std::array::from_fn(|index| {
+            let sign = |bit: usize| if index & bit == 0 { -1.0 } else { 1.0 };
+            hull.support_index(Vector::new(sign(1), sign(2), sign(4)), 0)
+        });
+        Some(hull)
     }
 
-    /// The vertices (possibly with points inside the hull, when it could not be triangulated).
-    pub fn points(&self) -> &[Vector] {
-        &self.points
-    }
-
-    /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known.
+    /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known
+    /// (from the start of `dir`'s octant when `start` is out of range).
     fn support_index(&self, dir: Vector, start: usize) -> usize {
         if self.offsets.is_empty() {
             let mut best = 0;
@@ -146,7 +160,11 @@ impl Hull {
             }
             return best;
         }
-        let mut vertex = start.min(self.points.len() - 1);
+        let mut vertex = if start < self.points.len() {
+            start
+        } else {
+            self.starts[octant(dir)]
+        };
         let mut best_dot = self.points[vertex].dot(dir);
         loop {
             let from = vertex;
@@ -201,7 +219,7 @@ impl SupportMap for Core {
                 Vector::new(x, y, half.copysign(dir.z))
             }
             Core::Hull(hull) if hull.points.is_empty() => Vector::ZERO,
-            Core::Hull(hull) => hull.points[hull.support_index(dir, 0)],
+            Core::Hull(hull) => hull.points[hull.support_index(dir, usize::MAX)],
         }
     }
 }
@@ -264,7 +282,8 @@ fn fitted_box(points: &[Vector3<f64>]) -> Option<Obb> {
     if axes.determinant() < 0.0 {
         axes.column_mut(2).neg_mut();
     }
-    let principal = nalgebra::Rotation3::from_matrix_eps(&axes, 1e-12, 100, nalgebra::Rotation3::identity());
+    let principal =
+        nalgebra::Rotation3::from_matrix_eps(&axes, 1e-12, 100, nalgebra::Rotation3::identity());
     let principal = box_along(points, UnitQuaternion::from_rotation_matrix(&principal));
     Some(match principal {
         Some(p) if p.volume() < aligned.volume() => p,
@@ -274,7 +293,10 @@ fn fitted_box(points: &[Vector3<f64>]) -> Option<Obb> {
 
 /// The smallest box with axes `rotation` around `points`.
 fn box_along(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> Option<Obb> {
-    let local: Vec<Vector3<f64>> = points.iter().map(|p| rotation.inverse_transform_vector(p)).collect();
+    let local: Vec<Vector3<f64>> = points
+        .iter()
+        .map(|p| rotation.inverse_transform_vector(p))
+        .collect();
     let first = local.first()?;
     let (lo, hi) = local
         .iter()
@@ -477,12 +499,17 @@ pub enum Proximity {
 
 /// The proximity of `a` placed at `pose_a` and `b` at `pose_b` (world placements of the shape frames),
 /// exact up to `margin` (distances at or above `margin` are [`Proximity::Beyond`]).
+///
+/// `axis` is the direction from `a` to `b` (in `a`'s frame) that GJK ended with on this pair last time,
+/// zero at first: GJK starts from it and updates it. Shapes seldom turn much relative to each other
+/// between two queries, so a separated pair is usually settled at the first iteration.
 pub fn proximity(
     a: &ConvexShape,
     pose_a: &Pose,
     b: &ConvexShape,
     pose_b: &Pose,
     margin: f64,
+    axis: &mut Vector,
     simplex: &mut VoronoiSimplex,
 ) -> Proximity {
     let rounding = a.radius + b.radius;
@@ -494,19 +521,25 @@ pub fn proximity(
             &pos12,
             &Warm {
                 core: &a.core,
-                vertex: Cell::new(0),
+                vertex: Cell::new(usize::MAX),
             },
             &Warm {
                 core: &b.core,
-                vertex: Cell::new(0),
+                vertex: Cell::new(usize::MAX),
             },
             margin + rounding,
             simplex,
-            None,
+            (*axis != Vector::ZERO).then_some(-*axis),
         ) {
-            GJKResult::ClosestPoints(p1, p2, _) => Some(p1.distance(p2)),
+            GJKResult::ClosestPoints(p1, p2, dir) => {
+                *axis = dir;
+                Some(p1.distance(p2))
+            }
             GJKResult::Intersection => None,
-            GJKResult::NoIntersection(_) | GJKResult::Proximity(_) => return Proximity::Beyond,
+            GJKResult::NoIntersection(dir) | GJKResult::Proximity(dir) => {
+                *axis = dir;
+                return Proximity::Beyond;
+            }
         }
     };
     match core_distance.map(|d| d - rounding) {
@@ -549,7 +582,15 @@ mod tests {
     }
 
     fn query(a: &ConvexShape, pa: &Pose, b: &ConvexShape, pb: &Pose) -> Proximity {
-        proximity(a, pa, b, pb, f64::INFINITY, &mut VoronoiSimplex::new())
+        proximity(
+            a,
+            pa,
+            b,
+            pb,
+            f64::INFINITY,
+            &mut Vector::default(),
+            &mut VoronoiSimplex::new(),
+        )
     }
 
     fn apart(p: Proximity) -> f64 {
@@ -613,6 +654,7 @@ mod tests {
             &cube(0.5),
             &at(3.0, 0.0, 0.0),
             1.0,
+            &mut Vector::default(),
             &mut simplex,
         );
         assert_eq!(far, Proximity::Beyond);
@@ -622,6 +664,7 @@ mod tests {
             &cube(0.5),
             &at(1.5, 0.0, 0.0),
             1.0,
+            &mut Vector::default(),
             &mut simplex,
         );
         assert!((apart(near) - 0.5).abs() < 1e-9);
