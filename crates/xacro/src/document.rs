@@ -21,8 +21,8 @@ pub(crate) struct Node {
 #[derive(Debug)]
 pub(crate) enum Kind {
     Element(Element),
-    Text(String),
-    Comment(String),
+    Text(Rc<str>),
+    Comment(Rc<str>),
     Pi {
         target: String,
         data: Option<String>,
@@ -36,7 +36,7 @@ pub(crate) enum Kind {
 /// declarations first, as minidom has them), children.
 #[derive(Debug)]
 pub(crate) struct Element {
-    pub name: String,
+    pub name: Rc<str>,
     pub attrs: Vec<Attr>,
     pub children: Vec<NodeRef>,
 }
@@ -44,8 +44,8 @@ pub(crate) struct Element {
 /// An attribute and where its name and value were written.
 #[derive(Clone, Debug)]
 pub(crate) struct Attr {
-    pub name: String,
-    pub value: String,
+    pub name: Rc<str>,
+    pub value: Rc<str>,
     pub name_loc: Loc,
     /// Origin of the value.
     pub src: Src,
@@ -197,8 +197,8 @@ impl Converter<'_> {
                 }
                 return self.element(n, depth).map(Some);
             }
-            roxmltree::NodeType::Text => Kind::Text(n.text().unwrap_or_default().to_string()),
-            roxmltree::NodeType::Comment => Kind::Comment(n.text().unwrap_or_default().to_string()),
+            roxmltree::NodeType::Text => Kind::Text(n.text().unwrap_or_default().into()),
+            roxmltree::NodeType::Comment => Kind::Comment(n.text().unwrap_or_default().into()),
             roxmltree::NodeType::PI => match n.pi() {
                 Some(pi) => Kind::Pi {
                     target: pi.target.to_string(),
@@ -224,12 +224,13 @@ impl Converter<'_> {
         let mut tag_end = r.start + 1 + name_len;
         let mut attrs = Vec::new();
         // Namespace declarations made on this element (minidom keeps them as attributes, first).
-        let parent_ns: Vec<(Option<&str>, &str)> = n
-            .parent_element()
-            .map(|p| p.namespaces().map(|ns| (ns.name(), ns.uri())).collect())
-            .unwrap_or_default();
+        let parent = n.parent_element();
         for ns in n.namespaces() {
-            if ns.name() == Some("xml") || parent_ns.contains(&(ns.name(), ns.uri())) {
+            let inherited = parent.is_some_and(|p| {
+                p.namespaces()
+                    .any(|q| q.name() == ns.name() && q.uri() == ns.uri())
+            });
+            if ns.name() == Some("xml") || inherited {
                 continue;
             }
             let attr_name = match ns.name() {
@@ -268,8 +269,8 @@ impl Converter<'_> {
                     }
                 };
                 Attr {
-                    name,
-                    value,
+                    name: name.into(),
+                    value: value.into(),
                     name_loc,
                     src: value_src,
                 }
@@ -283,7 +284,7 @@ impl Converter<'_> {
         }
         Ok(Rc::new(Node {
             kind: Kind::Element(Element {
-                name,
+                name: name.into(),
                 attrs,
                 children,
             }),

@@ -28,7 +28,7 @@ struct Ctx {
 
 /// An element after `eval_all`: evaluated attributes and processed children.
 struct Built {
-    name: String,
+    name: Rc<str>,
     attrs: Vec<Attr>,
     children: Vec<NodeRef>,
     src: Src,
@@ -75,7 +75,7 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         docs: RefCell::default(),
         args: RefCell::new(opts.args.iter().cloned().collect()),
         file_stack: RefCell::new(vec![path.to_path_buf()]),
-        open_files: RefCell::new(vec![std::fs::canonicalize(path).ok()]),
+        open_files: RefCell::new(vec![Some(lexical_absolute(path))]),
         pending: RefCell::default(),
         warnings: RefCell::default(),
         nodes: Cell::new(0),
@@ -94,11 +94,11 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
     let ctx = Ctx::default();
     // xacro:targetNamespace becomes the default namespace.
     let root = match &root.kind {
-        Kind::Element(el) if el.attrs.iter().any(|a| a.name == "xacro:targetNamespace") => {
+        Kind::Element(el) if el.attrs.iter().any(|a| &*a.name == "xacro:targetNamespace") => {
             let mut attrs = el.attrs.clone();
             for a in attrs
                 .iter_mut()
-                .filter(|a| a.name == "xacro:targetNamespace")
+                .filter(|a| &*a.name == "xacro:targetNamespace")
             {
                 a.name = "xmlns".into();
             }
@@ -125,6 +125,8 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         banner.as_deref(),
         x.separator.get(),
         opts.limits.max_output_bytes,
+        // Text and attribute bytes created, plus markup and indentation per node.
+        x.bytes.get() + 48 * x.nodes.get(),
     )?;
     Ok(Expansion {
         xml,
@@ -140,6 +142,31 @@ const PY_KEYWORDS: [&str; 35] = [
     "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return", "try", "while",
     "with", "yield",
 ];
+
+/// `path` made absolute with `.` and `..` resolved lexically (no file system access; symlinked cycles are
+/// caught by the include depth limit instead).
+fn lexical_absolute(path: &Path) -> PathBuf {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut out = PathBuf::new();
+    for c in abs.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// The text of an evaluated value (Python's `str()`), sharing the string when it is one.
+fn into_text(v: Value) -> Rc<str> {
+    match v {
+        Value::Str(s) => s,
+        v => v.to_xacro_string().into(),
+    }
+}
 
 /// A Python identifier that is not a keyword (`is_valid_name`).
 fn is_valid_name(name: &str) -> bool {
@@ -845,7 +872,7 @@ impl<'o> Expander<'o> {
     ) -> Result<Vec<Option<&'e Attr>>, XacroError> {
         let mut out = Vec::new();
         for name in required {
-            match el.attrs.iter().find(|a| a.name == *name) {
+            match el.attrs.iter().find(|a| &*a.name == *name) {
                 Some(a) => out.push(Some(a)),
                 None => {
                     let e = XacroError::new(
@@ -859,12 +886,12 @@ impl<'o> Expander<'o> {
         out.extend(
             optional
                 .iter()
-                .map(|name| el.attrs.iter().find(|a| a.name == *name)),
+                .map(|name| el.attrs.iter().find(|a| &*a.name == *name)),
         );
         let extra: Vec<&str> = el
             .attrs
             .iter()
-            .map(|a| a.name.as_str())
+            .map(|a| &*a.name)
             .filter(|n| !required.contains(n) && !optional.contains(n) && !n.starts_with("xmlns:"))
             .collect();
         if !extra.is_empty() {
@@ -924,11 +951,11 @@ impl<'o> Expander<'o> {
     ) -> Result<Built, XacroError> {
         let mut attrs = Vec::with_capacity(el.attrs.len());
         for a in &el.attrs {
-            if a.name.starts_with("xacro:") || a.name == "xmlns:xacro" {
+            if a.name.starts_with("xacro:") || &*a.name == "xmlns:xacro" {
                 continue;
             }
             let value = if a.value.contains('$') {
-                self.eval_attr(a, symbols, ctx)?.to_xacro_string()
+                into_text(self.eval_attr(a, symbols, ctx)?)
             } else {
                 a.value.clone()
             };
@@ -1062,9 +1089,10 @@ impl<'o> Expander<'o> {
                     }
                     Kind::Text(t) => {
                         let value = if t.contains('$') {
-                            self.eval_text(t, symbols, ctx)
-                                .map_err(|e| self.locate(e, node.src.loc, ctx))?
-                                .to_xacro_string()
+                            into_text(
+                                self.eval_text(t, symbols, ctx)
+                                    .map_err(|e| self.locate(e, node.src.loc, ctx))?,
+                            )
                         } else {
                             t.clone()
                         };
@@ -1083,8 +1111,8 @@ impl<'o> Expander<'o> {
                         } else if eval_comments {
                             let value = self
                                 .eval_text(c, symbols, ctx)
-                                .map_err(|e| self.locate(e, node.src.loc, ctx))?
-                                .to_xacro_string();
+                                .map_err(|e| self.locate(e, node.src.loc, ctx))
+                                .map(into_text)?;
                             self.count_node(value.len())?;
                             out.push(Rc::new(Node {
                                 kind: Kind::Comment(value),
@@ -1126,14 +1154,10 @@ impl<'o> Expander<'o> {
         has_next: bool,
     ) -> Result<Option<NodeRef>, XacroError> {
         let loc = node.src.loc;
-        match el.name.as_str() {
+        match &*el.name {
             "xacro:insert_block" => {
                 let attrs = self.check_attrs(node, el, &["name"], &[], ctx)?;
-                let name = attrs
-                    .first()
-                    .copied()
-                    .flatten()
-                    .map_or("", |a| a.value.as_str());
+                let name = attrs.first().copied().flatten().map_or("", |a| &*a.value);
                 let (block, content_only) = match self.block(symbols, &format!("**{name}")) {
                     Some(b) => (b, true),
                     None => match self.block(symbols, &format!("*{name}")) {
@@ -1174,9 +1198,9 @@ impl<'o> Expander<'o> {
             "xacro:arg" => {
                 let attrs = self.check_attrs(node, el, &["name", "default"], &[], ctx)?;
                 if let [Some(name), Some(default)] = attrs[..] {
-                    if !self.args.borrow().contains_key(&name.value) {
+                    if !self.args.borrow().contains_key(&*name.value) {
                         let value = self.eval_attr(default, symbols, ctx)?.to_xacro_string();
-                        self.args.borrow_mut().insert(name.value.clone(), value);
+                        self.args.borrow_mut().insert(name.value.to_string(), value);
                     }
                 }
                 if self.remove_previous_comments(out, has_next) {
@@ -1199,12 +1223,12 @@ impl<'o> Expander<'o> {
                 let attrs = el
                     .attrs
                     .iter()
-                    .filter(|a| a.name != "xacro:name")
+                    .filter(|a| &*a.name != "xacro:name")
                     .cloned()
                     .collect();
                 return Ok(Some(Rc::new(Node {
                     kind: Kind::Element(Element {
-                        name,
+                        name: name.into(),
                         attrs,
                         children: el.children.clone(),
                     }),
@@ -1214,8 +1238,8 @@ impl<'o> Expander<'o> {
             "xacro:attribute" => {
                 let attrs = self.check_attrs(node, el, &["name", "value"], &[], ctx)?;
                 if let [Some(name_attr), Some(value_attr)] = attrs[..] {
-                    let name = self.eval_attr(name_attr, symbols, ctx)?.to_xacro_string();
-                    let value = self.eval_attr(value_attr, symbols, ctx)?.to_xacro_string();
+                    let name = into_text(self.eval_attr(name_attr, symbols, ctx)?);
+                    let value = into_text(self.eval_attr(value_attr, symbols, ctx)?);
                     if name.is_empty() {
                         let e = XacroError::new(ErrorKind::Other, "xacro:attribute: empty name");
                         return Err(self.locate(e, loc, ctx));
@@ -1248,7 +1272,7 @@ impl<'o> Expander<'o> {
                         );
                         return Err(self.locate(e, cond.src.loc, ctx));
                     };
-                    if el.name == "xacro:unless" {
+                    if &*el.name == "xacro:unless" {
                         keep = !keep;
                     }
                     if keep {
@@ -1357,7 +1381,7 @@ impl<'o> Expander<'o> {
             value = Some(d);
         }
         let mut lazy = bool_attr(lazy_eval, true)?;
-        let target = match scope.map(|a| a.value.as_str()) {
+        let target = match scope.map(|a| &*a.value) {
             Some("global") => {
                 lazy = false;
                 symbols.top()
@@ -1410,7 +1434,7 @@ impl<'o> Expander<'o> {
         let [Some(name_attr), params] = attrs[..] else {
             return Ok(());
         };
-        let mut name = name_attr.value.as_str();
+        let mut name: &str = &name_attr.value;
         if name == "call" {
             return Err(self.locate(
                 XacroError::new(ErrorKind::Other, "Invalid use of macro name 'call'"),
@@ -1437,7 +1461,7 @@ impl<'o> Expander<'o> {
             defaults: HashMap::new(),
             body: node.clone(),
         };
-        for (param, spec) in parse_params(params.map_or("", |p| p.value.as_str())) {
+        for (param, spec) in parse_params(params.map_or("", |p| &*p.value)) {
             if let Some(spec) = spec {
                 m.defaults.insert(param.clone(), spec);
             }
@@ -1498,8 +1522,8 @@ impl<'o> Expander<'o> {
         has_next: bool,
     ) -> Result<(), XacroError> {
         let loc = node.src.loc;
-        let (name, call_attrs): (String, Vec<&Attr>) = if el.name == "xacro:call" {
-            let Some(macro_attr) = el.attrs.iter().find(|a| a.name == "macro") else {
+        let (name, call_attrs): (String, Vec<&Attr>) = if &*el.name == "xacro:call" {
+            let Some(macro_attr) = el.attrs.iter().find(|a| &*a.name == "macro") else {
                 let e = XacroError::new(
                     ErrorKind::MissingAttribute,
                     "xacro:call: missing attribute 'macro'",
@@ -1523,7 +1547,7 @@ impl<'o> Expander<'o> {
             }
             (
                 name,
-                el.attrs.iter().filter(|a| a.name != "macro").collect(),
+                el.attrs.iter().filter(|a| &*a.name != "macro").collect(),
             )
         } else {
             (
@@ -1565,7 +1589,7 @@ impl<'o> Expander<'o> {
         let scoped_macros = MacroTable::child(&ns_macros);
         let mut params = m.params.clone();
         for a in call_attrs {
-            let Some(pos) = params.iter().position(|p| *p == a.name) else {
+            let Some(pos) = params.iter().position(|p| **p == *a.name) else {
                 let hint = did_you_mean(&a.name, m.params.iter().map(String::as_str));
                 let e = XacroError::new(
                     ErrorKind::UnknownParameter,
@@ -1606,7 +1630,7 @@ impl<'o> Expander<'o> {
         }
         if let Some(extra) = blocks.next() {
             let tag = match &extra.kind {
-                Kind::Element(e) => e.name.clone(),
+                Kind::Element(e) => e.name.to_string(),
                 _ => String::new(),
             };
             let e = XacroError::new(
@@ -1692,7 +1716,7 @@ impl<'o> Expander<'o> {
         };
         let optional = match optional {
             None => false,
-            Some(a) => boolean_value(&Value::Str(a.value.as_str().into())).ok_or_else(|| {
+            Some(a) => boolean_value(&Value::Str(a.value.clone())).ok_or_else(|| {
                 let e = XacroError::new(
                     ErrorKind::BadCondition,
                     format!("Xacro conditional \"None\" evaluated to \"{}\", which is not a boolean expression.", a.value),
@@ -1737,7 +1761,7 @@ impl<'o> Expander<'o> {
                 );
                 return Err(self.locate(e, loc, ctx));
             }
-            let canonical = std::fs::canonicalize(&file).ok();
+            let canonical = Some(lexical_absolute(&file));
             let cycle = canonical.is_some() && self.open_files.borrow().contains(&canonical);
             if cycle {
                 let e = XacroError::new(

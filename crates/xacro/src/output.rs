@@ -21,9 +21,10 @@ pub(crate) fn write(
     banner: Option<&str>,
     live_separator: u64,
     limit: usize,
+    size_hint: usize,
 ) -> Result<(String, SourceMap), XacroError> {
     let mut w = Writer {
-        out: String::new(),
+        out: String::with_capacity(size_hint.min(limit)),
         map: SourceMap::default(),
         frames: HashMap::new(),
         live_separator,
