@@ -65,6 +65,8 @@ pub(crate) struct Expander<'o> {
     /// Generation of the live `_empty_text_node` separator.
     separator: Cell<u64>,
     exprs: RefCell<HashMap<String, Rc<expr::Expr>>>,
+    /// Whether a name is a built-in of the evaluator (cache).
+    builtins: RefCell<HashMap<String, bool>>,
 }
 
 /// Expand `text` (the file `path`).
@@ -83,6 +85,7 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         nesting: Cell::new(0),
         separator: Cell::new(0),
         exprs: RefCell::default(),
+        builtins: RefCell::default(),
     };
     let (_, doc) = x.register(path, text.to_string())?;
     let root = doc
@@ -741,10 +744,22 @@ impl<'o> Expander<'o> {
     }
 
     fn is_builtin(&self, name: &str) -> bool {
-        is_valid_name(name)
+        if let Some(&known) = self.builtins.borrow().get(name) {
+            return known;
+        }
+        let builtin = is_valid_name(name)
             && expr::parse(name)
                 .and_then(|e| expr::eval(&e, &NoScope))
-                .is_ok()
+                .is_ok();
+        self.builtins.borrow_mut().insert(name.to_string(), builtin);
+        builtin
+    }
+
+    /// Python xacro's warning when a property or parameter shadows a built-in name.
+    fn warn_if_builtin(&self, name: &str, loc: Loc) {
+        if self.is_builtin(name) {
+            self.warn(format!("redefining global symbol: {name}"), Some(loc));
+        }
     }
 
     fn call_host(
@@ -899,6 +914,30 @@ impl<'o> Expander<'o> {
                 format!("{}: unknown attribute(s): {}", el.name, extra.join(", ")),
                 Some(node.src.loc),
             );
+        }
+        Ok(out)
+    }
+
+    /// `reqd_attrs`: the required attributes, without warning about others.
+    fn required_attrs<'e>(
+        &self,
+        node: &NodeRef,
+        el: &'e Element,
+        required: &[&str],
+        ctx: &Ctx,
+    ) -> Result<Vec<Option<&'e Attr>>, XacroError> {
+        let mut out = Vec::with_capacity(required.len());
+        for name in required {
+            match el.attrs.iter().find(|a| &*a.name == *name) {
+                Some(a) => out.push(Some(a)),
+                None => {
+                    let e = XacroError::new(
+                        ErrorKind::MissingAttribute,
+                        format!("{}: missing attribute '{name}'", el.name),
+                    );
+                    return Err(self.locate(e, node.src.loc, ctx));
+                }
+            }
         }
         Ok(out)
     }
@@ -1208,7 +1247,7 @@ impl<'o> Expander<'o> {
                 }
             }
             "xacro:element" => {
-                let attrs = self.check_attrs(node, el, &["xacro:name"], &[], ctx)?;
+                let attrs = self.required_attrs(node, el, &["xacro:name"], ctx)?;
                 let Some(name_attr) = attrs.first().copied().flatten() else {
                     return Ok(None);
                 };
@@ -1236,7 +1275,7 @@ impl<'o> Expander<'o> {
                 })));
             }
             "xacro:attribute" => {
-                let attrs = self.check_attrs(node, el, &["name", "value"], &[], ctx)?;
+                let attrs = self.required_attrs(node, el, &["name", "value"], ctx)?;
                 if let [Some(name_attr), Some(value_attr)] = attrs[..] {
                     let name = into_text(self.eval_attr(name_attr, symbols, ctx)?);
                     let value = into_text(self.eval_attr(value_attr, symbols, ctx)?);
@@ -1410,6 +1449,9 @@ impl<'o> Expander<'o> {
             },
             _ => symbols.clone(),
         };
+        if value.is_some() {
+            self.warn_if_builtin(&name, loc);
+        }
         match value {
             None => target.set_entry(&format!("**{name}"), Entry::Block(node.clone())),
             Some(v) if !lazy => {
@@ -1599,6 +1641,7 @@ impl<'o> Expander<'o> {
             };
             params.remove(pos);
             let value = self.eval_attr(a, symbols, ctx)?;
+            self.warn_if_builtin(&a.name, a.name_loc);
             scoped_symbols.set_value(&a.name, value);
         }
         // The call's children (blocks) are evaluated in the caller's scope.
@@ -1658,6 +1701,7 @@ impl<'o> Expander<'o> {
                     },
                 }
                 .map_err(|e| self.locate(e, loc, ctx))?;
+                self.warn_if_builtin(&param, loc);
                 scoped_symbols.set_value(&param, value);
                 params.retain(|p| *p != param);
             }

@@ -50,7 +50,8 @@ fn package_xml_name(dir: &Path) -> Option<String> {
 /// Find package `pkg`: the caller's callback, the caller's package paths (`DIR/pkg`, or `DIR` itself when its
 /// `package.xml` names `pkg`), `AMENT_PREFIX_PATH` (the ament resource index, as Python xacro does),
 /// `ROS_PACKAGE_PATH`, then the ancestors of the current file (a directory, or a child directory of one,
-/// whose `package.xml` names `pkg`). On failure, the places searched.
+/// whose `package.xml` names `pkg`; failing that, an ancestor directory named `pkg`). On failure, the places
+/// searched.
 pub(crate) fn find_package(
     pkg: &str,
     opts: &Options,
@@ -112,6 +113,11 @@ pub(crate) fn find_package(
         if package_xml_name(&child).as_deref() == Some(pkg) {
             return Ok(child);
         }
+    }
+    // Last resort: an ancestor directory named like the package (trees copied without package.xml).
+    let named = |d: &&Path| d.file_name().is_some_and(|n| n == pkg);
+    if let Some(dir) = start.ancestors().skip(1).take(MAX_WALK_UP).find(named) {
+        return Ok(dir.to_path_buf());
     }
     if let Some(dir) = start.parent() {
         searched.push(format!(
