@@ -14,9 +14,10 @@ pub(crate) fn abs_filename(spec: &str, current: &Path) -> PathBuf {
     if p.is_absolute() {
         return p.to_path_buf();
     }
+    // os.path.join(os.path.dirname(current), spec): no prefix when the current file has no directory.
     match current.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir.join(p),
-        _ => Path::new(".").join(p),
+        Some(dir) => dir.join(p),
+        None => p.to_path_buf(),
     }
 }
 

@@ -141,13 +141,36 @@ pub struct Expansion {
 impl Expansion {
     /// `file:line:col` of an origin.
     pub fn location(&self, origin: &Origin) -> Option<Location> {
-        let file = self.sources.get(origin.file)?;
-        let (line, col) = file.line_col(origin.span.start);
+        self.file_location(origin.file, origin.span.start)
+    }
+
+    /// Where the output byte `output_byte` was written, and the macro calls / includes that produced it
+    /// (innermost first), ready to print: `None` for bytes no source produced (indentation, end tags).
+    pub fn trace(&self, output_byte: usize) -> Option<(Location, Vec<StackEntry>)> {
+        let origin = self.map.origin(output_byte)?;
+        let stack = self
+            .map
+            .stack(origin)
+            .filter_map(|f| {
+                let location = self.file_location(f.file, f.span.start)?;
+                Some(StackEntry {
+                    kind: f.kind,
+                    name: f.name.clone(),
+                    location,
+                })
+            })
+            .collect();
+        Some((self.location(origin)?, stack))
+    }
+
+    fn file_location(&self, file: usize, byte: usize) -> Option<Location> {
+        let source = self.sources.get(file)?;
+        let (line, col) = source.line_col(byte);
         Some(Location {
-            path: file.path.clone(),
+            path: source.path.clone(),
             line,
             col,
-            byte: origin.span.start,
+            byte,
         })
     }
 }
