@@ -11,9 +11,18 @@ use clap::{Parser, ValueEnum};
 #[derive(Debug, Parser)]
 #[command(name = "urdf_validate", version, about, long_about)]
 pub struct Args {
-    /// URDF files, or directories (every *.urdf below them is validated).
+    /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>
+    /// root that builds a robot), and xacro arguments as `name:=value`.
     #[arg(value_name = "URDF_OR_DIR")]
     pub inputs: Vec<PathBuf>,
+
+    /// A xacro argument (repeatable), as `name:=value` on the command line does.
+    #[arg(long, value_name = "NAME=VALUE")]
+    pub xacro_arg: Vec<String>,
+
+    /// Print the expanded URDF of each xacro input and exit (a stand-in for the `xacro` command).
+    #[arg(long)]
+    pub expand_only: bool,
 
     /// Directory for the JSON reports (default: beside each input).
     #[arg(long, value_name = "DIR")]

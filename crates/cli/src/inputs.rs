@@ -1,12 +1,26 @@
-//! Command-line inputs → the list of files to validate.
+//! Command-line inputs → the list of files to validate, and xacro's `name:=value` arguments.
 
 use std::path::{Path, PathBuf};
 
 /// Deepest directory level searched below a directory input.
 const MAX_DEPTH: usize = 32;
 
-/// Files named directly are kept as given; directories contribute every `*.urdf` below them, sorted.
-/// Inputs that do not exist come back as error lines.
+/// Positional `name:=value` words (xacro's argument syntax) set apart from the paths.
+pub fn split_xacro_args(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<(String, String)>) {
+    let mut paths = Vec::new();
+    let mut args = Vec::new();
+    for input in inputs {
+        match input.to_str().and_then(xacro::parse_arg) {
+            Some(arg) if !input.exists() => args.push(arg),
+            _ => paths.push(input.clone()),
+        }
+    }
+    (paths, args)
+}
+
+/// Files named directly are kept as given; directories contribute every `*.urdf` below them and every
+/// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted. Inputs that
+/// do not exist come back as error lines.
 pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
     let mut files = Vec::new();
     let mut errors = Vec::new();
@@ -17,7 +31,7 @@ pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
             files[before..].sort();
             if files.len() == before {
                 errors.push(format!(
-                    "{}: directory holds no *.urdf file",
+                    "{}: directory holds no *.urdf file and no *.xacro robot",
                     input.display()
                 ));
             }
@@ -45,13 +59,47 @@ fn collect_urdfs(dir: &Path, depth: usize, files: &mut Vec<PathBuf>) {
         let Ok(kind) = entry.file_type() else {
             continue;
         };
+        let extension = path
+            .extension()
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
         if kind.is_dir() {
             collect_urdfs(&path, depth + 1, files);
-        } else if path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
-        {
+        } else if extension == "urdf" || (extension == "xacro" && is_robot_xacro(&path)) {
             files.push(path);
         }
     }
+}
+
+/// Largest xacro file looked into when deciding whether it is a robot.
+const MAX_XACRO_PEEK: u64 = 16 * 1024 * 1024;
+
+/// True when the xacro file's root element is `<robot>` and it defines links (an entry file rather than
+/// a macro library, whose root is also `<robot>` but which only defines macros and properties).
+fn is_robot_xacro(path: &Path) -> bool {
+    if std::fs::metadata(path).map_or(true, |m| m.len() > MAX_XACRO_PEEK) {
+        return false;
+    }
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return false;
+    };
+    let Ok(doc) = roxmltree::Document::parse(&text) else {
+        return false;
+    };
+    let root = doc.root_element();
+    root.tag_name().name() == "robot"
+        && root.children().filter(|n| n.is_element()).any(|n| {
+            !n.tag_name()
+                .namespace()
+                .is_some_and(|ns| ns.contains("xacro"))
+                || is_call(n)
+        })
+}
+
+/// A `<xacro:...>` element that is not a definition (a macro call or an include builds the robot).
+fn is_call(node: roxmltree::Node) -> bool {
+    !matches!(
+        node.tag_name().name(),
+        "property" | "macro" | "arg" | "include"
+    )
 }

@@ -61,7 +61,7 @@ fn run(args: Args) -> u8 {
     }
     if args.inputs.is_empty() {
         eprintln!(
-            "error: no input given (expected one or more URDF files or directories; see --help)"
+            "error: no input given (expected one or more URDF or xacro files or directories; see --help)"
         );
         return 2;
     }
@@ -78,10 +78,31 @@ fn run(args: Args) -> u8 {
             return 2;
         }
     };
-    let (files, input_errors) = inputs::expand(&args.inputs);
+    let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
+    for arg in &args.xacro_arg {
+        match arg.split_once('=') {
+            Some((name, value)) if !name.trim().is_empty() => {
+                xacro_args.push((name.trim().to_string(), value.to_string()))
+            }
+            _ => {
+                eprintln!("error: --xacro-arg expects NAME=VALUE, got '{arg}'");
+                return 2;
+            }
+        }
+    }
+    let (files, input_errors) = inputs::expand(&paths);
+    if files.is_empty() && input_errors.is_empty() {
+        eprintln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
+        return 2;
+    }
+    let resolver = PackageResolver::from_env(args.package_path.clone());
+    if args.expand_only {
+        return expand_only(&files, &input_errors, &xacro_args, &resolver);
+    }
     let options = Options {
         workspace,
-        resolver: PackageResolver::from_env(args.package_path.clone()),
+        xacro_args,
+        resolver,
         statics: StaticsOptions {
             pose: PoseOptions {
                 kind: args.pose.into(),
@@ -214,4 +235,41 @@ fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
         orientation_tolerance_deg: tolerance,
         approach_axis: args.approach_axis.as_deref().map(parse_axis).transpose()?,
     })
+}
+
+/// `--expand-only`: the expanded URDF of each xacro input on stdout.
+fn expand_only(
+    files: &[std::path::PathBuf],
+    input_errors: &[String],
+    xacro_args: &[(String, String)],
+    resolver: &PackageResolver,
+) -> u8 {
+    for error in input_errors {
+        eprintln!("error: {error}");
+    }
+    let mut status = u8::from(!input_errors.is_empty()) * 2;
+    let mut stdout = std::io::stdout().lock();
+    for file in files {
+        if !urdf_validator::xacro_input::is_xacro(file) {
+            eprintln!(
+                "error: {}: --expand-only expects a .xacro file",
+                file.display()
+            );
+            status = 2;
+            continue;
+        }
+        match urdf_validator::xacro_input::expand(file, xacro_args, resolver) {
+            Ok(expanded) => {
+                for warning in expanded.warnings() {
+                    eprintln!("warning: {warning}");
+                }
+                let _ = stdout.write_all(expanded.xml().as_bytes());
+            }
+            Err(error) => {
+                eprintln!("error: {error}");
+                status = 2;
+            }
+        }
+    }
+    status
 }

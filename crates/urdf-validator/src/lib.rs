@@ -39,6 +39,7 @@ pub mod suggest;
 pub mod support_polygon;
 pub mod timestamp;
 pub mod workspace;
+pub mod xacro_input;
 
 use std::path::Path;
 
@@ -66,6 +67,8 @@ pub struct Options {
     pub overrides: physics::Overrides,
     /// Meshes loaded so far (shared by every file of a run).
     pub meshes: mesh::MeshCache,
+    /// Arguments for `.xacro` inputs (`name:=value`).
+    pub xacro_args: Vec<(String, String)>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -87,8 +90,13 @@ impl Validation {
     }
 }
 
-/// Validate the URDF at `path`.
+/// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
+    if xacro_input::is_xacro(path) {
+        let expanded = xacro_input::expand(path, &options.xacro_args, &options.resolver)?;
+        let text = expanded.xml().to_string();
+        return validate_source(text, path, options, Locator::Xacro(expanded));
+    }
     let text = parse::read_text(path)?;
     validate_text(text, path, options)
 }
@@ -99,7 +107,32 @@ pub fn validate_text(
     path: &Path,
     options: &Options,
 ) -> Result<Validation, LoadError> {
+    validate_source(text, path, options, Locator::Urdf)
+}
+
+/// How positions in the parsed text become positions in the files the user edits.
+enum Locator {
+    /// The text is the file.
+    Urdf,
+    /// The text was expanded from xacro sources.
+    Xacro(xacro_input::Expanded),
+}
+
+fn validate_source(
+    text: String,
+    path: &Path,
+    options: &Options,
+    locator: Locator,
+) -> Result<Validation, LoadError> {
     let (robot, mut findings) = parse::parse_urdf(&text, path)?;
+    if let Locator::Xacro(expanded) = &locator {
+        findings.extend(
+            expanded
+                .warnings()
+                .into_iter()
+                .map(|w| finding::Finding::new(&rules::XACRO_WARNING, None, w)),
+        );
+    }
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
     let is_robot = !findings.iter().any(|f| f.rule == &rules::NOT_A_ROBOT);
@@ -139,11 +172,16 @@ pub fn validate_text(
         None
     };
     let source = SourceText::new(path, text);
-    let report = build_report(path, &robot, &model, &findings, &source, physics);
-    Ok(Validation {
-        report,
-        sources: vec![source],
-    })
+    let report_findings: Vec<FindingReport> = findings
+        .iter()
+        .map(|f| finding_report(f, &source, &locator))
+        .collect();
+    let report = build_report(path, &robot, &model, &findings, report_findings, physics);
+    let sources = match &locator {
+        Locator::Urdf => vec![source],
+        Locator::Xacro(expanded) => expanded.sources(),
+    };
+    Ok(Validation { report, sources })
 }
 
 /// What could not be assessed, one line per section.
@@ -187,7 +225,7 @@ fn build_report(
     robot: &Robot,
     model: &Model,
     findings: &[Finding],
-    source: &SourceText,
+    finding_reports: Vec<FindingReport>,
     analyses: Option<physics::Physics>,
 ) -> Report {
     let critical_issues = messages(findings, Severity::Critical);
@@ -240,23 +278,47 @@ fn build_report(
         statics: analyses.as_ref().map(|a| a.statics.clone()),
         workspace: analyses.as_ref().map(|a| a.workspace.clone()),
         stability: analyses.map(|a| a.stability),
-        findings: findings.iter().map(|f| finding_report(f, source)).collect(),
+        findings: finding_reports,
     }
 }
 
-fn finding_report(finding: &Finding, source: &SourceText) -> FindingReport {
-    let start = finding.span.map(|s| source.location(s));
-    let end = finding.span.map(|s| source.line_col(s.end as usize));
-    FindingReport {
+fn finding_report(finding: &Finding, source: &SourceText, locator: &Locator) -> FindingReport {
+    let mut report = FindingReport {
         rule: finding.rule.code.to_string(),
         name: finding.rule.name.to_string(),
         severity: finding.severity(),
         message: finding.message.clone(),
-        file: Some(source.path().display().to_string()),
-        line: start.as_ref().map(|l| l.line),
-        column: start.as_ref().map(|l| l.column),
-        end_line: end.map(|e| e.0),
-        end_column: end.map(|e| e.1),
+        file: None,
+        line: None,
+        column: None,
+        end_line: None,
+        end_column: None,
         help: finding.help.clone(),
+        expanded_from: Vec::new(),
+    };
+    let Some(span) = finding.span else {
+        return report;
+    };
+    match locator {
+        Locator::Urdf => {
+            let start = source.location(span);
+            let end = source.line_col(span.end as usize);
+            report.file = Some(start.file);
+            report.line = Some(start.line);
+            report.column = Some(start.column);
+            report.end_line = Some(end.0);
+            report.end_column = Some(end.1);
+        }
+        Locator::Xacro(expanded) => {
+            if let Some(at) = expanded.locate(span) {
+                report.file = Some(at.file);
+                report.line = Some(at.line);
+                report.column = Some(at.column);
+                report.end_line = Some(at.end_line);
+                report.end_column = Some(at.end_column);
+                report.expanded_from = at.stack;
+            }
+        }
     }
+    report
 }

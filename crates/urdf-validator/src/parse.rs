@@ -38,10 +38,12 @@ pub enum LoadError {
         /// The file.
         path: PathBuf,
     },
-    /// A xacro source: the native expander is not implemented yet.
+    /// A xacro source could not be expanded.
     Xacro {
         /// The file.
         path: PathBuf,
+        /// The expander's error: `file:line:col: message`, then the macro / include stack.
+        message: String,
     },
     /// The options do not fit this robot (an unknown joint or link name, an unreadable SRDF).
     Usage {
@@ -75,12 +77,13 @@ impl fmt::Display for LoadError {
             LoadError::NotUtf8 { path } => {
                 write!(f, "{}: not UTF-8 text (expected a URDF XML document)", path.display())
             }
-            LoadError::Xacro { path } => write!(
-                f,
-                "{}: xacro input is not supported yet (expected a URDF; expand it first, e.g. `xacro {} > robot.urdf`)",
-                path.display(),
-                path.display()
-            ),
+            LoadError::Xacro { path, message } => {
+                if message.starts_with(&path.display().to_string()) {
+                    write!(f, "{message}")
+                } else {
+                    write!(f, "{}: {message}", path.display())
+                }
+            }
             LoadError::Usage { path, message } => write!(f, "{}: {message}", path.display()),
             LoadError::Xml { path, line, column, message } => write!(
                 f,
@@ -95,14 +98,6 @@ impl std::error::Error for LoadError {}
 
 /// Read a file's text with the size limit applied.
 pub fn read_text(path: &Path) -> Result<String, LoadError> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xacro"))
-    {
-        return Err(LoadError::Xacro {
-            path: path.to_path_buf(),
-        });
-    }
     let io = |error| LoadError::Io {
         path: path.to_path_buf(),
         error,

@@ -239,6 +239,9 @@ fn finding_lines(
             paint(severity_style(finding.severity), &"^".repeat(width))
         );
     }
+    for frame in &finding.expanded_from {
+        let _ = writeln!(out, "  {pad} {} note: {frame}", paint(CYAN, "="));
+    }
     if let Some(help) = &finding.help {
         let _ = writeln!(
             out,

@@ -222,6 +222,10 @@ pub struct FindingReport {
     pub end_column: Option<u32>,
     /// What to do about it.
     pub help: Option<String>,
+    /// For xacro input: the macro calls and includes that produced the flagged text, innermost first
+    /// (`in macro 'wheel' called at robot.urdf.xacro:40:3`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub expanded_from: Vec<String>,
 }
 
 /// The JSON Schema of [`Report`], pretty-printed.

@@ -80,6 +80,11 @@ rules! {
         why: "There is nothing to simulate; every tool refuses an empty robot.",
         fix: "Check that the file is the generated URDF and not an empty stub (xacro output with a false condition, an empty template).",
     }
+    XACRO_WARNING = "U010" "xacro-warning" Info {
+        what: "The xacro expander warned (an unknown attribute on a xacro tag, an include matching no file, `xacro.warning(...)`).",
+        why: "Python xacro prints the same warning; the expanded URDF may not be what the author meant.",
+        fix: "Follow the message; it names the xacro file, line and column.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

@@ -37,6 +37,9 @@ mod shape;
 mod srdf;
 
 use std::ops::Range;
+/// debug
+pub static COUNTS: [std::sync::atomic::AtomicUsize; 6] = [const { std::sync::atomic::AtomicUsize::new(0) }; 6];
+fn bump(i: usize) { COUNTS[i].fetch_add(1, std::sync::atomic::Ordering::Relaxed); }
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use parry3d_f64::math::{Pose, Vector};
@@ -542,6 +545,7 @@ impl CollisionModel {
             if squared >= reach * reach || squared.is_nan() {
                 continue;
             }
+            bump(0);
             match self.link_proximity(a, b, index, placements, margin, scratch) {
                 Proximity::Contact => {
                     in_contact = true;
@@ -579,12 +583,14 @@ impl CollisionModel {
             for j in self.bodies[b.0].shapes.clone() {
                 let pb = self.placed_shape(j, &placements[b.0], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
+                bump(1);
                 let reach = sa.bound + sb.bound + margin;
                 if (pa.centre - pb.centre).norm_squared() >= reach * reach
                     || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
                 {
                     continue;
                 }
+                bump(2);
                 match proximity(
                     sa,
                     &pa.pose,
@@ -594,7 +600,7 @@ impl CollisionModel {
                     &mut scratch.axis[pair_index],
                     &mut scratch.simplex,
                 ) {
-                    Proximity::Contact => return Proximity::Contact,
+                    Proximity::Contact => { bump(3); return Proximity::Contact }
                     Proximity::Apart(d) => {
                         best = Proximity::Apart(d);
                         margin = d;
