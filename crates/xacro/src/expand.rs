@@ -436,7 +436,7 @@ impl<'o> Expander<'o> {
                 ErrorKind::Limit,
                 format!(
                     "the expansion creates more than {} bytes of text",
-                    limits.max_output_bytes * 4
+                    limits.max_output_bytes.saturating_mul(4)
                 ),
             ));
         }
@@ -713,9 +713,22 @@ impl<'o> Expander<'o> {
                         None => e,
                     });
                 }
+                // Chains of lazy properties recurse: bound them like element nesting.
+                let depth = self.nesting.get() + 1;
+                if depth > self.opts.limits.max_nesting {
+                    return Err(XacroError::new(
+                        ErrorKind::Limit,
+                        format!(
+                            "properties refer to each other more than {} levels deep",
+                            self.opts.limits.max_nesting
+                        ),
+                    ));
+                }
+                self.nesting.set(depth);
                 table.resolving.borrow_mut().push(name.to_string());
                 let result = self.eval_text(&text, &table, ctx);
                 table.resolving.borrow_mut().retain(|n| n != name);
+                self.nesting.set(depth - 1);
                 let value = match result {
                     Ok(v) => v,
                     Err(e) => {

@@ -167,3 +167,29 @@ fn truncated_and_mangled_inputs_never_panic() {
         }
     }
 }
+
+#[test]
+fn long_chains_of_lazy_properties_stop_at_the_limit() {
+    let n = 100_000;
+    let mut body = String::from(r#"<xacro:property name="p0" value="1"/>"#);
+    for i in 1..n {
+        body.push_str(&format!(
+            r#"<xacro:property name="p{i}" value="${{p{}}}"/>"#,
+            i - 1
+        ));
+    }
+    body.push_str(&format!(r#"<link name="${{p{}}}"/>"#, n - 1));
+    let e = expand(&body).map(|_| ()).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Limit, "{e}");
+    // A chain within the limit works.
+    let mut body = String::from(r#"<xacro:property name="p0" value="1"/>"#);
+    for i in 1..500 {
+        body.push_str(&format!(
+            r#"<xacro:property name="p{i}" value="${{p{} + 1}}"/>"#,
+            i - 1
+        ));
+    }
+    body.push_str(r#"<link name="${p499}"/>"#);
+    let x = expand(&body).expect("500 levels are fine");
+    assert!(x.xml.contains("name=\"500\""), "{}", x.xml);
+}
