@@ -220,9 +220,16 @@ impl Converter<'_> {
         let name_len = tag_text
             .find(|c: char| c.is_whitespace() || c == '/' || c == '>')
             .unwrap_or(tag_text.len());
-        let name = tag_text[..name_len].to_string();
+        let name = &tag_text[..name_len];
         let mut tag_end = r.start + 1 + name_len;
-        let mut attrs = Vec::new();
+        for a in n.attributes() {
+            tag_end = tag_end.max(a.range().end);
+        }
+        if let Some(i) = self.text.get(tag_end..).and_then(|t| t.find('>')) {
+            tag_end += i + 1;
+        }
+        let tag_end = tag_end.min(r.end);
+        let mut attrs = Vec::with_capacity(n.attributes().len());
         // Namespace declarations made on this element (minidom keeps them as attributes, first).
         let parent = n.parent_element();
         for ns in n.namespaces() {
@@ -233,49 +240,29 @@ impl Converter<'_> {
             if ns.name() == Some("xml") || inherited {
                 continue;
             }
-            let attr_name = match ns.name() {
+            let name = match ns.name() {
                 Some(p) => format!("xmlns:{p}"),
                 None => "xmlns".to_string(),
             };
-            attrs.push((attr_name, ns.uri().to_string(), None));
+            // Its position: found in the start tag.
+            let tag = self.text.get(r.start..tag_end).unwrap_or("");
+            let at = tag.find(&name).map_or(r.start, |i| r.start + i);
+            attrs.push(Attr {
+                value: ns.uri().into(),
+                name_loc: self.loc(at, at + name.len()),
+                src: self.src(at, at + name.len()),
+                name: name.into(),
+            });
         }
         for a in n.attributes() {
-            tag_end = tag_end.max(a.range().end);
-            let qname = self
-                .text
-                .get(a.range_qname())
-                .unwrap_or(a.name())
-                .to_string();
-            attrs.push((
-                qname,
-                a.value().to_string(),
-                Some((a.range_qname(), a.range_value())),
-            ));
+            let (qn, v) = (a.range_qname(), a.range_value());
+            attrs.push(Attr {
+                name: self.text.get(qn.clone()).unwrap_or(a.name()).into(),
+                value: a.value().into(),
+                name_loc: self.loc(qn.start, qn.end),
+                src: self.src(v.start, v.end),
+            });
         }
-        if let Some(i) = self.text.get(tag_end..).and_then(|t| t.find('>')) {
-            tag_end += i + 1;
-        }
-        let tag_end = tag_end.min(r.end);
-        let attrs = attrs
-            .into_iter()
-            .map(|(name, value, ranges)| {
-                let (name_loc, value_src) = match ranges {
-                    Some((qn, v)) => (self.loc(qn.start, qn.end), self.src(v.start, v.end)),
-                    None => {
-                        // A namespace declaration: find it in the start tag.
-                        let tag = self.text.get(r.start..tag_end).unwrap_or("");
-                        let at = tag.find(&name).map_or(r.start, |i| r.start + i);
-                        (self.loc(at, at + name.len()), self.src(at, at + name.len()))
-                    }
-                };
-                Attr {
-                    name: name.into(),
-                    value: value.into(),
-                    name_loc,
-                    src: value_src,
-                }
-            })
-            .collect();
         let mut children = Vec::new();
         for c in n.children() {
             if let Some(node) = self.node(c, depth + 1)? {

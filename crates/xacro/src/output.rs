@@ -11,6 +11,8 @@ struct Writer {
     out: String,
     map: SourceMap,
     frames: HashMap<*const FrameData, usize>,
+    /// The frame interned last (consecutive nodes mostly share it).
+    last_frame: Option<(*const FrameData, usize)>,
     live_separator: u64,
     limit: usize,
 }
@@ -27,6 +29,7 @@ pub(crate) fn write(
         out: String::with_capacity(size_hint.min(limit)),
         map: SourceMap::default(),
         frames: HashMap::new(),
+        last_frame: None,
         live_separator,
         limit,
     };
@@ -61,23 +64,35 @@ fn collapse_dashes(s: &str) -> String {
     out
 }
 
+/// Indentation for the first 64 levels.
+const SPACES: &str = "                                                                                                                                ";
+
 /// minidom's `_write_data` (Python 3.11): `&`, `<`, `"`, `>` escaped.
 fn escape_into(out: &mut String, text: &str) {
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '"' => out.push_str("&quot;"),
-            '>' => out.push_str("&gt;"),
-            c => out.push(c),
-        }
+    let mut rest = text;
+    while let Some(i) = rest.find(['&', '<', '"', '>']) {
+        out.push_str(&rest[..i]);
+        out.push_str(match rest.as_bytes()[i] {
+            b'&' => "&amp;",
+            b'<' => "&lt;",
+            b'"' => "&quot;",
+            _ => "&gt;",
+        });
+        rest = &rest[i + 1..];
     }
+    out.push_str(rest);
 }
 
 impl Writer {
     fn frame(&mut self, frame: &std::rc::Rc<FrameData>) -> usize {
         let key = std::rc::Rc::as_ptr(frame);
+        if let Some((last, i)) = self.last_frame {
+            if last == key {
+                return i;
+            }
+        }
         if let Some(&i) = self.frames.get(&key) {
+            self.last_frame = Some((key, i));
             return i;
         }
         let parent = frame.parent.as_ref().map(|p| self.frame(p));
@@ -89,6 +104,7 @@ impl Writer {
             parent,
         });
         self.frames.insert(key, i);
+        self.last_frame = Some((key, i));
         i
     }
 
@@ -162,13 +178,13 @@ impl Writer {
                         value_origin,
                     ));
                 }
-                let children: Vec<&NodeRef> =
-                    el.children.iter().filter(|c| self.exists(c)).collect();
-                let single_text = match children.as_slice() {
-                    [only] => self.text_of(only),
+                let mut existing = el.children.iter().filter(|c| self.exists(c));
+                let (first, second) = (existing.next(), existing.next());
+                let single_text = match (first, second) {
+                    (Some(only), None) => self.text_of(only).map(|t| (t, only)),
                     _ => None,
                 };
-                if children.is_empty() {
+                if first.is_none() {
                     self.out.push_str("/>");
                 } else {
                     self.out.push('>');
@@ -181,12 +197,12 @@ impl Writer {
                     self.map
                         .push_entry(value_range, Piece::AttrValue, value_origin);
                 }
-                if children.is_empty() {
+                if first.is_none() {
                     self.out.push('\n');
-                } else if let Some(text) = single_text {
+                } else if let Some((text, only)) = single_text {
                     let text_start = self.out.len();
                     escape_into(&mut self.out, text);
-                    let origin = self.origin(&children[0].src);
+                    let origin = self.origin(&only.src);
                     self.map
                         .push_entry(text_start..self.out.len(), Piece::Text, origin);
                     self.out.push_str("</");
@@ -194,15 +210,25 @@ impl Writer {
                     self.out.push_str(">\n");
                 } else {
                     self.out.push('\n');
-                    let inner = format!("{indent}  ");
-                    for child in children {
+                    let deeper = indent.len() + 2;
+                    let owned;
+                    let inner = match SPACES.get(..deeper) {
+                        Some(spaces) => spaces,
+                        None => {
+                            owned = " ".repeat(deeper);
+                            &owned
+                        }
+                    };
+                    let live = self.live_separator;
+                    let exists = |c: &&NodeRef| !matches!(c.kind, Kind::Separator(g) if g != live);
+                    for child in el.children.iter().filter(exists) {
                         if self
                             .text_of(child)
                             .is_some_and(|t| t.chars().all(char::is_whitespace))
                         {
                             continue;
                         }
-                        self.node(child, &inner)?;
+                        self.node(child, inner)?;
                     }
                     self.out.push_str(indent);
                     self.out.push_str("</");
