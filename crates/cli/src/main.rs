@@ -131,7 +131,7 @@ fn run(args: Args) -> u8 {
             outputs::validate_one(file, report_path.as_deref(), &options, args.no_write)
         })
         .collect();
-    print_outcomes(&args, &outcomes, &input_errors);
+    print_outcomes(&args, paths.len() == 1, &outcomes, &input_errors);
     let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
     if input_errors.is_empty() {
         worst
@@ -157,7 +157,8 @@ fn explain(code: &str) -> u8 {
     }
 }
 
-fn print_outcomes(args: &Args, outcomes: &[Outcome], input_errors: &[String]) {
+/// Print every outcome; `single_input`: one path was named (a JSON object rather than an array).
+fn print_outcomes(args: &Args, single_input: bool, outcomes: &[Outcome], input_errors: &[String]) {
     let mut stdout = anstream::stdout().lock();
     let mut stderr = anstream::stderr().lock();
     for error in input_errors {
@@ -171,9 +172,7 @@ fn print_outcomes(args: &Args, outcomes: &[Outcome], input_errors: &[String]) {
                 .map(|v| &v.report)
                 .collect();
             let text = match reports.as_slice() {
-                [one] if args.inputs.len() == 1 && outcomes.len() == 1 => {
-                    serde_json::to_string_pretty(one)
-                }
+                [one] if single_input && outcomes.len() == 1 => serde_json::to_string_pretty(one),
                 many => serde_json::to_string_pretty(many),
             };
             let _ = writeln!(stdout, "{}", text.unwrap_or_default());

@@ -276,3 +276,89 @@ fn statics_flags_reach_the_report() {
         "{text_out}"
     );
 }
+
+const XACRO_LIBRARY: &str = r#"<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm_link" params="name mass">
+    <link name="${name}">
+      <inertial><mass value="${mass}"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+    </link>
+  </xacro:macro>
+</robot>
+"#;
+
+const XACRO_ROBOT: &str = r#"<robot name="xr" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="mass" default="1"/>
+  <xacro:include filename="lib.xacro"/>
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <xacro:arm_link name="arm" mass="$(arg mass)"/>
+</robot>
+"#;
+
+#[test]
+fn xacro_arguments_reach_the_expansion() {
+    let dir = temp_dir();
+    write(&dir, "lib.xacro", XACRO_LIBRARY);
+    let robot = write(&dir, "xr.urdf.xacro", XACRO_ROBOT);
+    let robot = robot.to_str().unwrap();
+    let mass = |args: &[&str]| -> f64 {
+        let mut all = vec![robot, "--no-write", "--format", "json"];
+        all.extend_from_slice(args);
+        let out = run(&all);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+        report["statics"]["total_mass"].as_f64().expect("a mass")
+    };
+    assert_eq!(mass(&[]), 1.0);
+    assert_eq!(mass(&["mass:=2.5"]), 2.5);
+    assert_eq!(mass(&["--xacro-arg", "mass=4"]), 4.0);
+}
+
+#[test]
+fn expand_only_prints_the_urdf() {
+    let dir = temp_dir();
+    write(&dir, "lib.xacro", XACRO_LIBRARY);
+    let robot = write(&dir, "xr.urdf.xacro", XACRO_ROBOT);
+    let out = run(&[robot.to_str().unwrap(), "--expand-only", "mass:=3"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let urdf = text(&out.stdout);
+    assert!(urdf.starts_with("<?xml"), "{urdf}");
+    assert!(urdf.contains(r#"<mass value="3"/>"#), "{urdf}");
+    assert!(!urdf.contains("xacro:"), "{urdf}");
+    // An undefined argument is an error naming the file and line.
+    let bad = write(
+        &dir,
+        "bad.urdf.xacro",
+        r#"<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="$(arg nope)"/></robot>"#,
+    );
+    let out = run(&[bad.to_str().unwrap(), "--expand-only"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("bad.urdf.xacro:1:"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn a_directory_includes_robot_xacros_but_not_macro_libraries() {
+    let dir = temp_dir();
+    write(&dir, "lib.xacro", XACRO_LIBRARY);
+    write(&dir, "xr.urdf.xacro", XACRO_ROBOT);
+    let out = run(&[dir.to_str().unwrap(), "--no-write", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let reports: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let paths: Vec<&str> = match &reports {
+        serde_json::Value::Array(items) => items
+            .iter()
+            .map(|r| r["urdf_path"].as_str().unwrap())
+            .collect(),
+        single => vec![single["urdf_path"].as_str().unwrap()],
+    };
+    assert_eq!(paths.len(), 1, "{paths:?}");
+    assert!(paths[0].ends_with("xr.urdf.xacro"));
+}
