@@ -37,15 +37,18 @@ import sys, time, io, contextlib, statistics
 import xacro
 path, runs = sys.argv[1], int(sys.argv[2])
 times = []
+cpu = time.process_time()
 for _ in range(runs):
     t = time.perf_counter()
     with contextlib.redirect_stderr(io.StringIO()):
         doc = xacro.process_file(path)
     doc.toprettyxml(indent='  ')
     times.append((time.perf_counter() - t) * 1e3)
-print(statistics.median(times))
+print(statistics.median(times), (time.process_time() - cpu) / runs * 1e3)
 PY
 )"
+py_median="${py_inproc% *}"
+py_cpu="${py_inproc#* }"
 
 wall_ms() { # command... -> median wall time in ms over $runs runs
     for _ in $(seq "$runs"); do
@@ -58,13 +61,17 @@ wall_ms() { # command... -> median wall time in ms over $runs runs
 }
 
 py_cli="$(wall_ms .venv/bin/xacro "$entry")"
-ours_inproc="$("$native" "$entry" --repeat "$runs" 2>&1 | awk '/median/ {print $2}')"
+ours_report="$("$native" "$entry" --repeat "$runs" 2>&1)"
+ours_inproc="$(awk '/median/ {print $2}' <<<"$ours_report")"
+ours_cpu="$(awk '/^cpu/ {print $2}' <<<"$ours_report")"
 ours_cli="$(wall_ms "$native" "$entry")"
 
-printf 'PR2 pr2.urdf.xacro, median of %s runs\n' "$runs"
-printf '  Python xacro 2.1.1 process_file (in-process): %8.2f ms\n' "$py_inproc"
-printf '  native expander (in-process):                 %8.2f ms   ratio %.1fx\n' "$ours_inproc" \
-    "$(awk -v a="$py_inproc" -v b="$ours_inproc" 'BEGIN {print a / b}')"
+printf 'PR2 pr2.urdf.xacro, median of %s runs (load average %s)\n' "$runs" "$(cut -d' ' -f1 /proc/loadavg)"
+printf '  Python xacro 2.1.1 process_file (in-process): %8.2f ms   (CPU %.2f ms per run)\n' "$py_median" "$py_cpu"
+printf '  native expander (in-process):                 %8.2f ms   (CPU %.2f ms per run)\n' "$ours_inproc" "$ours_cpu"
+printf '  ratio in-process: %.1fx wall (median), %.1fx CPU\n' \
+    "$(awk -v a="$py_median" -v b="$ours_inproc" 'BEGIN {print a / b}')" \
+    "$(awk -v a="$py_cpu" -v b="$ours_cpu" 'BEGIN {print (b > 0 ? a / b : 0)}')"
 printf '  Python xacro command (wall):                  %8.2f ms\n' "$py_cli"
 printf '  native example binary (wall):                 %8.2f ms   ratio %.1fx\n' "$ours_cli" \
     "$(awk -v a="$py_cli" -v b="$ours_cli" 'BEGIN {print a / b}')"

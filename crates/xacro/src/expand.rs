@@ -67,10 +67,25 @@ pub(crate) struct Expander<'o> {
     exprs: RefCell<HashMap<String, Rc<expr::Expr>>>,
     /// Whether a name is a built-in of the evaluator (cache).
     builtins: RefCell<HashMap<String, bool>>,
+    /// Address of a local of [`run`] and how much stack below it this run may use (`None`: unbounded, on
+    /// the expander's own large-stack thread).
+    stack_base: usize,
+    stack_budget: Option<usize>,
+    /// Set when the stack budget ran out: the caller retries on a thread with a large stack.
+    stack_exhausted: &'o Cell<bool>,
 }
 
-/// Expand `text` (the file `path`).
-pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, XacroError> {
+/// Expand `text` (the file `path`), using at most `stack_budget` bytes of stack when given. The second value
+/// is true when that budget ran out (the result is then an error, and the caller should retry without a
+/// budget on a thread with a large stack).
+pub(crate) fn run(
+    text: &str,
+    path: &Path,
+    opts: &Options,
+    stack_budget: Option<usize>,
+) -> (Result<Expansion, XacroError>, bool) {
+    let marker = 0u8;
+    let exhausted = Cell::new(false);
     let x = Expander {
         opts,
         sources: RefCell::default(),
@@ -86,57 +101,70 @@ pub(crate) fn run(text: &str, path: &Path, opts: &Options) -> Result<Expansion, 
         separator: Cell::new(0),
         exprs: RefCell::default(),
         builtins: RefCell::default(),
+        stack_base: std::ptr::addr_of!(marker) as usize,
+        stack_budget,
+        stack_exhausted: &exhausted,
     };
-    let (_, doc) = x.register(path, text.to_string())?;
-    let root = doc
-        .root()
-        .cloned()
-        .ok_or_else(|| XacroError::new(ErrorKind::XmlParse, "no root element"))?;
-    let macros: MacroTableRef = Rc::default();
-    let symbols: TableRef = Rc::default();
-    let ctx = Ctx::default();
-    // xacro:targetNamespace becomes the default namespace.
-    let root = match &root.kind {
-        Kind::Element(el) if el.attrs.iter().any(|a| &*a.name == "xacro:targetNamespace") => {
-            let mut attrs = el.attrs.clone();
-            for a in attrs
-                .iter_mut()
-                .filter(|a| &*a.name == "xacro:targetNamespace")
-            {
-                a.name = "xmlns".into();
+    let result = x.expand(text, path);
+    (result, exhausted.get())
+}
+
+impl Expander<'_> {
+    /// The whole expansion.
+    fn expand(self, text: &str, path: &Path) -> Result<Expansion, XacroError> {
+        let x = self;
+        let opts = x.opts;
+        let (_, doc) = x.register(path, text.to_string())?;
+        let root = doc
+            .root()
+            .cloned()
+            .ok_or_else(|| XacroError::new(ErrorKind::XmlParse, "no root element"))?;
+        let macros: MacroTableRef = Rc::default();
+        let symbols: TableRef = Rc::default();
+        let ctx = Ctx::default();
+        // xacro:targetNamespace becomes the default namespace.
+        let root = match &root.kind {
+            Kind::Element(el) if el.attrs.iter().any(|a| &*a.name == "xacro:targetNamespace") => {
+                let mut attrs = el.attrs.clone();
+                for a in attrs
+                    .iter_mut()
+                    .filter(|a| &*a.name == "xacro:targetNamespace")
+                {
+                    a.name = "xmlns".into();
+                }
+                Rc::new(Node {
+                    kind: Kind::Element(Element {
+                        name: el.name.clone(),
+                        attrs,
+                        children: el.children.clone(),
+                    }),
+                    src: root.src.clone(),
+                })
             }
-            Rc::new(Node {
-                kind: Kind::Element(Element {
-                    name: el.name.clone(),
-                    attrs,
-                    children: el.children.clone(),
-                }),
-                src: root.src.clone(),
-            })
+            _ => root,
+        };
+        let built = x.eval_element(&root, &macros, &symbols, &ctx)?;
+        let mut top: Vec<NodeRef> = doc.children.clone();
+        if let Some(slot) = top.get_mut(doc.root) {
+            *slot = built.into_node();
         }
-        _ => root,
-    };
-    let built = x.eval_element(&root, &macros, &symbols, &ctx)?;
-    let mut top: Vec<NodeRef> = doc.children.clone();
-    if let Some(slot) = top.get_mut(doc.root) {
-        *slot = built.into_node();
+        let sources = x.sources.into_inner();
+        let banner = opts.banner.then(|| path.display().to_string());
+        let (xml, map) = crate::output::write(
+            &top,
+            banner.as_deref(),
+            x.separator.get(),
+            opts.limits.max_output_bytes,
+            // Text and attribute bytes created, plus markup and indentation per node.
+            x.bytes.get() + 48 * x.nodes.get(),
+        )?;
+        Ok(Expansion {
+            xml,
+            sources,
+            map,
+            warnings: x.warnings.into_inner(),
+        })
     }
-    let sources = x.sources.into_inner();
-    let banner = opts.banner.then(|| path.display().to_string());
-    let (xml, map) = crate::output::write(
-        &top,
-        banner.as_deref(),
-        x.separator.get(),
-        opts.limits.max_output_bytes,
-        // Text and attribute bytes created, plus markup and indentation per node.
-        x.bytes.get() + 48 * x.nodes.get(),
-    )?;
-    Ok(Expansion {
-        xml,
-        sources,
-        map,
-        warnings: x.warnings.into_inner(),
-    })
 }
 
 const PY_KEYWORDS: [&str; 35] = [
@@ -409,6 +437,22 @@ impl<'o> Expander<'o> {
         self.warnings
             .borrow_mut()
             .push(Warning { message, location });
+    }
+
+    /// Fail (and remember why) when this run has used its stack budget.
+    fn check_stack(&self) -> Result<(), XacroError> {
+        let Some(budget) = self.stack_budget else {
+            return Ok(());
+        };
+        let marker = 0u8;
+        let used = self
+            .stack_base
+            .saturating_sub(std::ptr::addr_of!(marker) as usize);
+        if used > budget {
+            self.stack_exhausted.set(true);
+            return Err(XacroError::new(ErrorKind::Limit, "stack budget exhausted"));
+        }
+        Ok(())
     }
 
     /// Keep the detailed error for when the evaluator gives up, and tell the evaluator.
@@ -714,6 +758,7 @@ impl<'o> Expander<'o> {
                     });
                 }
                 // Chains of lazy properties recurse: bound them like element nesting.
+                self.check_stack()?;
                 let depth = self.nesting.get() + 1;
                 if depth > self.opts.limits.max_nesting {
                     return Err(XacroError::new(
@@ -976,6 +1021,7 @@ impl<'o> Expander<'o> {
                 "internal error: eval_element on a non-element",
             ));
         };
+        self.check_stack()?;
         let depth = self.nesting.get() + 1;
         if depth > self.opts.limits.max_nesting {
             let e = XacroError::new(

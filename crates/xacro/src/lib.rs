@@ -197,21 +197,35 @@ pub fn expand_file(path: &Path, opts: &Options) -> Result<Expansion, XacroError>
 /// Expand xacro `text` as if it were the file at `path` (relative includes, `load_yaml` and `$(dirname)`
 /// resolve against its directory).
 pub fn expand_str(text: &str, path: &Path, opts: &Options) -> Result<Expansion, XacroError> {
-    // Deeply nested input recurses deeply: run on a thread with a large stack (reserved, not committed).
+    // Shallow documents (all real robots) expand on the caller's thread within a small stack budget;
+    // deeper ones start again on a thread with a large stack (reserved, not committed).
+    const INLINE_STACK_BUDGET: usize = 256 << 10;
     const STACK: usize = 512 << 20;
+    let internal = || {
+        XacroError::new(
+            ErrorKind::Internal,
+            "internal error: the xacro expander panicked",
+        )
+    };
+    let inline = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        expand::run(text, path, opts, Some(INLINE_STACK_BUDGET))
+    }));
+    match inline {
+        Ok((result, false)) => return result,
+        Ok((_, true)) => {}
+        Err(_) => return Err(internal()),
+    }
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new()
             .name("xacro-expand".into())
             .stack_size(STACK)
-            .spawn_scoped(scope, || expand::run(text, path, opts));
+            .spawn_scoped(scope, || expand::run(text, path, opts, None).0);
         match worker {
-            Ok(handle) => handle.join().unwrap_or_else(|_| {
-                Err(XacroError::new(
-                    ErrorKind::Internal,
-                    "internal error: the xacro expander panicked",
-                ))
-            }),
-            Err(_) => expand::run(text, path, opts),
+            Ok(handle) => handle.join().unwrap_or_else(|_| Err(internal())),
+            Err(e) => Err(XacroError::new(
+                ErrorKind::Limit,
+                format!("the input nests too deeply for this thread's stack, and no thread with a larger stack could be started: {e}"),
+            )),
         }
     })
 }
