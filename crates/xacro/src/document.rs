@@ -109,7 +109,13 @@ impl ParsedDoc {
 }
 
 /// Parse `text` (file number `file`) into nodes. DTDs are refused. Errors carry the byte offset.
-pub(crate) fn parse(text: &str, file: u32, max_depth: usize) -> Result<ParsedDoc, (String, usize)> {
+/// `stack_ok` is asked before each level of element nesting.
+pub(crate) fn parse(
+    text: &str,
+    file: u32,
+    max_depth: usize,
+    stack_ok: &dyn Fn() -> bool,
+) -> Result<ParsedDoc, (String, usize)> {
     let (body, shift) = match text.strip_prefix('\u{feff}') {
         Some(rest) => (rest, 3),
         None => (text, 0),
@@ -133,6 +139,7 @@ pub(crate) fn parse(text: &str, file: u32, max_depth: usize) -> Result<ParsedDoc
         file,
         shift: shift as u32,
         max_depth,
+        stack_ok,
     };
     let mut children = Vec::new();
     let mut root = 0;
@@ -167,6 +174,8 @@ struct Converter<'t> {
     file: u32,
     shift: u32,
     max_depth: usize,
+    /// Whether there is stack left for one more level (see `Expander::check_stack`).
+    stack_ok: &'t dyn Fn() -> bool,
 }
 
 impl Converter<'_> {
@@ -189,6 +198,9 @@ impl Converter<'_> {
         let r = n.range();
         let kind = match n.node_type() {
             roxmltree::NodeType::Element => {
+                if !(self.stack_ok)() {
+                    return Err(("stack budget exhausted".into(), r.start));
+                }
                 if depth > self.max_depth {
                     return Err((
                         format!("elements nested deeper than {} levels", self.max_depth),

@@ -348,7 +348,8 @@ impl<'o> Expander<'o> {
     /// Add a source file and parse it.
     fn register(&self, path: &Path, text: String) -> Result<(u32, Rc<ParsedDoc>), XacroError> {
         let file = self.sources.borrow().len() as u32;
-        let parsed = document::parse(&text, file, self.opts.limits.max_nesting);
+        let stack_ok = || self.check_stack().is_ok();
+        let parsed = document::parse(&text, file, self.opts.limits.max_nesting, &stack_ok);
         self.sources
             .borrow_mut()
             .push(SourceFile::new(path.to_path_buf(), text));

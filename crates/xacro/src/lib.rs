@@ -196,6 +196,10 @@ pub fn expand_file(path: &Path, opts: &Options) -> Result<Expansion, XacroError>
 
 /// Expand xacro `text` as if it were the file at `path` (relative includes, `load_yaml` and `$(dirname)`
 /// resolve against its directory).
+///
+/// Runs on the calling thread, using at most 256 KiB of its stack for nesting (plus what one expression
+/// needs), so any thread with Rust's default 2 MiB stack will do; inputs nested deeper are expanded again on
+/// a helper thread with a 512 MiB (reserved, not committed) stack.
 pub fn expand_str(text: &str, path: &Path, opts: &Options) -> Result<Expansion, XacroError> {
     // Shallow documents (all real robots) expand on the caller's thread within a small stack budget;
     // deeper ones start again on a thread with a large stack (reserved, not committed).
