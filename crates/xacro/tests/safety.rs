@@ -193,3 +193,38 @@ fn long_chains_of_lazy_properties_stop_at_the_limit() {
     let x = expand(&body).expect("500 levels are fine");
     assert!(x.xml.contains("name=\"500\""), "{}", x.xml);
 }
+
+#[test]
+fn deep_inputs_are_safe_on_a_default_size_thread() {
+    let worker = std::thread::Builder::new().stack_size(2 << 20).spawn(|| {
+        let deep_expr = format!("{}1{}", "(".repeat(190), ")".repeat(190));
+        let mut body =
+            format!(r#"<xacro:macro name="m0" params=""><v x="${{{deep_expr}}}"/></xacro:macro>"#);
+        for i in 1..150 {
+            body.push_str(&format!(
+                r#"<xacro:macro name="m{i}" params=""><a><b><xacro:m{}/></b></a></xacro:macro>"#,
+                i - 1
+            ));
+        }
+        body.push_str("<xacro:m149/>");
+        let x = expand(&body).expect("150 nested calls with a deep expression");
+        assert!(x.xml.contains("<v x=\"1\"/>"));
+        let mut chain = String::from(r#"<xacro:property name="p0" value="1"/>"#);
+        for i in 1..1500 {
+            chain.push_str(&format!(
+                r#"<xacro:property name="p{i}" value="${{p{}}}"/>"#,
+                i - 1
+            ));
+        }
+        chain.push_str(r#"<link name="${p1499}"/>"#);
+        assert!(expand(&chain).is_ok());
+        let depth = 1900;
+        let text = format!(
+            "<robot>{}{}</robot>",
+            "<a>".repeat(depth),
+            "</a>".repeat(depth)
+        );
+        assert!(expand_str(&text, Path::new("deep.xacro"), &Options::default()).is_ok());
+    });
+    worker.expect("spawn").join().expect("no crash");
+}
