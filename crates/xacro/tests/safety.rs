@@ -228,3 +228,49 @@ fn deep_inputs_are_safe_on_a_default_size_thread() {
     });
     worker.expect("spawn").join().expect("no crash");
 }
+
+#[test]
+fn randomly_mutated_inputs_never_panic() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    let alphabet: Vec<char> = "<>/=\"'${}()[]:.*^|&;# \nabxyz019_-".chars().collect();
+    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = move |n: usize| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((seed >> 33) as usize) % n.max(1)
+    };
+    for entry in std::fs::read_dir(&dir).expect("fixtures").flatten() {
+        let path = entry.path();
+        if path.extension().is_none_or(|x| x != "xacro") {
+            continue;
+        }
+        let text: Vec<char> = std::fs::read_to_string(&path)
+            .expect("read")
+            .chars()
+            .collect();
+        for _ in 0..400 {
+            let mut mutated = text.clone();
+            for _ in 0..1 + next(4) {
+                let at = next(mutated.len());
+                match next(3) {
+                    0 => mutated[at] = alphabet[next(alphabet.len())],
+                    1 => mutated.insert(at, alphabet[next(alphabet.len())]),
+                    _ if !mutated.is_empty() => {
+                        mutated.remove(at);
+                    }
+                    _ => {}
+                }
+            }
+            let mutated: String = mutated.into_iter().collect();
+            if let Err(e) = expand_str(&mutated, &path, &Options::default()) {
+                assert_ne!(
+                    e.kind,
+                    ErrorKind::Internal,
+                    "{}: {e}\n{mutated}",
+                    path.display()
+                );
+            }
+        }
+    }
+}
