@@ -1,7 +1,8 @@
 //! Differential tests: our expansion against Python xacro 2.1.1 (`URDF_VALIDATOR_XACRO`) on the real
 //! robot trees and on the fixtures, compared after canonicalisation (element names, attributes as sorted
-//! maps, trimmed non-whitespace text; comments and whitespace between elements ignored). When both fail,
-//! the error classes must agree.
+//! maps, trimmed non-whitespace text; comments and whitespace between elements ignored) and then byte for
+//! byte (comments and layout as xacro writes them, banner included). When both fail, the error classes must
+//! agree.
 
 mod common;
 

@@ -103,6 +103,8 @@ pub fn options(env: &[(String, String)], args: &[(&str, &str)]) -> Options {
         env: Some(Arc::new(move |name: &str| {
             env.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone())
         })),
+        // Python's banner, so the whole output can be compared byte for byte.
+        banner: true,
         ..Default::default()
     }
 }
@@ -318,9 +320,24 @@ pub fn compare(
                 }
                 (_, Err(e)) => return Outcome::Differs(format!("our output does not parse: {e}")),
             };
-            match first_difference(&a, &b, "") {
+            if let Some(d) = first_difference(&a, &b, "") {
+                return Outcome::Differs(format!("python vs ours: {d}"));
+            }
+            // Beyond the canonical form: comments and layout are kept as xacro keeps them.
+            match py
+                .lines()
+                .zip(ours.xml.lines())
+                .enumerate()
+                .find(|(_, (p, o))| p != o)
+            {
+                Some((i, (p, o))) => Outcome::Differs(format!(
+                    "same tree, different text at line {}: python {p:?} vs ours {o:?}",
+                    i + 1
+                )),
+                None if py.len() != ours.xml.len() => {
+                    Outcome::Differs("same tree, different text length".into())
+                }
                 None => Outcome::Same,
-                Some(d) => Outcome::Differs(format!("python vs ours: {d}")),
             }
         }
         (Err(py), Err(ours)) => {
