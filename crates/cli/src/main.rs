@@ -259,8 +259,13 @@ fn expand_only(
         }
         match urdf_validator::xacro_input::expand(file, xacro_args, resolver) {
             Ok(expanded) => {
-                for warning in expanded.warnings() {
-                    eprintln!("warning: {warning}");
+                for (message, location) in expanded.warnings() {
+                    match location {
+                        Some(at) => {
+                            eprintln!("warning: {}:{}:{}: {message}", at.file, at.line, at.column)
+                        }
+                        None => eprintln!("warning: {message}"),
+                    }
                 }
                 let _ = stdout.write_all(expanded.xml().as_bytes());
             }

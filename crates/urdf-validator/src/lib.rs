@@ -125,14 +125,11 @@ fn validate_source(
     locator: Locator,
 ) -> Result<Validation, LoadError> {
     let (robot, mut findings) = parse::parse_urdf(&text, path)?;
-    if let Locator::Xacro(expanded) = &locator {
-        findings.extend(
-            expanded
-                .warnings()
-                .into_iter()
-                .map(|w| finding::Finding::new(&rules::XACRO_WARNING, None, w)),
-        );
-    }
+    // Expander warnings are located in the sources already (not in the expanded text).
+    let xacro_warnings = match &locator {
+        Locator::Urdf => Vec::new(),
+        Locator::Xacro(expanded) => expanded.warnings(),
+    };
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
     let is_robot = !findings.iter().any(|f| f.rule == &rules::NOT_A_ROBOT);
@@ -172,10 +169,21 @@ fn validate_source(
         None
     };
     let source = SourceText::new(path, text);
-    let report_findings: Vec<FindingReport> = findings
+    let mut report_findings: Vec<FindingReport> = findings
         .iter()
         .map(|f| finding_report(f, &source, &locator))
         .collect();
+    for (message, location) in xacro_warnings {
+        let finding = finding::Finding::new(&rules::XACRO_WARNING, None, message);
+        let mut report = finding_report(&finding, &source, &locator);
+        if let Some(at) = location {
+            report.file = Some(at.file);
+            report.line = Some(at.line);
+            report.column = Some(at.column);
+        }
+        report_findings.push(report);
+        findings.push(finding);
+    }
     let report = build_report(path, &robot, &model, &findings, report_findings, physics);
     let sources = match &locator {
         Locator::Urdf => vec![source],

@@ -81,14 +81,21 @@ impl Expanded {
             .collect()
     }
 
-    /// Warnings of the expansion (`file:line:col: message`).
-    pub fn warnings(&self) -> Vec<String> {
+    /// Warnings of the expansion, with where they are.
+    pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
         self.expansion
             .warnings
             .iter()
-            .map(|w| match &w.location {
-                Some(l) => format!("{}:{}:{}: {}", l.path.display(), l.line, l.col, w.message),
-                None => w.message.clone(),
+            .map(|w| {
+                let location = w.location.as_ref().map(|l| SourceLocation {
+                    file: l.path.display().to_string(),
+                    line: to_u32(l.line),
+                    column: to_u32(l.col),
+                    end_line: to_u32(l.line),
+                    end_column: to_u32(l.col),
+                    stack: Vec::new(),
+                });
+                (w.message.clone(), location)
             })
             .collect()
     }

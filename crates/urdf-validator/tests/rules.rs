@@ -270,6 +270,8 @@ const COVERED: &[&str] = &[
     u503_invalid_geometry_size::CODE,
     u504_mesh_in_millimetres::CODE,
     u505_mesh_unreadable::CODE,
+    u601_links_in_contact_at_reference::CODE,
+    "U010", // needs a xacro file: xacro_warnings_are_u010_at_the_xacro_tag below
 ];
 
 #[test]
@@ -2944,4 +2946,64 @@ fn huge_eigenvalues_print_in_scientific_notation() {
     let finding = the_one(&found, "U205");
     assert!(finding.message.len() < 200, "{}", finding.message);
     assert!(finding.message.contains("e300"), "{}", finding.message);
+}
+
+/// A three-joint arm over a base plate; link `l2`'s ball sits `z2` below its frame (its frame is 0.7 m up).
+fn arm_over_plate(z2: f64) -> String {
+    let joint = |name: &str, parent: &str, child: &str, z: f64, axis: &str| {
+        format!(
+            r#"  <joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/><origin xyz="0 0 {z}"/><axis xyz="{axis}"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>"#
+        )
+    };
+    let inertial = r#"<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"#;
+    [
+        r#"<robot name="r">"#.to_string(),
+        format!(r#"  <link name="base">{inertial}<collision><origin xyz="0 0 0.05"/><geometry><box size="1 1 0.1"/></geometry></collision></link>"#),
+        joint("j1", "base", "l1", 0.5, "0 0 1"),
+        format!(r#"  <link name="l1">{inertial}<collision><geometry><sphere radius="0.05"/></geometry></collision></link>"#),
+        joint("j2", "l1", "l2", 0.2, "0 1 0"),
+        format!(r#"  <link name="l2">{inertial}<collision><origin xyz="0 0 {z2}"/><geometry><sphere radius="0.05"/></geometry></collision></link>"#),
+        joint("j3", "l2", "l3", 0.2, "0 1 0"),
+        format!(r#"  <link name="l3">{inertial}<collision><geometry><sphere radius="0.05"/></geometry></collision></link>"#),
+        "</robot>\n".to_string(),
+    ]
+    .join("\n")
+}
+
+// The ball of l2 reaches 0.7 − 0.66 − 0.05 = −0.01 m: into the plate (top at 0.1 m) at the zero pose.
+rule_case! {
+    u601_links_in_contact_at_reference, "U601",
+    fires: arm_over_plate(-0.66),
+    at: (6, 124, "<collision><origin xyz=\"0 0 -0.66\"/>"),
+    clean: arm_over_plate(-0.3),
+}
+
+#[test]
+fn xacro_warnings_are_u010_at_the_xacro_tag() {
+    let dir = std::env::temp_dir().join(format!("urdf_validator_u010_{}", std::process::id()));
+    fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("w.urdf.xacro");
+    fs::write(
+        &path,
+        r#"<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="a" value="1" bogus="x"/>
+  <link name="l${a}"/>
+</robot>"#,
+    )
+    .unwrap();
+    let report = validate(&path, &Options::default()).unwrap().report;
+    let hit = the_one(&report.findings, "U010");
+    assert!(hit.message.contains("bogus"), "{}", hit.message);
+    assert_eq!((hit.line, hit.column), (Some(2), Some(3)));
+    assert!(hit.file.as_deref().unwrap().ends_with("w.urdf.xacro"));
+    fs::write(
+        &path,
+        r#"<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="a" value="1"/>
+  <link name="l${a}"/>
+</robot>"#,
+    )
+    .unwrap();
+    let report = validate(&path, &Options::default()).unwrap().report;
+    assert!(with_code(&report.findings, "U010").is_empty());
 }

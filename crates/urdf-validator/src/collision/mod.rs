@@ -37,9 +37,6 @@ mod shape;
 mod srdf;
 
 use std::ops::Range;
-/// debug
-pub static COUNTS: [std::sync::atomic::AtomicUsize; 6] = [const { std::sync::atomic::AtomicUsize::new(0) }; 6];
-fn bump(i: usize) { COUNTS[i].fetch_add(1, std::sync::atomic::Ordering::Relaxed); }
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use parry3d_f64::math::{Pose, Vector};
@@ -93,21 +90,17 @@ struct Body {
 }
 
 /// Link pairs to check in every pose (none of them allowed to collide).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PairSet {
     pairs: Vec<(LinkId, LinkId)>,
-    /// Every link of `pairs`, once, sorted.
+    /// Every link of `pairs`, once, sorted: the link of each slot.
     links: Vec<LinkId>,
+    /// Per pair: the slots of its links and the sum of their bounding radii (the broad phase reads only
+    /// this, from memory laid out in pair order).
+    broad: Vec<(u32, u32, f64)>,
 }
 
 impl PairSet {
-    fn new(pairs: Vec<(LinkId, LinkId)>) -> Self {
-        let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
-        links.sort_unstable();
-        links.dedup();
-        PairSet { pairs, links }
-    }
-
     /// The pairs, each with the lower link index first.
     pub fn pairs(&self) -> &[(LinkId, LinkId)] {
         &self.pairs
@@ -147,7 +140,8 @@ impl PoseCheck {
 /// Per-thread working memory of [`CollisionModel::check`].
 #[derive(Clone, Debug)]
 pub struct CheckScratch {
-    /// Per link: the world centre of its bounding sphere; NaN when its placement is not usable.
+    /// Per slot of the pair set: the world centre of its link's bounding sphere; NaN when the link's
+    /// placement is not usable.
     centre: Vec<Vector3<f64>>,
     /// Per shape: where it is in the current pose, valid when `stamp` matches.
     placed: Vec<(u32, Placed)>,
@@ -161,7 +155,7 @@ impl CheckScratch {
     /// Scratch sized for `model`.
     pub fn new(model: &CollisionModel) -> Self {
         CheckScratch {
-            centre: vec![Vector3::zeros(); model.bodies.len()],
+            centre: Vec::new(),
             placed: vec![(0, Placed::default()); model.shapes.len()],
             stamp: 0,
             axis: Vec::new(),
@@ -362,7 +356,19 @@ impl CollisionModel {
     fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>) -> PairSet {
         let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
         pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
-        PairSet::new(pairs)
+        let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+        links.sort_unstable();
+        links.dedup();
+        let slot = |link: LinkId| links.binary_search(&link).unwrap_or_default() as u32;
+        let broad = pairs
+            .iter()
+            .map(|&pair| (slot(pair.0), slot(pair.1), size(pair)))
+            .collect();
+        PairSet {
+            pairs,
+            links,
+            broad,
+        }
     }
 
     /// Why `a` and `b` are never checked, if they are not.
@@ -517,19 +523,23 @@ impl CollisionModel {
         scratch.next_pose();
         let mut result = PoseCheck::default();
         let mut all_usable = true;
-        for &link in &pairs.links {
+        scratch.centre.clear();
+        scratch.centre.extend(pairs.links.iter().map(|link| {
             let placement = placements.get(link.0).filter(|p| usable(p));
             all_usable &= placement.is_some();
-            scratch.centre[link.0] = placement.map_or(Vector3::repeat(f64::NAN), |p| {
+            placement.map_or(Vector3::repeat(f64::NAN), |p| {
                 p.transform_point(&Point3::from(self.bodies[link.0].centre))
                     .coords
-            });
-        }
+            })
+        }));
+        let centre = &scratch.centre;
         if !all_usable {
             result.skipped = pairs
-                .pairs
+                .broad
                 .iter()
-                .filter(|(a, b)| scratch.centre[a.0].x.is_nan() || scratch.centre[b.0].x.is_nan())
+                .filter(|(a, b, _)| {
+                    centre[*a as usize].x.is_nan() || centre[*b as usize].x.is_nan()
+                })
                 .count();
         }
         if scratch.axis.len() < pairs.len() {
@@ -538,14 +548,15 @@ impl CollisionModel {
         let mut margin = clearance_cutoff.max(CONTACT_DISTANCE);
         let mut nearest = None;
         let mut in_contact = false;
-        for (index, &(a, b)) in pairs.pairs.iter().enumerate() {
+        for (index, &(slot_a, slot_b, radii)) in pairs.broad.iter().enumerate() {
             // Squared, so no root; NaN centres are unusable placements.
-            let reach = self.bodies[a.0].radius + self.bodies[b.0].radius + margin;
-            let squared = (scratch.centre[a.0] - scratch.centre[b.0]).norm_squared();
+            let reach = radii + margin;
+            let squared =
+                (scratch.centre[slot_a as usize] - scratch.centre[slot_b as usize]).norm_squared();
             if squared >= reach * reach || squared.is_nan() {
                 continue;
             }
-            bump(0);
+            let (a, b) = pairs.pairs[index];
             match self.link_proximity(a, b, index, placements, margin, scratch) {
                 Proximity::Contact => {
                     in_contact = true;
@@ -583,14 +594,12 @@ impl CollisionModel {
             for j in self.bodies[b.0].shapes.clone() {
                 let pb = self.placed_shape(j, &placements[b.0], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
-                bump(1);
                 let reach = sa.bound + sb.bound + margin;
                 if (pa.centre - pb.centre).norm_squared() >= reach * reach
                     || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
                 {
                     continue;
                 }
-                bump(2);
                 match proximity(
                     sa,
                     &pa.pose,
@@ -600,7 +609,9 @@ impl CollisionModel {
                     &mut scratch.axis[pair_index],
                     &mut scratch.simplex,
                 ) {
-                    Proximity::Contact => { bump(3); return Proximity::Contact }
+                    Proximity::Contact => {
+                        return Proximity::Contact;
+                    }
                     Proximity::Apart(d) => {
                         best = Proximity::Apart(d);
                         margin = d;

@@ -194,7 +194,6 @@ impl SupportMap for Warm<'_> {
     fn local_support_point(&self, dir: Vector) -> Vector {
         match self.core {
             Core::Hull(hull) => {
-                crate::collision::COUNTS[4].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let vertex = hull.support_index(dir, self.vertex.get());
                 self.vertex.set(vertex);
                 hull.points[vertex]
