@@ -65,6 +65,8 @@ pub(crate) struct Expander<'o> {
     /// Generation of the live `_empty_text_node` separator.
     separator: Cell<u64>,
     exprs: RefCell<HashMap<String, Rc<expr::Expr>>>,
+    /// `$(find)` results by (package, folder of the current file).
+    packages: RefCell<HashMap<(String, PathBuf), Result<String, Vec<String>>>>,
     /// Whether a name is a built-in of the evaluator (cache).
     builtins: RefCell<HashMap<String, bool>>,
     /// Address of a local of [`run`] and how much stack below it this run may use (`None`: unbounded, on
@@ -101,6 +103,7 @@ pub(crate) fn run(
         separator: Cell::new(0),
         exprs: RefCell::default(),
         builtins: RefCell::default(),
+        packages: RefCell::default(),
         stack_base: std::ptr::addr_of!(marker) as usize,
         stack_budget,
         stack_exhausted: &exhausted,
@@ -684,20 +687,34 @@ impl<'o> Expander<'o> {
     }
 
     fn find_package(&self, pkg: &str) -> Result<String, XacroError> {
-        let env = |n: &str| self.env_var(n);
-        include::find_package(pkg, self.opts, &env, &self.current_file())
-            .map(|p| p.display().to_string())
-            .map_err(|searched| {
-                let where_ = if searched.is_empty() {
-                    String::new()
-                } else {
-                    format!("; searched: {}", searched.join(", "))
-                };
-                XacroError::new(
-                    ErrorKind::PackageNotFound,
-                    format!("package '{pkg}' not found{where_}"),
-                )
-            })
+        let current = self.current_file();
+        // Every file of a package asks the same question: cache by (package, folder of the current file).
+        let key = (
+            pkg.to_string(),
+            current.parent().map(Path::to_path_buf).unwrap_or_default(),
+        );
+        let cached = self.packages.borrow().get(&key).cloned();
+        let found = match cached {
+            Some(found) => found,
+            None => {
+                let env = |n: &str| self.env_var(n);
+                let found = include::find_package(pkg, self.opts, &env, &current)
+                    .map(|p| p.display().to_string());
+                self.packages.borrow_mut().insert(key, found.clone());
+                found
+            }
+        };
+        found.map_err(|searched| {
+            let where_ = if searched.is_empty() {
+                String::new()
+            } else {
+                format!("; searched: {}", searched.join(", "))
+            };
+            XacroError::new(
+                ErrorKind::PackageNotFound,
+                format!("package '{pkg}' not found{where_}"),
+            )
+        })
     }
 
     fn dirname(&self) -> Result<String, XacroError> {
