@@ -18,6 +18,9 @@ use crate::source_map::{FrameKind, SourceFile};
 use crate::substitution::{self, SubstitutionHost};
 use crate::{Expansion, Options, Warning};
 
+/// A `$(find)` result: the package directory, or the places searched.
+type FoundPackage = Result<String, Vec<String>>;
+
 /// Where the expansion is: the innermost macro call / include, and the depths.
 #[derive(Clone, Default)]
 struct Ctx {
@@ -66,7 +69,7 @@ pub(crate) struct Expander<'o> {
     separator: Cell<u64>,
     exprs: RefCell<HashMap<String, Rc<expr::Expr>>>,
     /// `$(find)` results by (package, folder of the current file).
-    packages: RefCell<HashMap<(String, PathBuf), Result<String, Vec<String>>>>,
+    packages: RefCell<HashMap<(String, PathBuf), FoundPackage>>,
     /// Whether a name is a built-in of the evaluator (cache).
     builtins: RefCell<HashMap<String, bool>>,
     /// Address of a local of [`run`] and how much stack below it this run may use (`None`: unbounded, on
