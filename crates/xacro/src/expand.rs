@@ -1897,18 +1897,6 @@ impl<'o> Expander<'o> {
                 );
                 return Err(self.locate(e, loc, ctx));
             }
-            let doc = match self.load(&file) {
-                Ok(doc) => doc,
-                Err(e)
-                    if optional && matches!(e.kind, ErrorKind::IncludeNotFound | ErrorKind::Io) =>
-                {
-                    continue
-                }
-                Err(e) => return Err(self.locate(e, filename.src.loc, ctx)),
-            };
-            let Some(root) = doc.root().cloned() else {
-                continue;
-            };
             let frame = Rc::new(FrameData {
                 kind: FrameKind::Include,
                 name: file.display().to_string(),
@@ -1919,6 +1907,23 @@ impl<'o> Expander<'o> {
                 frame: Some(frame),
                 macro_depth: ctx.macro_depth,
                 include_depth: ctx.include_depth + 1,
+            };
+            let doc = match self.load(&file) {
+                Ok(doc) => doc,
+                Err(e)
+                    if optional && matches!(e.kind, ErrorKind::IncludeNotFound | ErrorKind::Io) =>
+                {
+                    continue
+                }
+                // Invalid XML in the included file: located there, through this include.
+                Err(mut e) if e.location.is_some() => {
+                    e.stack = self.stack(&inc_ctx);
+                    return Err(e);
+                }
+                Err(e) => return Err(self.locate(e, filename.src.loc, ctx)),
+            };
+            let Some(root) = doc.root().cloned() else {
+                continue;
             };
             self.file_stack.borrow_mut().push(file);
             self.open_files.borrow_mut().push(canonical);

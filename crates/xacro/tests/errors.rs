@@ -180,6 +180,18 @@ fn errors_inside_macros_and_includes_show_the_stack() {
 }
 
 #[test]
+fn invalid_xml_in_an_included_file_is_located_there_with_the_include() {
+    let e = expand_file(&fixture("error_included_invalid_xml.xacro"), &options()).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::XmlParse);
+    let loc = e.location.clone().expect("located");
+    assert!(loc.path.ends_with("inc/broken.xacro"), "{e}");
+    assert_eq!((loc.line, loc.col), (5, 3), "{e}");
+    assert_eq!(e.stack.len(), 1, "{e}");
+    assert_eq!((e.stack[0].location.line, e.stack[0].location.col), (3, 3));
+    assert!(e.to_string().contains("included at"), "{e}");
+}
+
+#[test]
 fn dirname_is_the_directory_of_the_current_file() {
     let dir = fixture("inc");
     let text = "<robot xmlns:xacro=\"http://www.ros.org/wiki/xacro\"><d v=\"$(dirname)\"/></robot>";
