@@ -68,6 +68,8 @@ pub(crate) struct Expander<'o> {
     /// Generation of the live `_empty_text_node` separator.
     separator: Cell<u64>,
     exprs: RefCell<HashMap<String, Rc<expr::Expr>>>,
+    /// YAML files loaded so far (each is read, and listed in the sources, once).
+    yaml_files: RefCell<HashMap<PathBuf, Value>>,
     /// `$(find)` results by (package, folder of the current file).
     packages: RefCell<HashMap<(String, PathBuf), FoundPackage>>,
     /// Whether a name is a built-in of the evaluator (cache).
@@ -107,6 +109,7 @@ pub(crate) fn run(
         exprs: RefCell::default(),
         builtins: RefCell::default(),
         packages: RefCell::default(),
+        yaml_files: RefCell::default(),
         stack_base: std::ptr::addr_of!(marker) as usize,
         stack_budget,
         stack_exhausted: &exhausted,
@@ -933,6 +936,9 @@ impl<'o> Expander<'o> {
 
     fn load_yaml(&self, spec: &str) -> Result<Value, XacroError> {
         let path = include::abs_filename(spec, &self.current_file());
+        if let Some(value) = self.yaml_files.borrow().get(&path) {
+            return Ok(value.clone());
+        }
         let text = std::fs::read_to_string(&path).map_err(|e| {
             XacroError::new(
                 ErrorKind::Io,
@@ -943,12 +949,14 @@ impl<'o> Expander<'o> {
             .borrow_mut()
             .push(SourceFile::new(path.clone(), text.clone()));
         let eval = |s: &str| expr::parse(s.trim()).and_then(|e| expr::eval(&e, &NoScope));
-        crate::yaml::load(&text, &eval).map_err(|e| {
+        let value = crate::yaml::load(&text, &eval).map_err(|e| {
             XacroError::new(
                 ErrorKind::Yaml,
                 format!("{}: {} (in {})", e.kind, e.message, path.display()),
             )
-        })
+        })?;
+        self.yaml_files.borrow_mut().insert(path, value.clone());
+        Ok(value)
     }
 
     // ----------------------------------------------------------------------------------------------------
