@@ -22,6 +22,8 @@ pub(crate) struct Node {
 pub(crate) enum Kind {
     Element(Element),
     Text(Rc<str>),
+    /// A CDATA section: kept as written, never evaluated.
+    CData(Rc<str>),
     Comment(Rc<str>),
     Pi {
         target: String,
@@ -226,6 +228,30 @@ impl Converter<'_> {
         })))
     }
 
+    /// A text node holding CDATA sections becomes, as in minidom, text nodes and CDATA nodes (roxmltree
+    /// merges them). `raw` is its source text, starting at byte `start`.
+    fn split_cdata(&self, raw: &str, start: usize, out: &mut Vec<NodeRef>) {
+        let mut pos = 0;
+        while pos < raw.len() {
+            let (kind, end) = match raw[pos..].strip_prefix("<![CDATA[") {
+                Some(rest) => {
+                    let len = rest.find("]]>").unwrap_or(rest.len());
+                    let data = &rest[..len];
+                    (Kind::CData(data.into()), (pos + 9 + len + 3).min(raw.len()))
+                }
+                None => {
+                    let end = raw[pos..].find("<![CDATA[").map_or(raw.len(), |i| pos + i);
+                    (Kind::Text(decode_text(&raw[pos..end]).into()), end)
+                }
+            };
+            out.push(Rc::new(Node {
+                kind,
+                src: self.src(start + pos, start + end),
+            }));
+            pos = end;
+        }
+    }
+
     fn element(&self, n: roxmltree::Node, depth: usize) -> Result<NodeRef, (String, usize)> {
         let r = n.range();
         let tag_text = self.text.get(r.start + 1..).unwrap_or("");
@@ -277,7 +303,24 @@ impl Converter<'_> {
         }
         let mut children = Vec::new();
         for c in n.children() {
-            if let Some(node) = self.node(c, depth + 1)? {
+            // roxmltree merges text and CDATA sections into one node whose range covers only the first
+            // piece: the node's source runs to the next sibling or the parent's end tag.
+            let raw = if c.is_text() {
+                let end = match c.next_sibling() {
+                    Some(next) => next.range().start,
+                    None => self
+                        .text
+                        .get(r.clone())
+                        .and_then(|t| t.rfind("</"))
+                        .map_or(c.range().end, |i| r.start + i),
+                };
+                self.text.get(c.range().start..end).unwrap_or("")
+            } else {
+                ""
+            };
+            if raw.contains("<![CDATA[") {
+                self.split_cdata(raw, c.range().start, &mut children);
+            } else if let Some(node) = self.node(c, depth + 1)? {
                 children.push(node);
             }
         }
@@ -298,4 +341,46 @@ pub(crate) fn parse_error(path: &std::path::Path, message: &str) -> XacroError {
         ErrorKind::XmlParse,
         format!("XML parsing error in {}: {message}", path.display()),
     )
+}
+
+/// Character data as the XML parser delivers it: line ends normalised, the predefined and numeric entity
+/// references decoded (DTDs are refused, so there are no others).
+fn decode_text(raw: &str) -> String {
+    let raw = raw.replace("\r\n", "\n").replace('\r', "\n");
+    let mut out = String::with_capacity(raw.len());
+    let mut rest = raw.as_str();
+    while let Some(i) = rest.find('&') {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 1..];
+        let decoded = after.find(';').and_then(|end| {
+            let name = &after[..end];
+            let c = match name {
+                "lt" => '<',
+                "gt" => '>',
+                "amp" => '&',
+                "quot" => '"',
+                "apos" => '\'',
+                _ => {
+                    let code = match name.strip_prefix("#x") {
+                        Some(hex) => u32::from_str_radix(hex, 16).ok()?,
+                        None => name.strip_prefix('#')?.parse().ok()?,
+                    };
+                    char::from_u32(code)?
+                }
+            };
+            Some((c, end))
+        });
+        match decoded {
+            Some((c, end)) => {
+                out.push(c);
+                rest = &after[end + 1..];
+            }
+            None => {
+                out.push('&');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }

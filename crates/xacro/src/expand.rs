@@ -1250,7 +1250,7 @@ impl<'o> Expander<'o> {
                             out.push(node.clone());
                         }
                     }
-                    Kind::Pi { .. } => out.push(node.clone()),
+                    Kind::Pi { .. } | Kind::CData(_) => out.push(node.clone()),
                     Kind::Separator(_) => {
                         // A block copied with the live separator in it holds a plain "\n\n" text there.
                         if self.is_live_separator(&node) {

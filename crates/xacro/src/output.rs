@@ -251,6 +251,16 @@ impl Writer {
                 self.out.push_str(indent);
                 self.out.push_str("\n\n\n");
             }
+            Kind::CData(data) => {
+                // minidom writes CDATA without indentation or line end.
+                self.out.push_str("<![CDATA[");
+                let start = self.out.len();
+                self.out.push_str(data);
+                let origin = self.origin(&n.src);
+                self.map
+                    .push_entry(start..self.out.len(), Piece::Text, origin);
+                self.out.push_str("]]>");
+            }
             Kind::Comment(c) => {
                 self.out.push_str(indent);
                 self.out.push_str("<!--");
