@@ -127,10 +127,10 @@ fn chain_samples(chain: &ArmChain, count: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Workspace forward kinematics of a 7-DOF chain: tip position and approach axis, 1,000 configurations per
-/// iteration (divan reports the throughput per core).
-#[divan::bench(counters = [divan::counter::ItemsCount::new(1000usize)])]
-fn tip_kinematics_7dof(bencher: divan::Bencher) {
+/// Workspace forward kinematics of a 7-DOF chain, 1,000 configurations per iteration (divan reports the
+/// throughput per core): the tip position (reach), or with the approach axis too (orientation queries).
+#[divan::bench(counters = [divan::counter::ItemsCount::new(1000usize)], args = [false, true])]
+fn tip_kinematics_7dof(bencher: divan::Bencher, with_approach: bool) {
     let text = seven_dof_arm();
     let (robot, _) = parse_urdf(&text, Path::new("bench.urdf")).expect("parses");
     let (model, _) = Model::build(&robot);
@@ -145,7 +145,14 @@ fn tip_kinematics_7dof(bencher: divan::Bencher) {
     bencher.bench_local(|| {
         samples
             .iter()
-            .map(|q| chain.tip(divan::black_box(q), &approach).position.x)
+            .map(|q| {
+                let q = divan::black_box(q);
+                if with_approach {
+                    chain.tip(q, &approach).approach.x
+                } else {
+                    chain.tip_position(q).x
+                }
+            })
             .sum::<f64>()
     });
 }

@@ -35,6 +35,8 @@ struct ChainJoint {
     translation: Vector3<f64>,
     /// Unit axis in the joint frame.
     axis: Vector3<f64>,
+    /// When the axis is ±x, ±y or ±z: its index and sign (a plane rotation is cheaper than Rodrigues).
+    principal: Option<(usize, f64)>,
     prismatic: bool,
     source: Source,
 }
@@ -115,7 +117,11 @@ impl ArmChain {
                 (None, None) => Source::Constant(q_reference.get(j.0).copied().unwrap_or(0.0)),
             };
             let axis = data.axis.try_normalize(1e-12)?;
+            let principal = (0..3)
+                .find(|&k| axis[k].abs() == 1.0)
+                .map(|k| (k, axis[k].signum()));
             joints.push(ChainJoint {
+                principal,
                 rotation: *placement.rotation.to_rotation_matrix().matrix(),
                 translation: placement.translation.vector,
                 axis,
@@ -139,26 +145,18 @@ impl ArmChain {
     }
 
     /// The tip pose for sampled values `q` (one per [`ArmChain::sampled`] joint). `approach` is the
-    /// tool's approach axis in the tip frame (zero when not needed).
+    /// tool's approach axis in the tip frame.
     pub fn tip(&self, q: &[f64], approach: &Vector3<f64>) -> TipPose {
         let mut point = self.tip.translation.vector;
         let mut direction = self.tip.rotation * approach;
         for joint in self.joints.iter().rev() {
-            let value = match joint.source {
-                Source::Sampled(i) => q[i],
-                Source::Mimic {
-                    index,
-                    multiplier,
-                    offset,
-                } => multiplier * q[index] + offset,
-                Source::Constant(v) => v,
-            };
+            let value = joint.value(q);
             if joint.prismatic {
                 point += joint.axis * value;
             } else {
                 let (s, c) = value.sin_cos();
-                point = rotate(&joint.axis, s, c, &point);
-                direction = rotate(&joint.axis, s, c, &direction);
+                point = joint.rotate(s, c, &point);
+                direction = joint.rotate(s, c, &direction);
             }
             point = joint.rotation * point + joint.translation;
             direction = joint.rotation * direction;
@@ -168,10 +166,119 @@ impl ArmChain {
             approach: self.base.rotation * direction,
         }
     }
+
+    /// The tip position alone for sampled values `q` (what reach needs).
+    pub fn tip_position(&self, q: &[f64]) -> Vector3<f64> {
+        let mut point = self.tip.translation.vector;
+        for joint in self.joints.iter().rev() {
+            let value = joint.value(q);
+            if joint.prismatic {
+                point += joint.axis * value;
+            } else {
+                let (s, c) = value.sin_cos();
+                point = joint.rotate(s, c, &point);
+            }
+            point = joint.rotation * point + joint.translation;
+        }
+        self.base.transform_point(&Point3::from(point)).coords
+    }
+}
+
+impl ChainJoint {
+    /// `v` rotated about the joint axis by the angle with sine `s` and cosine `c`.
+    #[inline]
+    fn rotate(&self, s: f64, c: f64, v: &Vector3<f64>) -> Vector3<f64> {
+        match self.principal {
+            Some((0, sign)) => {
+                let s = s * sign;
+                Vector3::new(v.x, c * v.y - s * v.z, s * v.y + c * v.z)
+            }
+            Some((1, sign)) => {
+                let s = s * sign;
+                Vector3::new(c * v.x + s * v.z, v.y, c * v.z - s * v.x)
+            }
+            Some((_, sign)) => {
+                let s = s * sign;
+                Vector3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
+            }
+            None => rotate(&self.axis, s, c, v),
+        }
+    }
+
+    /// This joint's value for sampled values `q`.
+    #[inline]
+    fn value(&self, q: &[f64]) -> f64 {
+        match self.source {
+            Source::Sampled(i) => q[i],
+            Source::Mimic {
+                index,
+                multiplier,
+                offset,
+            } => multiplier * q[index] + offset,
+            Source::Constant(v) => v,
+        }
+    }
 }
 
 /// Rodrigues: `v` rotated by the angle with sine `s` and cosine `c` about the unit `axis`.
 #[inline]
 fn rotate(axis: &Vector3<f64>, s: f64, c: f64, v: &Vector3<f64>) -> Vector3<f64> {
     v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::forward_kinematics;
+    use crate::rng::SplitMix64;
+
+    /// Every kind of joint the chain folds: principal and general axes (both signs), a prismatic joint,
+    /// a fixed joint inside the chain and a mimic follower.
+    const ARM: &str = r#"<robot name="a">
+      <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="l4"/>
+      <link name="l5"/><link name="l6"/><link name="l7"/><link name="tip"/>
+      <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.3" rpy="0.1 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0.1 0.2" rpy="0 0.3 0"/><axis xyz="0 -1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+      <joint name="j3" type="continuous"><parent link="l2"/><child link="l3"/><origin xyz="0.2 0 0" rpy="0 0 0.5"/><axis xyz="0.6 0.8 0"/></joint>
+      <joint name="f" type="fixed"><parent link="l3"/><child link="l4"/><origin xyz="0 0 0.1" rpy="0.2 0.1 0"/></joint>
+      <joint name="j4" type="prismatic"><parent link="l4"/><child link="l5"/><origin xyz="0 0 0.05"/><axis xyz="1 0 0"/><limit lower="0" upper="0.2" effort="1" velocity="1"/></joint>
+      <joint name="j5" type="revolute"><parent link="l5"/><child link="l6"/><origin xyz="0 0 0.1"/><axis xyz="-1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j6" type="revolute"><parent link="l6"/><child link="l7"/><origin xyz="0 0.05 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="j5" multiplier="-0.5" offset="0.2"/></joint>
+      <joint name="t" type="fixed"><parent link="l7"/><child link="tip"/><origin xyz="0.03 0 0.12" rpy="0 1 0"/></joint>
+    </robot>"#;
+
+    #[test]
+    fn tip_equals_full_forward_kinematics() {
+        let (robot, _) = crate::parse::parse_urdf(ARM, std::path::Path::new("a.urdf")).unwrap();
+        let (model, _) = Model::build(&robot);
+        let (base, tip) = (model.link("base").unwrap(), model.link("tip").unwrap());
+        let arm = crate::arms::declared(&robot, &model, base, tip).unwrap();
+        let q0 = model.zero_configuration();
+        let mut data = Data::new(&model);
+        forward_kinematics(&model, &q0, &mut data);
+        let chain = ArmChain::new(&model, &arm, &data, &q0).unwrap();
+        assert_eq!(chain.dof(), 5); // j6 follows j5
+        let approach = Vector3::new(0.0, 0.6, 0.8);
+        let mut rng = SplitMix64::new(3);
+        for _ in 0..200 {
+            let sample: Vec<f64> = chain
+                .sampled
+                .iter()
+                .map(|(_, lo, hi)| rng.uniform(*lo, *hi))
+                .collect();
+            let mut q = q0.clone();
+            for (value, (joint, _, _)) in sample.iter().zip(&chain.sampled) {
+                q[joint.0] = *value;
+            }
+            model.apply_mimic(&mut q);
+            forward_kinematics(&model, &q, &mut data);
+            let expected = data.link_placement[tip.0];
+            let pose = chain.tip(&sample, &approach);
+            assert!((pose.position - expected.translation.vector).norm() < 1e-12);
+            assert!((chain.tip_position(&sample) - pose.position).norm() < 1e-15);
+            assert!((pose.approach - expected.rotation * approach).norm() < 1e-12);
+        }
+        // The shoulder is j1's origin.
+        assert!((chain.shoulder - Vector3::new(0.0, 0.0, 0.3)).norm() < 1e-15);
+    }
 }

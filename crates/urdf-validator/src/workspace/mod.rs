@@ -241,8 +241,13 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         for (value, (_, lo, hi)) in q.iter_mut().zip(&job.chain.sampled) {
             *value = rng.uniform(*lo, *hi);
         }
-        let tip = job.chain.tip(&q, &job.approach);
-        let p = tip.position;
+        let tip = ctx
+            .matcher
+            .map(|matcher| (matcher, job.chain.tip(&q, &job.approach)));
+        let p = match &tip {
+            Some((_, pose)) => pose.position,
+            None => job.chain.tip_position(&q),
+        };
         let offset = p - shoulder;
         let horizontal = offset.x.hypot(offset.y);
         stats.samples += 1;
@@ -258,10 +263,10 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                 stats.band_best = Some((horizontal, start + i, q.clone()));
             }
         }
-        if let Some(matcher) = &ctx.matcher {
+        if let Some((matcher, pose)) = &tip {
             if in_band != Some(false) {
                 stats.orientation_considered += 1;
-                stats.orientation_ok += usize::from(matcher.accepts(&tip.approach));
+                stats.orientation_ok += usize::from(matcher.accepts(&pose.approach));
             }
         }
         if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
