@@ -257,7 +257,7 @@ fn expand_only(
             status = 2;
             continue;
         }
-        match urdf_validator::xacro_input::expand(file, xacro_args, resolver) {
+        match urdf_validator::xacro_input::expand(file, xacro_args, resolver, true) {
             Ok(expanded) => {
                 for (message, location) in expanded.warnings() {
                     match location {

@@ -93,7 +93,7 @@ impl Validation {
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
     if xacro_input::is_xacro(path) {
-        let expanded = xacro_input::expand(path, &options.xacro_args, &options.resolver)?;
+        let expanded = xacro_input::expand(path, &options.xacro_args, &options.resolver, false)?;
         let text = expanded.xml().to_string();
         return validate_source(text, path, options, Locator::Xacro(expanded));
     }
