@@ -77,7 +77,11 @@ fn a_broken_inertia_inside_a_macro_is_reported_at_the_macro_line_with_the_call_s
         .iter()
         .find(|f| f.rule == "U205" || f.rule == "U206")
         .expect("an inertia finding");
-    assert!(finding.message.contains("right_link"), "{}", finding.message);
+    assert!(
+        finding.message.contains("right_link"),
+        "{}",
+        finding.message
+    );
     // Where the <inertia> is written: leg.xacro line 7, inside the macro body.
     assert!(
         finding.file.as_deref().unwrap().ends_with("leg.xacro"),
@@ -86,7 +90,12 @@ fn a_broken_inertia_inside_a_macro_is_reported_at_the_macro_line_with_the_call_s
     );
     assert_eq!(finding.line, Some(7));
     // The call site: walker.urdf.xacro line 9, column 3.
-    assert_eq!(finding.expanded_from.len(), 1, "{:?}", finding.expanded_from);
+    assert_eq!(
+        finding.expanded_from.len(),
+        1,
+        "{:?}",
+        finding.expanded_from
+    );
     let call = &finding.expanded_from[0];
     assert!(call.starts_with("in macro 'leg' called at "), "{call}");
     assert!(call.ends_with("walker.urdf.xacro:9:3"), "{call}");
@@ -151,7 +160,10 @@ fn expressions_cannot_run_code() {
         format!("__import__('os').system('touch {}')", marker.display()),
         format!("open('{}', 'w')", marker.display()),
         "().__class__.__bases__[0].__subclasses__()".to_string(),
-        format!("eval(\"__import__('os').system('touch {}')\")", marker.display()),
+        format!(
+            "eval(\"__import__('os').system('touch {}')\")",
+            marker.display()
+        ),
     ] {
         let robot = dir.join("evil.urdf.xacro");
         std::fs::write(
@@ -179,12 +191,18 @@ fn pr2_xacro_validates_like_its_expanded_urdf() {
         },
         ..Options::default()
     };
-    let from_xacro = validate(&shared.join("pr2/pr2_description/robots/pr2.urdf.xacro"), &options)
-        .expect("PR2 xacro expands")
-        .report;
-    let from_urdf = validate(&shared.join("pr2/pr2_description/robots/pr2.urdf"), &options)
-        .expect("PR2 URDF loads")
-        .report;
+    let from_xacro = validate(
+        &shared.join("pr2/pr2_description/robots/pr2.urdf.xacro"),
+        &options,
+    )
+    .expect("PR2 xacro expands")
+    .report;
+    let from_urdf = validate(
+        &shared.join("pr2/pr2_description/robots/pr2.urdf"),
+        &options,
+    )
+    .expect("PR2 URDF loads")
+    .report;
     let statics = |r: &urdf_validator::report::Report| {
         let s = r.statics.as_ref().unwrap();
         (s.total_mass, s.status, s.weakest_joint_name.clone())
