@@ -500,9 +500,10 @@ pub enum Proximity {
 /// The proximity of `a` placed at `pose_a` and `b` at `pose_b` (world placements of the shape frames),
 /// exact up to `margin` (distances at or above `margin` are [`Proximity::Beyond`]).
 ///
-/// `axis` is the direction from `a` to `b` (in `a`'s frame) that GJK ended with on this pair last time,
-/// zero at first: GJK starts from it and updates it. Shapes seldom turn much relative to each other
-/// between two queries, so a separated pair is usually settled at the first iteration.
+/// `axis` is the unit direction from `a` to `b` (in `a`'s frame) that GJK ended with on this pair last
+/// time, zero at first. It is tried first as a separating axis (two support points), then GJK starts
+/// from it; GJK updates it. Pairs tend to be separated along similar directions from pose to pose, so
+/// many are settled without GJK.
 pub fn proximity(
     a: &ConvexShape,
     pose_a: &Pose,
@@ -517,6 +518,14 @@ pub fn proximity(
         Some(pose_a.translation.distance(pose_b.translation))
     } else {
         let pos12 = pose_a.inv_mul(pose_b);
+        if *axis != Vector::ZERO {
+            // The last separating direction, tried first: two support points settle most pairs.
+            let near_a = a.core.local_support_point(*axis);
+            let near_b = b.core.support_point(&pos12, -*axis);
+            if axis.dot(near_b - near_a) - rounding >= margin {
+                return Proximity::Beyond;
+            }
+        }
         match closest_points_support_map_support_map_with_params(
             &pos12,
             &Warm {
