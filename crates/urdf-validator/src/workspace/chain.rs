@@ -154,7 +154,7 @@ impl ArmChain {
             if joint.prismatic {
                 point += joint.axis * value;
             } else {
-                let (s, c) = value.sin_cos();
+                let (s, c) = libm::sincos(value);
                 point = joint.rotate(s, c, &point);
                 direction = joint.rotate(s, c, &direction);
             }
@@ -175,7 +175,7 @@ impl ArmChain {
             if joint.prismatic {
                 point += joint.axis * value;
             } else {
-                let (s, c) = value.sin_cos();
+                let (s, c) = libm::sincos(value);
                 point = joint.rotate(s, c, &point);
             }
             point = joint.rotation * point + joint.translation;
