@@ -44,7 +44,7 @@ pub const HULL_EXACT_LIMIT: usize = 60_000;
 /// Above this many vertices, points provably inside the hull are dropped before quickhull.
 const HULL_PREFILTER_MIN: usize = 10_000;
 /// Largest points × hull faces product for which every point is checked to be inside the hull.
-const HULL_CONTAINMENT_CHECK_LIMIT: usize = 20_000_000;
+const HULL_CONTAINMENT_CHECK_LIMIT: usize = 2_000_000;
 /// Grid resolution (cells per axis) of the first thinning step above [`HULL_EXACT_LIMIT`].
 const HULL_GRID_CELLS: u32 = 128;
 /// Largest number of XML nodes accepted in a COLLADA file.
@@ -78,7 +78,7 @@ pub struct MeshData {
     ///    ±5e-10 (whitened units), because parry can return a broken surface on exactly coplanar
     ///    points and then leave true hull vertices out. The result is checked (closed, consistently
     ///    oriented, locally convex, Euler characteristic 2, and every candidate inside when
-    ///    candidates × faces ≤ 2·10⁷); if the check fails it is retried with a 100× larger joggle,
+    ///    candidates × faces ≤ 2·10⁶; tests check every corpus hull against the vertices' extremes); if the check fails it is retried with a 100× larger joggle,
     ///    then left empty. Corners whose incident facets do not span three directions (sine > 1e-6)
     ///    lie on a facet or an edge and are dropped, so a cube with points on its faces has 8.
     ///

@@ -753,4 +753,41 @@ fn every_corpus_mesh_loads() {
         "expected the corpus meshes, found {}",
         meshes.len()
     );
+    for (file, mesh) in &meshes {
+        assert_hull_holds_the_extremes(file, mesh);
+    }
+}
+
+/// The hull must reach as far as the vertices in every direction: along 200 directions spread over the
+/// sphere, the farthest hull vertex is as far as the farthest vertex (within 1e-7 of the mesh size). A
+/// hull that lost a true corner fails this.
+fn assert_hull_holds_the_extremes(file: &Path, mesh: &MeshData) {
+    if mesh.hull.is_empty() {
+        return;
+    }
+    let e = extent(mesh);
+    let size = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+    let count = 200;
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    for i in 0..count {
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / count as f64;
+        let r = (1.0 - z * z).sqrt();
+        let d = [
+            r * (golden * i as f64).cos(),
+            r * (golden * i as f64).sin(),
+            z,
+        ];
+        let reach = |points: &[[f64; 3]]| {
+            points
+                .iter()
+                .map(|p| p[0] * d[0] + p[1] * d[1] + p[2] * d[2])
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let gap = reach(&mesh.vertices) - reach(&mesh.hull);
+        assert!(
+            gap <= 1e-7 * size,
+            "{}: the hull misses the extreme along {d:?} by {gap:e} m",
+            file.display()
+        );
+    }
 }
