@@ -147,29 +147,23 @@ impl ArmChain {
     /// The tip pose for sampled values `q` (one per [`ArmChain::sampled`] joint). `approach` is the
     /// tool's approach axis in the tip frame.
     pub fn tip(&self, q: &[f64], approach: &Vector3<f64>) -> TipPose {
-        let mut point = self.tip.translation.vector;
-        let mut direction = self.tip.rotation * approach;
-        for joint in self.joints.iter().rev() {
-            let value = joint.value(q);
-            if joint.prismatic {
-                point += joint.axis * value;
-            } else {
-                let (s, c) = libm::sincos(value);
-                point = joint.rotate(s, c, &point);
-                direction = joint.rotate(s, c, &direction);
-            }
-            point = joint.rotation * point + joint.translation;
-            direction = joint.rotation * direction;
-        }
-        TipPose {
-            position: self.base.transform_point(&Point3::from(point)).coords,
-            approach: self.base.rotation * direction,
-        }
+        self.evaluate::<true>(q, approach)
     }
 
     /// The tip position alone for sampled values `q` (what reach needs).
     pub fn tip_position(&self, q: &[f64]) -> Vector3<f64> {
+        self.evaluate::<false>(q, &Vector3::zeros()).position
+    }
+
+    /// Walk from the tip back to the base; the approach direction is carried only when `APPROACH`.
+    #[inline]
+    fn evaluate<const APPROACH: bool>(&self, q: &[f64], approach: &Vector3<f64>) -> TipPose {
         let mut point = self.tip.translation.vector;
+        let mut direction = if APPROACH {
+            self.tip.rotation * approach
+        } else {
+            Vector3::zeros()
+        };
         for joint in self.joints.iter().rev() {
             let value = joint.value(q);
             if joint.prismatic {
@@ -177,10 +171,23 @@ impl ArmChain {
             } else {
                 let (s, c) = libm::sincos(value);
                 point = joint.rotate(s, c, &point);
+                if APPROACH {
+                    direction = joint.rotate(s, c, &direction);
+                }
             }
             point = joint.rotation * point + joint.translation;
+            if APPROACH {
+                direction = joint.rotation * direction;
+            }
         }
-        self.base.transform_point(&Point3::from(point)).coords
+        TipPose {
+            position: self.base.transform_point(&Point3::from(point)).coords,
+            approach: if APPROACH {
+                self.base.rotation * direction
+            } else {
+                Vector3::zeros()
+            },
+        }
     }
 }
 
