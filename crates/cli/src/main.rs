@@ -216,6 +216,9 @@ fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
         (None, Some(_)) => return Err("--height needs --task custom".to_string()),
         (None, None) => None,
     };
+    if args.samples == 0 {
+        return Err("--samples must be at least 1".to_string());
+    }
     let tolerance = args.orientation_tolerance;
     if !(tolerance.is_finite() && (0.0..=180.0).contains(&tolerance)) {
         return Err(format!(

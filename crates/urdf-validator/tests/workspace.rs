@@ -319,6 +319,21 @@ fn sampling_is_reproducible_and_independent_of_threads() {
 }
 
 #[test]
+fn zero_samples_give_no_numbers() {
+    let ws = workspace_of(
+        &planar_arm(0.5, 0.3, 1.0, 10.0, 0.1),
+        declared_arm("base", "tip"),
+        WorkspaceOptions {
+            samples: 0,
+            ..WorkspaceOptions::default()
+        },
+    );
+    assert_eq!(ws.status, Status::NotApplicable);
+    assert_eq!(ws.max_reach, None);
+    assert!(ws.arms.is_empty());
+}
+
+#[test]
 fn a_robot_without_arms_has_no_workspace() {
     let urdf = format!(
         r#"<robot name="box"><link name="base">{}<collision><geometry><box size="1 1 1"/></geometry></collision></link></robot>"#,

@@ -369,6 +369,12 @@ pub fn analyse(
         );
         return not_applicable(options, reason);
     }
+    if options.samples == 0 {
+        return not_applicable(
+            options,
+            "no configuration sampled (--samples 0)".to_string(),
+        );
+    }
     let tolerance = options.orientation_tolerance_deg.to_radians();
     let jobs: Vec<ArmJob> = arms
         .iter()
