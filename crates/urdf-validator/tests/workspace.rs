@@ -255,6 +255,37 @@ fn self_collision_fraction_matches_the_colliding_arc() {
 }
 
 #[test]
+fn a_mimic_follower_outside_the_arm_moves_with_it() {
+    // A second ball, 0.5 m to the side on its own mount, follows the swing joint a quarter turn ahead
+    // (horizontal, so free, at the reference pose). It hits the base on its own arc, as wide as the first
+    // (±0.72 rad) and centred π/2 from it, so the arcs do not overlap: twice the colliding fraction.
+    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
+    let mass = inertial(1.0, [0.0; 3]);
+    let urdf = swinging_ball(h, l, r).replace(
+        "</robot>",
+        &format!(
+            r#"<joint name="twin_mount_joint" type="fixed"><parent link="base"/><child link="twin_mount"/><origin xyz="0 0.5 {h}"/></joint>
+  <link name="twin_mount">{mass}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="twin_swing" type="continuous"><parent link="twin_mount"/><child link="twin"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/><mimic joint="swing" multiplier="1" offset="1.5707963267948966"/></joint>
+  <link name="twin">{mass}<collision><origin xyz="0 0 {l}"/><geometry><sphere radius="{r}"/></geometry></collision></link>
+</robot>"#
+        ),
+    );
+    let colliding = 2.0 * 2.0 * ((h - r) / l).acos() / std::f64::consts::TAU;
+    let ws = workspace_of(
+        &urdf,
+        declared_arm("mount", "rod"),
+        WorkspaceOptions::default(),
+    );
+    let free = ws.self_collision_free_fraction.unwrap();
+    assert!(
+        (free - (1.0 - colliding)).abs() < 0.012,
+        "free {free} vs {}",
+        1.0 - colliding
+    );
+}
+
+#[test]
 fn a_pair_touching_at_the_reference_pose_is_reported_and_not_sampled() {
     // The ball rests on the base at the zero pose (rod pointing down).
     let urdf = swinging_ball(0.5, -0.5, 0.05);

@@ -291,6 +291,42 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     stats
 }
 
+/// Links whose placement changes when `joints` move: the subtrees below them and below every mimic
+/// follower of them, parents first.
+fn moved_links(model: &Model, joints: &[crate::model::JointId]) -> Vec<LinkId> {
+    let mut varies = vec![false; model.joint_data.len()];
+    for joint in joints {
+        varies[joint.0] = true;
+    }
+    // Followers of varying joints vary too (chains: until nothing changes).
+    for _ in 0..varies.len() {
+        let mut changed = false;
+        for (joint, mimic) in model.mimic.iter().enumerate() {
+            if mimic.is_some_and(|m| varies[m.leader.0]) && !varies[joint] {
+                varies[joint] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut moved = vec![false; model.parent_joint.len()];
+    for (joint, links) in model.joint_links.iter().enumerate() {
+        if let (true, Some((_, child))) = (varies[joint], links) {
+            for link in subtree_links(model, *child) {
+                moved[link.0] = true;
+            }
+        }
+    }
+    model
+        .topological_order
+        .iter()
+        .copied()
+        .filter(|l| moved[l.0])
+        .collect()
+}
+
 /// The tool's approach axis in the tip frame: declared, else from the hand towards its fingers, else +z.
 fn approach_axis(
     arm: &Arm,
@@ -381,17 +417,8 @@ pub fn analyse(
         .filter_map(|arm| {
             let chain = ArmChain::new(model, arm, scene.data, scene.q)?;
             let (approach, approach_source) = approach_axis(arm, scene.data, options.approach_axis);
-            let first = arm.first_joint(model)?;
-            let moving_root = model.joint_links[first.0]?.1;
-            let moving_links: Vec<LinkId> = {
-                let set = subtree_links(model, moving_root);
-                model
-                    .topological_order
-                    .iter()
-                    .copied()
-                    .filter(|l| set.contains(l))
-                    .collect()
-            };
+            arm.first_joint(model)?;
+            let moving_links = moved_links(model, &arm.sampled_joints(model));
             let pairs = collision.map(|c| c.model.pairs_moved_by(&arm.sampled_joints(model)));
             Some(ArmJob {
                 arm,
