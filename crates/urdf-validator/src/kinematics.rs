@@ -90,6 +90,23 @@ impl JointData {
         }
     }
 
+    /// The interval positions are sampled from: a full turn for continuous joints and for revolute
+    /// ranges of a full turn or more, the limits otherwise; `None` when the joint cannot be sampled (not
+    /// actuated, no usable range, or a prismatic range too wide to be a number of metres).
+    pub fn sampling_interval(&self) -> Option<(f64, f64)> {
+        use std::f64::consts::{PI, TAU};
+        match (self.kind, self.range()) {
+            (JointKind::Continuous, _) => Some((-PI, PI)),
+            (JointKind::Revolute, Some((lo, hi))) if !(hi - lo < TAU) => Some((-PI, PI)),
+            (JointKind::Revolute | JointKind::Prismatic, Some((lo, hi)))
+                if (hi - lo).is_finite() =>
+            {
+                Some((lo, hi))
+            }
+            _ => None,
+        }
+    }
+
     /// The motion of the joint at position `q`, in the joint frame.
     fn motion(&self, q: f64) -> Isometry3<f64> {
         match self.kind {

@@ -322,14 +322,8 @@ impl<'a> ConfigurationSampler<'a> {
             if self.model.mimic[i].is_some() {
                 continue;
             }
-            match (joint.kind, joint.range()) {
-                (_, Some((lo, hi))) => q[i] = self.rng.uniform(lo, hi),
-                (crate::robot::JointKind::Continuous, None) => {
-                    q[i] = self
-                        .rng
-                        .uniform(-std::f64::consts::PI, std::f64::consts::PI)
-                }
-                _ => {}
+            if let Some((lo, hi)) = joint.sampling_interval() {
+                q[i] = self.rng.uniform(lo, hi);
             }
         }
         self.model.apply_mimic(q);

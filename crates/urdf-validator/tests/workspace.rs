@@ -350,6 +350,60 @@ fn sampling_is_reproducible_and_independent_of_threads() {
 }
 
 #[test]
+fn joints_without_a_usable_range_are_held_and_huge_ranges_stay_finite() {
+    // j1 turns ±1 rad; j2 is a prismatic joint locked (empty range), huge (±1e308 m) or a revolute
+    // with ±1e308 rad: the locked and huge prismatic joints stay at the reference, the huge revolute
+    // range is a full turn.
+    let arm = |j2: &str| {
+        format!(
+            r#"<robot name="r">
+  <link name="base">{m}<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 1"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+  <link name="l1">{m}</link>
+  {j2}
+  <link name="l2">{m}</link>
+</robot>"#,
+            m = inertial(1.0, [0.0; 3])
+        )
+    };
+    let reach = |j2: &str| {
+        workspace_of(
+            &arm(j2),
+            declared_arm("base", "l2"),
+            WorkspaceOptions::default(),
+        )
+        .max_reach
+        .unwrap()
+    };
+    for limits in [r#"lower="0" upper="0""#, r#"lower="-1e308" upper="1e308""#] {
+        let j2 = format!(
+            r#"<joint name="j2" type="prismatic"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.5"/><axis xyz="0 0 1"/><limit {limits} effort="10" velocity="1"/></joint>"#
+        );
+        assert!((reach(&j2) - 0.5).abs() < 1e-12, "{limits}: {}", reach(&j2));
+    }
+    let turn = r#"<joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.5"/><axis xyz="0 0 1"/><limit lower="-1e308" upper="1e308" effort="10" velocity="1"/></joint>"#;
+    assert!((reach(turn) - 0.5).abs() < 1e-12);
+}
+
+#[test]
+fn neighbouring_seeds_draw_different_samples() {
+    let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
+    let reach = |seed: u64| {
+        workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                seed,
+                ..WorkspaceOptions::default()
+            },
+        )
+        .horizontal_reach
+    };
+    assert_ne!(reach(6), reach(7));
+    assert_ne!(reach(4), reach(5));
+}
+
+#[test]
 fn zero_samples_give_no_numbers() {
     let ws = workspace_of(
         &planar_arm(0.5, 0.3, 1.0, 10.0, 0.1),

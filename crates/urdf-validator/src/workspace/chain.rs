@@ -67,24 +67,18 @@ pub struct TipPose {
 impl ArmChain {
     /// Build the chain of `arm` with the rest of the robot at the placement in `reference` (computed for
     /// configuration `q_reference`).
-    pub fn new(
-        model: &Model,
-        arm: &Arm,
-        reference: &Data,
-        q_reference: &[f64],
-    ) -> Option<ArmChain> {
-        let sampled_ids = arm.sampled_joints(model);
-        let sampled: Vec<(JointId, f64, f64)> = sampled_ids
-            .iter()
-            .map(|&j| {
-                let data = &model.joint_data[j.0];
-                let (lo, hi) = data
-                    .range()
-                    .unwrap_or((-std::f64::consts::PI, std::f64::consts::PI));
-                (j, lo, hi)
+    pub fn new(model: &Model, arm: &Arm, reference: &Data, q_reference: &[f64]) -> ArmChain {
+        // Joints without a usable interval stay at the reference pose, as in every other sampler.
+        let sampled: Vec<(JointId, f64, f64)> = arm
+            .sampled_joints(model)
+            .into_iter()
+            .filter_map(|j| {
+                let (lo, hi) = model.joint_data[j.0].sampling_interval()?;
+                Some((j, lo, hi))
             })
             .collect();
-        let index_of = |j: JointId| sampled_ids.iter().position(|&s| s == j);
+        let index_of = |j: JointId| sampled.iter().position(|&(s, _, _)| s == j);
+        let reference_value = |j: JointId| q_reference.get(j.0).copied().unwrap_or(0.0);
         let base = reference.link_placement[arm.base.0];
         let mut joints = Vec::new();
         let mut pending = Isometry3::identity();
@@ -104,19 +98,26 @@ impl ArmChain {
                 // The first moving joint: nothing moves before it, so its origin is fixed.
                 shoulder = Some((base * placement).translation.vector);
             }
+            // A zero axis moves nothing (as in the full forward kinematics): fold it like a fixed joint.
+            let Some(axis) = data.axis.try_normalize(1e-12) else {
+                pending = placement;
+                continue;
+            };
             let source = match (index_of(j), model.mimic[j.0]) {
                 (Some(i), _) => Source::Sampled(i),
-                (None, Some(mimic)) => match index_of(mimic.leader) {
-                    Some(index) => Source::Mimic {
-                        index,
-                        multiplier: mimic.multiplier,
-                        offset: mimic.offset,
-                    },
-                    None => Source::Constant(q_reference.get(j.0).copied().unwrap_or(0.0)),
-                },
-                (None, None) => Source::Constant(q_reference.get(j.0).copied().unwrap_or(0.0)),
+                (None, Some(_)) => {
+                    let (leader, multiplier, offset) = mimic_root(model, j);
+                    match index_of(leader) {
+                        Some(index) => Source::Mimic {
+                            index,
+                            multiplier,
+                            offset,
+                        },
+                        None => Source::Constant(reference_value(j)),
+                    }
+                }
+                (None, None) => Source::Constant(reference_value(j)),
             };
-            let axis = data.axis.try_normalize(1e-12)?;
             let principal = (0..3)
                 .find(|&k| axis[k].abs() == 1.0)
                 .map(|k| (k, axis[k].signum()));
@@ -130,13 +131,13 @@ impl ArmChain {
             });
             pending = Isometry3::identity();
         }
-        Some(ArmChain {
+        ArmChain {
             base,
             joints,
             tip: pending,
             sampled,
             shoulder: shoulder.unwrap_or(base.translation.vector),
-        })
+        }
     }
 
     /// Number of sampled joints.
@@ -227,6 +228,21 @@ impl ChainJoint {
     }
 }
 
+/// The independent joint a mimic follower ultimately follows, with the composed relation:
+/// `q[joint] = multiplier · q[leader] + offset` along the whole chain.
+fn mimic_root(model: &Model, joint: JointId) -> (JointId, f64, f64) {
+    let (mut current, mut multiplier, mut offset) = (joint, 1.0, 0.0);
+    for _ in 0..model.joint_data.len() {
+        let Some(link) = model.mimic[current.0] else {
+            break;
+        };
+        offset += multiplier * link.offset;
+        multiplier *= link.multiplier;
+        current = link.leader;
+    }
+    (current, multiplier, offset)
+}
+
 /// Rodrigues: `v` rotated by the angle with sine `s` and cosine `c` about the unit `axis`.
 #[inline]
 fn rotate(axis: &Vector3<f64>, s: f64, c: f64, v: &Vector3<f64>) -> Vector3<f64> {
@@ -240,10 +256,11 @@ mod tests {
     use crate::rng::SplitMix64;
 
     /// Every kind of joint the chain folds: principal and general axes (both signs), a prismatic joint,
-    /// a fixed joint inside the chain and a mimic follower.
+    /// a fixed joint inside the chain, a mimic follower and a follower of that follower, a joint with a
+    /// zero axis and a locked (empty-range) prismatic joint.
     const ARM: &str = r#"<robot name="a">
       <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="l4"/>
-      <link name="l5"/><link name="l6"/><link name="l7"/><link name="tip"/>
+      <link name="l5"/><link name="l6"/><link name="l7"/><link name="l8"/><link name="l9"/><link name="l10"/><link name="tip"/>
       <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.3" rpy="0.1 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
       <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0.1 0.2" rpy="0 0.3 0"/><axis xyz="0 -1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
       <joint name="j3" type="continuous"><parent link="l2"/><child link="l3"/><origin xyz="0.2 0 0" rpy="0 0 0.5"/><axis xyz="0.6 0.8 0"/></joint>
@@ -251,7 +268,10 @@ mod tests {
       <joint name="j4" type="prismatic"><parent link="l4"/><child link="l5"/><origin xyz="0 0 0.05"/><axis xyz="1 0 0"/><limit lower="0" upper="0.2" effort="1" velocity="1"/></joint>
       <joint name="j5" type="revolute"><parent link="l5"/><child link="l6"/><origin xyz="0 0 0.1"/><axis xyz="-1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
       <joint name="j6" type="revolute"><parent link="l6"/><child link="l7"/><origin xyz="0 0.05 0.1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="j5" multiplier="-0.5" offset="0.2"/></joint>
-      <joint name="t" type="fixed"><parent link="l7"/><child link="tip"/><origin xyz="0.03 0 0.12" rpy="0 1 0"/></joint>
+      <joint name="j7" type="revolute"><parent link="l7"/><child link="l8"/><origin xyz="0 0 0.1" rpy="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="j6" multiplier="2" offset="-0.1"/></joint>
+      <joint name="j8" type="revolute"><parent link="l8"/><child link="l9"/><origin xyz="0 0.1 0"/><axis xyz="0 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j9" type="prismatic"><parent link="l9"/><child link="l10"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="0.3" upper="0.3" effort="1" velocity="1"/></joint>
+      <joint name="t" type="fixed"><parent link="l10"/><child link="tip"/><origin xyz="0.03 0 0.12" rpy="0 1 0"/></joint>
     </robot>"#;
 
     #[test]
@@ -263,8 +283,9 @@ mod tests {
         let q0 = model.zero_configuration();
         let mut data = Data::new(&model);
         forward_kinematics(&model, &q0, &mut data);
-        let chain = ArmChain::new(&model, &arm, &data, &q0).unwrap();
-        assert_eq!(chain.dof(), 5); // j6 follows j5
+        let chain = ArmChain::new(&model, &arm, &data, &q0);
+        // j6 and j7 follow j5, j9 has no range; j8 (zero axis) is sampled but moves nothing.
+        assert_eq!(chain.dof(), 6);
         let approach = Vector3::new(0.0, 0.6, 0.8);
         let mut rng = SplitMix64::new(3);
         for _ in 0..200 {

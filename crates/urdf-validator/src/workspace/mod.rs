@@ -18,7 +18,7 @@ use crate::arms::{subtree_links, Arm};
 use crate::classify::RobotType;
 use crate::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
 use crate::kinematics::{forward_kinematics_links, Configuration, Data};
-use crate::model::{LinkId, Model};
+use crate::model::{JointId, LinkId, Model};
 use crate::report::{ArmWorkspace, Confidence, Status, WorkspaceSection};
 use crate::rng::SplitMix64;
 use crate::robot::Robot;
@@ -212,9 +212,11 @@ struct SampleContext<'a> {
     collision: Option<&'a CollisionModel>,
 }
 
+/// The generator seed of one chunk: the seed, the arm and the chunk hashed in turn, so nearby seeds
+/// (7 and 6) share no chunk stream.
 fn chunk_seed(seed: u64, arm: usize, chunk: usize) -> u64 {
-    let mut mix = SplitMix64::new(seed ^ ((arm as u64) << 40) ^ chunk as u64);
-    mix.next_u64()
+    let mix = |value: u64| SplitMix64::new(value).next_u64();
+    mix(mix(mix(seed) ^ arm as u64) ^ chunk as u64)
 }
 
 fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usize) -> ArmStats {
@@ -293,7 +295,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
 
 /// Links whose placement changes when `joints` move: the subtrees below them and below every mimic
 /// follower of them, parents first.
-fn moved_links(model: &Model, joints: &[crate::model::JointId]) -> Vec<LinkId> {
+fn moved_links(model: &Model, joints: &[JointId]) -> Vec<LinkId> {
     let mut varies = vec![false; model.joint_data.len()];
     for joint in joints {
         varies[joint.0] = true;
@@ -415,11 +417,15 @@ pub fn analyse(
     let jobs: Vec<ArmJob> = arms
         .iter()
         .filter_map(|arm| {
-            let chain = ArmChain::new(model, arm, scene.data, scene.q)?;
+            let chain = ArmChain::new(model, arm, scene.data, scene.q);
             let (approach, approach_source) = approach_axis(arm, scene.data, options.approach_axis);
             arm.first_joint(model)?;
-            let moving_links = moved_links(model, &arm.sampled_joints(model));
-            let pairs = collision.map(|c| c.model.pairs_moved_by(&arm.sampled_joints(model)));
+            let sampled: Vec<JointId> = chain.sampled.iter().map(|(j, _, _)| *j).collect();
+            if sampled.is_empty() {
+                return None;
+            }
+            let moving_links = moved_links(model, &sampled);
+            let pairs = collision.map(|c| c.model.pairs_moved_by(&sampled));
             Some(ArmJob {
                 arm,
                 chain,
