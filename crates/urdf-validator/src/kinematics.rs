@@ -97,7 +97,7 @@ impl JointData {
         use std::f64::consts::{PI, TAU};
         match (self.kind, self.range()) {
             (JointKind::Continuous, _) => Some((-PI, PI)),
-            (JointKind::Revolute, Some((lo, hi))) if !(hi - lo < TAU) => Some((-PI, PI)),
+            (JointKind::Revolute, Some((lo, hi))) if hi - lo >= TAU => Some((-PI, PI)),
             (JointKind::Revolute | JointKind::Prismatic, Some((lo, hi)))
                 if (hi - lo).is_finite() =>
             {
