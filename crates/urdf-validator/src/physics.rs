@@ -82,13 +82,20 @@ fn declared_arm(
         (Some(root), Some(tip)) => {
             let root_id = link_id(model, "--arm-root", root)?;
             let tip_id = link_id(model, "--arm-tip", tip)?;
-            arms::declared(robot, model, root_id, tip_id)
-                .map(Some)
-                .ok_or_else(|| {
-                    format!(
-                        "--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree"
-                    )
-                })
+            if root_id == tip_id {
+                return Err(format!(
+                    "--arm-root and --arm-tip both name '{root}' (expected the arm's base and its end effector)"
+                ));
+            }
+            let arm = arms::declared(robot, model, root_id, tip_id).ok_or_else(|| {
+                format!("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")
+            })?;
+            if arm.first_joint(model).is_none() {
+                return Err(format!(
+                    "no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)"
+                ));
+            }
+            Ok(Some(arm))
         }
     }
 }
@@ -191,14 +198,20 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         },
         robot_type,
     };
-    let collision = (!arms.is_empty())
-        .then(|| collision_setup(robot, model, &data, inputs))
-        .transpose()?;
+    let (collision, mut findings) = if arms.is_empty() {
+        (None, Vec::new())
+    } else {
+        let (setup, findings) = collision_setup(robot, model, &data, inputs)?;
+        (Some(setup), findings)
+    };
     let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
-    let findings = collision
-        .as_ref()
-        .map(|c| contact_findings(robot, &c.touching, statics_options.pose.kind.as_str()))
-        .unwrap_or_default();
+    if let Some(c) = &collision {
+        findings.extend(contact_findings(
+            robot,
+            &c.touching,
+            statics_options.pose.kind.as_str(),
+        ));
+    }
     Ok(Physics {
         statics,
         stability,
@@ -214,27 +227,42 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
 
 /// The collision model at the chosen pose, with the SRDF's `disable_collisions` (`--srdf`, else the one
 /// beside the URDF) applied.
+///
+/// An explicit `--srdf` that does not exist is a usage error; an SRDF that cannot be read, or that names
+/// links the robot does not have, gives U602 findings and the rest runs.
 fn collision_setup(
     robot: &Robot,
     model: &Model,
     data: &Data,
     inputs: &Inputs,
-) -> Result<CollisionSetup, String> {
-    let disabled = match pose::find_srdf(inputs.urdf_path, inputs.statics.pose.srdf.as_deref()) {
+) -> Result<(CollisionSetup, Vec<Finding>), String> {
+    let explicit = inputs.statics.pose.srdf.as_deref();
+    if let Some(path) = explicit.filter(|p| !p.is_file()) {
+        return Err(format!("--srdf {}: no such file", path.display()));
+    }
+    let mut findings = Vec::new();
+    let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
+    let disabled = match pose::find_srdf(inputs.urdf_path, explicit) {
         Some(path) => {
-            let text = std::fs::read_to_string(&path)
-                .map_err(|e| format!("cannot read SRDF {}: {e}", path.display()))?;
-            disabled_collisions(&text).map_err(|e| format!("{}: {e}", path.display()))?
+            let parsed = std::fs::read_to_string(&path)
+                .map_err(|e| format!("cannot read it: {e}"))
+                .and_then(|text| disabled_collisions(&text));
+            match parsed {
+                Ok(pairs) => pairs,
+                Err(e) => {
+                    findings.push(srdf_problem(format!(
+                        "SRDF {}: {e} — its disable_collisions are not used",
+                        path.display()
+                    )));
+                    Vec::new()
+                }
+            }
         }
         None => Vec::new(),
     };
-    Ok(CollisionSetup::new(
-        robot,
-        model,
-        data,
-        inputs.mesh_points,
-        &disabled,
-    ))
+    let mut setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &disabled);
+    findings.extend(setup.unknown_srdf_links.drain(..).map(srdf_problem));
+    Ok((setup, findings))
 }
 
 /// One U601 finding per link pair in contact at the reference pose, at the second link's collision.

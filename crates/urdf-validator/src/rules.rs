@@ -255,6 +255,11 @@ rules! {
         why: "Simulators fail to load the link's geometry; contact and collision checks leave the link out.",
         fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
     }
+    SRDF_PROBLEM = "U602" "srdf-problem" Warn {
+        what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` beside the URDF) cannot be read, or a `<disable_collisions>` names a link the robot does not have.",
+        why: "Its disabled pairs are not applied, so self-collision may report contacts MoveIt would ignore; a stale SRDF also misleads MoveIt itself.",
+        fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
+    }
     CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
         what: "Two links that are not joined to each other have collision geometry in contact at the reference pose.",
         why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",

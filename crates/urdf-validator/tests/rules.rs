@@ -272,6 +272,7 @@ const COVERED: &[&str] = &[
     u505_mesh_unreadable::CODE,
     u601_links_in_contact_at_reference::CODE,
     "U010", // needs a xacro file: xacro_warnings_are_u010_at_the_xacro_tag below
+    "U602", // needs an SRDF file: a_broken_or_stale_srdf_is_u602_and_the_rest_runs below
 ];
 
 #[test]
@@ -3006,4 +3007,56 @@ fn xacro_warnings_are_u010_at_the_xacro_tag() {
     .unwrap();
     let report = validate(&path, &Options::default()).unwrap().report;
     assert!(with_code(&report.findings, "U010").is_empty());
+}
+
+#[test]
+fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
+    let dir = std::env::temp_dir().join(format!("urdf_validator_u602_{}", std::process::id()));
+    fs::create_dir_all(&dir).unwrap();
+    let urdf = dir.join("arm.urdf");
+    fs::write(&urdf, arm_over_plate(-0.3)).unwrap();
+    let srdf = dir.join("arm.srdf");
+    let run = || {
+        validate(&urdf, &Options::default())
+            .expect("validates")
+            .report
+    };
+    // No SRDF: nothing to say.
+    assert!(with_code(&run().findings, "U602").is_empty());
+    // Truncated: reported, and the workspace still runs.
+    fs::write(&srdf, "<robot name=\"r\"><disable_collisions link1=").unwrap();
+    let report = run();
+    let hit = the_one(&report.findings, "U602");
+    assert!(hit.message.contains("arm.srdf"), "{}", hit.message);
+    assert!(report.workspace.unwrap().max_reach.is_some());
+    // A pair naming a link the robot does not have.
+    fs::write(
+        &srdf,
+        r#"<robot name="r"><disable_collisions link1="base" link2="elbow" reason="Never"/></robot>"#,
+    )
+    .unwrap();
+    let hit_message = the_one(&run().findings, "U602").message.clone();
+    assert!(hit_message.contains("elbow"), "{hit_message}");
+    // A valid one is used quietly.
+    fs::write(
+        &srdf,
+        r#"<robot name="r"><disable_collisions link1="base" link2="l3" reason="Never"/></robot>"#,
+    )
+    .unwrap();
+    let report = run();
+    assert!(with_code(&report.findings, "U602").is_empty());
+    assert_eq!(report.workspace.unwrap().self_collision_srdf_disabled, 1);
+    // An explicit --srdf that does not exist is a usage error.
+    let options = Options {
+        statics: urdf_validator::statics_section::StaticsOptions {
+            pose: urdf_validator::pose::PoseOptions {
+                srdf: Some(dir.join("missing.srdf")),
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+        ..Options::default()
+    };
+    let error = validate(&urdf, &options).expect_err("missing --srdf");
+    assert!(error.to_string().contains("missing.srdf"), "{error}");
 }

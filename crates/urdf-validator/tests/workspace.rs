@@ -404,6 +404,22 @@ fn neighbouring_seeds_draw_different_samples() {
 }
 
 #[test]
+fn a_declared_arm_must_move() {
+    let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
+    let options = |root: &str, tip: &str| Options {
+        overrides: declared_arm(root, tip),
+        ..Options::default()
+    };
+    let error = |root: &str, tip: &str| {
+        validate_text(urdf.clone(), Path::new("t.urdf"), &options(root, tip))
+            .expect_err("refused")
+            .to_string()
+    };
+    assert!(error("base", "base").contains("both name 'base'"));
+    assert!(error("lower", "tip").contains("no actuated joint"));
+}
+
+#[test]
 fn zero_samples_give_no_numbers() {
     let ws = workspace_of(
         &planar_arm(0.5, 0.3, 1.0, 10.0, 0.1),

@@ -93,6 +93,8 @@ pub struct CollisionSetup {
     pub touching: Vec<(LinkId, LinkId)>,
     /// Pairs disabled by an SRDF.
     pub srdf_disabled: usize,
+    /// SRDF `disable_collisions` entries naming links the robot does not have (`line:col: ...`).
+    pub unknown_srdf_links: Vec<String>,
 }
 
 impl CollisionSetup {
@@ -106,7 +108,7 @@ impl CollisionSetup {
     ) -> CollisionSetup {
         let mut collision = CollisionModel::build(robot, model, mesh_points);
         let before = collision.all_pairs().len();
-        collision.allow_disabled(model, srdf_disabled);
+        let unknown_srdf_links = collision.allow_disabled(model, srdf_disabled);
         let srdf_disabled = before - collision.all_pairs().len();
         let touching = collision.touching_pairs(&reference.link_placement);
         collision.allow(&touching, Allowed::Touching);
@@ -114,6 +116,7 @@ impl CollisionSetup {
             model: collision,
             touching,
             srdf_disabled,
+            unknown_srdf_links,
         }
     }
 }
