@@ -180,6 +180,8 @@ fn validate_source(
             report.file = Some(at.file);
             report.line = Some(at.line);
             report.column = Some(at.column);
+            report.end_line = Some(at.end_line);
+            report.end_column = Some(at.end_column);
         }
         report_findings.push(report);
         findings.push(finding);

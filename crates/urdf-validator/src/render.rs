@@ -530,8 +530,11 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
                     paint(style, &format!("{margin:.1} mm"))
                 ));
             }
-            _ if reachable => line.push_str("  COM over the base: not assessed (cannot tip)"),
-            _ => {}
+            _ => {
+                if let Some(why) = &workspace.task_com_not_assessed {
+                    line.push_str(&format!("  COM not assessed: {why}"));
+                }
+            }
         }
         let _ = writeln!(out, "{indent}{line}");
     }

@@ -389,6 +389,8 @@ pub struct WorkspaceSection {
     pub task_com_shift_estimate_m: Option<f64>,
     /// Stability margin at that pose, mm (positive inside the polygon).
     pub task_com_margin_mm: Option<f64>,
+    /// Why the COM during the reach was not assessed, when it was not.
+    pub task_com_not_assessed: Option<String>,
     /// `--orientation`.
     pub orientation: Option<String>,
     /// Whether at least 5% of samples (within 5 cm of the task height when a task is given) meet the

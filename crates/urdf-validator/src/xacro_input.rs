@@ -90,13 +90,26 @@ impl Expanded {
             .warnings
             .iter()
             .map(|w| {
-                let location = w.location.as_ref().map(|l| SourceLocation {
-                    file: l.path.display().to_string(),
-                    line: to_u32(l.line),
-                    column: to_u32(l.col),
-                    end_line: to_u32(l.line),
-                    end_column: to_u32(l.col),
-                    stack: Vec::new(),
+                let location = w.location.as_ref().map(|l| {
+                    // The warning points at a tag: underline it up to its closing `>`.
+                    let (end_line, end_column) = self
+                        .expansion
+                        .sources
+                        .iter()
+                        .find(|s| s.path == l.path)
+                        .and_then(|s| {
+                            let end = l.byte + s.text.get(l.byte..)?.find('>')? + 1;
+                            Some(s.line_col(end))
+                        })
+                        .unwrap_or((l.line, l.col));
+                    SourceLocation {
+                        file: l.path.display().to_string(),
+                        line: to_u32(l.line),
+                        column: to_u32(l.col),
+                        end_line: to_u32(end_line),
+                        end_column: to_u32(end_column),
+                        stack: Vec::new(),
+                    }
                 });
                 (w.message.clone(), location)
             })

@@ -2996,6 +2996,8 @@ fn xacro_warnings_are_u010_at_the_xacro_tag() {
     let hit = the_one(&report.findings, "U010");
     assert!(hit.message.contains("bogus"), "{}", hit.message);
     assert_eq!((hit.line, hit.column), (Some(2), Some(3)));
+    // The whole tag: `<xacro:property name="a" value="1" bogus="x"/>` ends at column 49.
+    assert_eq!((hit.end_line, hit.end_column), (Some(2), Some(49)));
     assert!(hit.file.as_deref().unwrap().ends_with("w.urdf.xacro"));
     fs::write(
         &path,

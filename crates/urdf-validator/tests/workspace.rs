@@ -129,6 +129,12 @@ fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
     let table = run(Task::PickFromTable);
     assert_eq!(table.task_height_reachable, Some(true));
     assert_eq!(table.task_target_height_m, Some(0.75));
+    // A bolted-down arm cannot tip: the COM check says why it did not run.
+    assert_eq!(table.task_com_stable_during_reach, None);
+    assert!(table
+        .task_com_not_assessed
+        .as_deref()
+        .is_some_and(|why| why.contains("no support polygon")));
     let floor = run(Task::PickFromGround);
     assert_eq!(floor.task_height_reachable, Some(false));
     assert_eq!(floor.status, Status::Fail);

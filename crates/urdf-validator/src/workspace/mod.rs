@@ -381,6 +381,7 @@ fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSectio
         task_com_stable_during_reach: None,
         task_com_shift_estimate_m: None,
         task_com_margin_mm: None,
+        task_com_not_assessed: None,
         orientation: options.orientation.map(|o| o.label()),
         orientation_reachable: None,
         orientation_fraction: None,
@@ -528,7 +529,7 @@ fn summarize(
     // Task: reachable by some arm; COM at the furthest horizontal reach at that height.
     let task_height_reachable =
         target.map(|_| arms.iter().any(|a| a.task_height_reachable == Some(true)));
-    let (mut com_stable, mut com_shift, mut com_margin) = (None, None, None);
+    let (mut com_stable, mut com_shift, mut com_margin, mut com_note) = (None, None, None, None);
     if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
         if !reachable {
             status = status.worst(Status::Fail);
@@ -543,8 +544,22 @@ fn summarize(
             .zip(per_arm)
             .filter_map(|(job, stats)| stats.band_best.as_ref().map(|b| (job, b)))
             .max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+        com_note = match (&best, scene.support_polygon.is_empty()) {
+            (_, true) => Some(
+                "no support polygon (a fixed base, or stability could not be computed)".to_string(),
+            ),
+            (None, false) => Some(format!(
+                "no sampled pose within {:.0} cm of the height",
+                TASK_BAND * 100.0
+            )),
+            _ => None,
+        };
         if let (Some((job, (_, _, q_arm))), false) = (best, scene.support_polygon.is_empty()) {
-            if let Some((stable, shift, margin_mm)) = com_at(scene, job, q_arm) {
+            let com = com_at(scene, job, q_arm);
+            if com.is_none() {
+                com_note = Some("no centre of mass (no declared mass)".to_string());
+            }
+            if let Some((stable, shift, margin_mm)) = com {
                 com_stable = Some(stable);
                 com_shift = Some(shift);
                 com_margin = Some(margin_mm);
@@ -631,6 +646,7 @@ fn summarize(
         task_com_stable_during_reach: com_stable,
         task_com_shift_estimate_m: com_shift,
         task_com_margin_mm: com_margin,
+        task_com_not_assessed: com_note,
         orientation: options.orientation.map(|o| o.label()),
         orientation_reachable,
         orientation_fraction,
