@@ -74,8 +74,9 @@ fn collect_urdfs(dir: &Path, depth: usize, files: &mut Vec<PathBuf>) {
 /// Largest xacro file looked into when deciding whether it is a robot.
 const MAX_XACRO_PEEK: u64 = 16 * 1024 * 1024;
 
-/// True when the xacro file's root element is `<robot>` and it defines links (an entry file rather than
-/// a macro library, whose root is also `<robot>` but which only defines macros and properties).
+/// True when the xacro file's root element is `<robot>` and it builds a robot: a `<link>` or `<joint>`, or a
+/// macro call, at its top level (an entry file rather than a library of macros, properties, materials or
+/// gazebo blocks, whose root is also `<robot>`).
 fn is_robot_xacro(path: &Path) -> bool {
     if std::fs::metadata(path).map_or(true, |m| m.len() > MAX_XACRO_PEEK) {
         return false;
@@ -89,14 +90,20 @@ fn is_robot_xacro(path: &Path) -> bool {
     let root = doc.root_element();
     root.tag_name().name() == "robot"
         && root.children().filter(|n| n.is_element()).any(|n| {
-            !n.tag_name()
+            let xacro = n
+                .tag_name()
                 .namespace()
-                .is_some_and(|ns| ns.contains("xacro"))
-                || is_call(n)
+                .is_some_and(|ns| ns.contains("xacro"));
+            if xacro {
+                is_call(n)
+            } else {
+                matches!(n.tag_name().name(), "link" | "joint")
+            }
         })
 }
 
-/// A `<xacro:...>` element that is not a definition (a macro call or an include builds the robot).
+/// A `<xacro:...>` element that is not a definition or an include (a macro call, or a condition around
+/// one).
 fn is_call(node: roxmltree::Node) -> bool {
     !matches!(
         node.tag_name().name(),

@@ -97,6 +97,18 @@ fn run(args: Args) -> u8 {
     }
     let resolver = PackageResolver::from_env(args.package_path.clone());
     if args.expand_only {
+        if paths.len() != 1 || paths[0].is_dir() {
+            eprintln!(
+                "error: --expand-only expands one xacro file (got {} input(s){})",
+                paths.len(),
+                if paths.iter().any(|p| p.is_dir()) {
+                    ", a directory among them"
+                } else {
+                    ""
+                }
+            );
+            return 2;
+        }
         return expand_only(&files, &input_errors, &xacro_args, &resolver);
     }
     let options = Options {
@@ -131,7 +143,8 @@ fn run(args: Args) -> u8 {
             outputs::validate_one(file, report_path.as_deref(), &options, args.no_write)
         })
         .collect();
-    print_outcomes(&args, paths.len() == 1, &outcomes, &input_errors);
+    let single_file = paths.len() == 1 && !paths[0].is_dir();
+    print_outcomes(&args, single_file, &outcomes, &input_errors);
     let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
     if input_errors.is_empty() {
         worst
@@ -157,8 +170,9 @@ fn explain(code: &str) -> u8 {
     }
 }
 
-/// Print every outcome; `single_input`: one path was named (a JSON object rather than an array).
-fn print_outcomes(args: &Args, single_input: bool, outcomes: &[Outcome], input_errors: &[String]) {
+/// Print every outcome. `single_file`: one file was named, so the JSON is that report as an object (or
+/// nothing when it cannot be loaded); otherwise an array.
+fn print_outcomes(args: &Args, single_file: bool, outcomes: &[Outcome], input_errors: &[String]) {
     let mut stdout = anstream::stdout().lock();
     let mut stderr = anstream::stderr().lock();
     for error in input_errors {
@@ -172,10 +186,13 @@ fn print_outcomes(args: &Args, single_input: bool, outcomes: &[Outcome], input_e
                 .map(|v| &v.report)
                 .collect();
             let text = match reports.as_slice() {
-                [one] if single_input && outcomes.len() == 1 => serde_json::to_string_pretty(one),
-                many => serde_json::to_string_pretty(many),
+                [one] if single_file => Some(serde_json::to_string_pretty(one)),
+                [] if single_file => None,
+                many => Some(serde_json::to_string_pretty(many)),
             };
-            let _ = writeln!(stdout, "{}", text.unwrap_or_default());
+            if let Some(text) = text {
+                let _ = writeln!(stdout, "{}", text.unwrap_or_default());
+            }
             for outcome in outcomes {
                 if let Err(error) = &outcome.validation {
                     let _ = writeln!(stderr, "error: {error}");

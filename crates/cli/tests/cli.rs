@@ -349,6 +349,12 @@ fn a_directory_includes_robot_xacros_but_not_macro_libraries() {
     let dir = temp_dir();
     write(&dir, "lib.xacro", XACRO_LIBRARY);
     write(&dir, "xr.urdf.xacro", XACRO_ROBOT);
+    // A library of materials is not a robot either.
+    write(
+        &dir,
+        "materials.xacro",
+        r#"<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><material name="red"><color rgba="1 0 0 1"/></material></robot>"#,
+    );
     let out = run(&[dir.to_str().unwrap(), "--no-write", "--format", "json"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let reports: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
@@ -361,4 +367,42 @@ fn a_directory_includes_robot_xacros_but_not_macro_libraries() {
     };
     assert_eq!(paths.len(), 1, "{paths:?}");
     assert!(paths[0].ends_with("xr.urdf.xacro"));
+}
+
+#[test]
+fn json_is_an_object_for_one_named_file_only() {
+    let dir = temp_dir();
+    let good = write(&dir, "good.urdf", GOOD);
+    let out = run(&[good.to_str().unwrap(), "--no-write", "--format", "json"]);
+    assert!(text(&out.stdout).trim_start().starts_with('{'));
+    // A directory holding one file still gives an array, so scripts do not break when a file is added.
+    let out = run(&[dir.to_str().unwrap(), "--no-write", "--format", "json"]);
+    assert!(
+        text(&out.stdout).trim_start().starts_with('['),
+        "{}",
+        text(&out.stdout)
+    );
+    // A named file that cannot be loaded prints no JSON (the error is on stderr, exit 2).
+    let bad = write(&dir, "bad.urdf", "<robot");
+    let out = run(&[bad.to_str().unwrap(), "--no-write", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stdout).trim().is_empty(), "{}", text(&out.stdout));
+    assert!(text(&out.stderr).contains("bad.urdf"));
+}
+
+#[test]
+fn expand_only_takes_one_xacro_file() {
+    let dir = temp_dir();
+    write(&dir, "lib.xacro", XACRO_LIBRARY);
+    let robot = write(&dir, "xr.urdf.xacro", XACRO_ROBOT);
+    let out = run(&[dir.to_str().unwrap(), "--expand-only"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("one xacro file"),
+        "{}",
+        text(&out.stderr)
+    );
+    let robot = robot.to_str().unwrap();
+    let out = run(&[robot, robot, "--expand-only"]);
+    assert_eq!(out.status.code(), Some(2));
 }
