@@ -181,7 +181,7 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
     let mut data = Data::new(&model);
     forward_kinematics(&model, &q, &mut data);
     let classification = urdf_validator::classify::classify(&robot, &model, &data, &supports);
-    let collision = CollisionSetup::new(&robot, &model, &data, &mesh_points, &[]);
+    let collision = CollisionSetup::new(&robot, &model, &data, &mesh_points, &Default::default());
     let scene = Scene {
         robot: &robot,
         model: &model,

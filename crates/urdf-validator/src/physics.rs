@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 use crate::arms::{self, Arm};
 use crate::classify::{classify, RobotType};
-use crate::collision::disabled_collisions;
+use crate::collision::{srdf_collisions, SrdfCollisions};
 use crate::finding::Finding;
 use crate::geometry::LinkSupports;
 use crate::kinematics::{forward_kinematics, Data};
@@ -225,7 +225,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
     })
 }
 
-/// The collision model at the chosen pose, with the SRDF's `disable_collisions` (`--srdf`, else the one
+/// The collision model at the chosen pose, with the allowed collisions of the SRDF (`--srdf`, else the one
 /// beside the URDF) applied.
 ///
 /// An explicit `--srdf` that does not exist is a usage error; an SRDF that cannot be read, or that names
@@ -242,25 +242,25 @@ fn collision_setup(
     }
     let mut findings = Vec::new();
     let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
-    let disabled = match pose::find_srdf(inputs.urdf_path, explicit) {
+    let srdf = match pose::find_srdf(inputs.urdf_path, explicit) {
         Some(path) => {
             let parsed = std::fs::read_to_string(&path)
                 .map_err(|e| format!("cannot read it: {e}"))
-                .and_then(|text| disabled_collisions(&text));
+                .and_then(|text| srdf_collisions(&text));
             match parsed {
-                Ok(pairs) => pairs,
+                Ok(collisions) => collisions,
                 Err(e) => {
                     findings.push(srdf_problem(format!(
-                        "SRDF {}: {e} — its disable_collisions are not used",
+                        "SRDF {}: {e} — its allowed collisions are not used",
                         path.display()
                     )));
-                    Vec::new()
+                    SrdfCollisions::default()
                 }
             }
         }
-        None => Vec::new(),
+        None => SrdfCollisions::default(),
     };
-    let mut setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &disabled);
+    let mut setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &srdf);
     findings.extend(setup.unknown_srdf_links.drain(..).map(srdf_problem));
     Ok((setup, findings))
 }

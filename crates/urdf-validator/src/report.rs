@@ -409,7 +409,8 @@ pub struct WorkspaceSection {
     pub self_collision_worst_pair: Option<[String; 2]>,
     /// Link pairs already in contact at the reference pose: excluded from sampling.
     pub self_collision_touching_at_reference: Vec<[String; 2]>,
-    /// Link pairs excluded by the SRDF's `disable_collisions`.
+    /// Link pairs excluded by the SRDF (`disable_collisions`, and `disable_default_collisions` links'
+    /// pairs no `enable_collisions` names) and not by adjacency or rigid attachment.
     pub self_collision_srdf_disabled: usize,
     /// Why the status is N/A or UNKNOWN, or what lowered it.
     pub reason: Option<String>,

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use nalgebra::Isometry3;
 use urdf_validator::checks::CheckContext;
 use urdf_validator::collision::{
-    disabled_collisions, Allowed, CheckScratch, CollisionModel, PairSet, PoseCheck,
+    srdf_collisions, Allowed, CheckScratch, CollisionModel, PairSet, PoseCheck,
 };
 use urdf_validator::kinematics::{forward_kinematics, Data};
 use urdf_validator::mesh::MeshCache;
@@ -451,7 +451,8 @@ fn srdf_disable_collisions_are_read_and_excluded() {
   <disable_collisions link1="base" link2="far" reason="Never"/>
   <disable_collisions link1="base" link2="nowhere" reason="Default"/>
 </robot>"#;
-    let pairs = disabled_collisions(srdf).expect("parses");
+    let collisions = srdf_collisions(srdf).expect("parses");
+    let pairs = &collisions.disabled;
     assert_eq!(pairs.len(), 2);
     assert_eq!(
         (pairs[0].line, pairs[0].column, pairs[0].reason.as_deref()),
@@ -459,7 +460,7 @@ fn srdf_disable_collisions_are_read_and_excluded() {
     );
     let mut setup = Setup::new(&two_boxes(), None);
     assert_eq!(setup.moved_by(&["j1"]).len(), 1);
-    let problems = setup.collision.allow_disabled(&setup.model, &pairs);
+    let problems = setup.collision.allow_srdf(&setup.model, &collisions);
     assert_eq!(
         problems,
         vec!["5:3: <disable_collisions> names unknown link 'nowhere'".to_string()]
@@ -471,9 +472,83 @@ fn srdf_disable_collisions_are_read_and_excluded() {
         Some(Allowed::Disabled)
     );
     assert!(setup.moved_by(&["j1"]).is_empty());
-    let error = disabled_collisions("<robot>\n  <disable_collisions link2=\"a\"/>\n</robot>")
+    let error = srdf_collisions("<robot>\n  <disable_collisions link2=\"a\"/>\n</robot>")
         .expect_err("link1 is required");
     assert_eq!(error, "2:3: <disable_collisions> has no link1 attribute");
+}
+
+/// MoveIt's precedence: `disable_collisions` beats `enable_collisions`, which beats
+/// `disable_default_collisions`.
+#[test]
+fn srdf_default_disabled_links_collide_only_with_enabled_pairs() {
+    let axis = format!(r#"<axis xyz="0 0 1"/>{LIMITS}"#);
+    let cube = r#"<box size="0.1 0.1 0.1"/>"#;
+    let urdf = robot(&[
+        link("base", cube, r#"xyz="0 0 0""#),
+        link("upper", cube, r#"xyz="0 0 0""#),
+        link("lower", cube, r#"xyz="0 0 0""#),
+        link("hand", cube, r#"xyz="0 0 0""#),
+        joint(
+            "j1",
+            "revolute",
+            "base",
+            "upper",
+            &format!(r#"<origin xyz="1 0 0"/>{axis}"#),
+        ),
+        joint(
+            "j2",
+            "revolute",
+            "upper",
+            "lower",
+            &format!(r#"<origin xyz="1 0 0"/>{axis}"#),
+        ),
+        joint(
+            "j3",
+            "revolute",
+            "lower",
+            "hand",
+            &format!(r#"<origin xyz="1 0 0"/>{axis}"#),
+        ),
+    ]);
+    let srdf = r#"<robot name="r">
+  <disable_default_collisions link="hand"/>
+  <enable_collisions link1="base" link2="hand" reason="Testing"/>
+  <enable_collisions link1="hand" link2="upper"/>
+  <disable_collisions link1="upper" link2="hand" reason="Never"/>
+  <enable_collisions link1="hand" link2="ghost"/>
+  <disable_default_collisions link="phantom"/>
+</robot>"#;
+    let collisions = srdf_collisions(srdf).expect("parses");
+    let mut setup = Setup::new(&urdf, None);
+    let [base, upper, lower, hand] = ["base", "upper", "lower", "hand"].map(|n| setup.link(n));
+    assert_eq!(setup.collision.allowed(base, hand), None, "before the SRDF");
+    let problems = setup.collision.allow_srdf(&setup.model, &collisions);
+    assert_eq!(
+        problems,
+        [
+            "6:3: <enable_collisions> names unknown link 'ghost'",
+            "7:3: <disable_default_collisions> names unknown link 'phantom'"
+        ]
+    );
+    let allowed = |x, y| setup.collision.allowed(x, y);
+    assert_eq!(allowed(base, hand), None, "enabled again");
+    assert_eq!(allowed(hand, base), None, "symmetric");
+    assert_eq!(
+        allowed(upper, hand),
+        Some(Allowed::Disabled),
+        "disable wins"
+    );
+    assert_eq!(
+        allowed(lower, hand),
+        Some(Allowed::Adjacent),
+        "first reason kept"
+    );
+    assert_eq!(
+        allowed(base, lower),
+        None,
+        "neither link is default-disabled"
+    );
+    assert_eq!(setup.moved_by(&["j1", "j2", "j3"]).len(), 2);
 }
 
 /// Temporary folder removed on drop.

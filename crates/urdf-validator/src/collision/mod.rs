@@ -47,7 +47,7 @@ use crate::model::{JointId, LinkId, Model};
 use crate::robot::Robot;
 
 pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
-pub use srdf::{disabled_collisions, DisabledPair};
+pub use srdf::{srdf_collisions, SrdfCollisions, SrdfLink, SrdfPair};
 
 use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
 
@@ -58,7 +58,8 @@ pub enum Allowed {
     Adjacent,
     /// No actuated joint between them: their relative placement never changes.
     Rigid,
-    /// Listed in an SRDF `<disable_collisions>`.
+    /// Allowed by an SRDF: a `<disable_collisions>` pair, or a `<disable_default_collisions>` link's pair
+    /// that no `<enable_collisions>` names.
     Disabled,
     /// In contact at the reference pose (see [`CollisionModel::touching_pairs`]).
     Touching,
@@ -390,28 +391,36 @@ impl CollisionModel {
         }
     }
 
-    /// Allow the SRDF's `<disable_collisions>` pairs; returns one message per entry naming a link the
-    /// robot does not have (`line:col: ...`), which is otherwise ignored.
-    pub fn allow_disabled(&mut self, model: &Model, pairs: &[DisabledPair]) -> Vec<String> {
-        let mut problems = Vec::new();
-        let mut known = Vec::new();
-        for pair in pairs {
-            match (model.link(&pair.link1), model.link(&pair.link2)) {
-                (Some(a), Some(b)) => known.push((a, b)),
-                (a, _) => {
-                    let name = if a.is_none() {
-                        &pair.link1
-                    } else {
-                        &pair.link2
-                    };
-                    problems.push(format!(
-                        "{}:{}: <disable_collisions> names unknown link '{name}'",
-                        pair.line, pair.column
-                    ));
-                }
-            }
-        }
-        self.allow(&known, Allowed::Disabled);
+    /// Allow what the SRDF allows (see [`SrdfCollisions`]: `disable_collisions` pairs, and every pair of a
+    /// `disable_default_collisions` link but those an `enable_collisions` names); returns one message
+    /// per link name the robot does not have (`line:col: ...`), whose entry is otherwise ignored.
+    pub fn allow_srdf(&mut self, model: &Model, srdf: &SrdfCollisions) -> Vec<String> {
+        let problems = srdf
+            .named_links()
+            .into_iter()
+            .filter(|(_, link, ..)| model.link(link).is_none())
+            .map(|(tag, link, line, column)| {
+                format!("{line}:{column}: <{tag}> names unknown link '{link}'")
+            })
+            .collect();
+        let known = |pairs: &[SrdfPair]| -> Vec<(LinkId, LinkId)> {
+            pairs
+                .iter()
+                .filter_map(|pair| Some((model.link(&pair.link1)?, model.link(&pair.link2)?)))
+                .collect()
+        };
+        self.allow(&known(&srdf.disabled), Allowed::Disabled);
+        let enabled = known(&srdf.enabled);
+        let is_enabled =
+            |a: LinkId, b: LinkId| enabled.contains(&(a, b)) || enabled.contains(&(b, a));
+        let by_default: Vec<(LinkId, LinkId)> = srdf
+            .disabled_by_default
+            .iter()
+            .filter_map(|entry| model.link(&entry.link))
+            .flat_map(|link| self.geometric.iter().map(move |&other| (link, other)))
+            .filter(|&(link, other)| link != other && !is_enabled(link, other))
+            .collect();
+        self.allow(&by_default, Allowed::Disabled);
         problems
     }
 

@@ -91,9 +91,9 @@ pub struct CollisionSetup {
     pub model: CollisionModel,
     /// Pairs in contact at the reference pose.
     pub touching: Vec<(LinkId, LinkId)>,
-    /// Pairs disabled by an SRDF.
+    /// Pairs an SRDF allows (not otherwise excluded).
     pub srdf_disabled: usize,
-    /// SRDF `disable_collisions` entries naming links the robot does not have (`line:col: ...`).
+    /// SRDF entries naming links the robot does not have (`line:col: ...`).
     pub unknown_srdf_links: Vec<String>,
 }
 
@@ -104,11 +104,11 @@ impl CollisionSetup {
         model: &Model,
         reference: &Data,
         mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
-        srdf_disabled: &[crate::collision::DisabledPair],
+        srdf: &crate::collision::SrdfCollisions,
     ) -> CollisionSetup {
         let mut collision = CollisionModel::build(robot, model, mesh_points);
         let before = collision.all_pairs().len();
-        let unknown_srdf_links = collision.allow_disabled(model, srdf_disabled);
+        let unknown_srdf_links = collision.allow_srdf(model, srdf);
         let srdf_disabled = before - collision.all_pairs().len();
         let touching = collision.touching_pairs(&reference.link_placement);
         collision.allow(&touching, Allowed::Touching);
