@@ -42,7 +42,8 @@ pub struct Args {
     #[arg(long, value_name = "ANGLES")]
     pub joint_angles: Option<String>,
 
-    /// SRDF for --pose home (default: <stem>.srdf beside the URDF or in ../srdf/).
+    /// SRDF for --pose home and self-collision (default: <stem>.srdf, else <robot name>.srdf, beside the
+    /// URDF or in ../srdf/).
     #[arg(long, value_name = "FILE")]
     pub srdf: Option<PathBuf>,
 

@@ -226,7 +226,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
 }
 
 /// The collision model at the chosen pose, with the allowed collisions of the SRDF (`--srdf`, else the one
-/// beside the URDF) applied.
+/// [`pose::find_srdf`] finds) applied.
 ///
 /// An explicit `--srdf` that does not exist is a usage error; an SRDF that cannot be read, or that names
 /// links the robot does not have, gives U602 findings and the rest runs.
@@ -242,9 +242,10 @@ fn collision_setup(
     }
     let mut findings = Vec::new();
     let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
-    let srdf = match pose::find_srdf(inputs.urdf_path, explicit) {
+    let path = pose::find_srdf(inputs.urdf_path, pose::robot_name(robot), explicit);
+    let srdf = match &path {
         Some(path) => {
-            let parsed = std::fs::read_to_string(&path)
+            let parsed = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read it: {e}"))
                 .and_then(|text| srdf_collisions(&text));
             match parsed {
@@ -260,8 +261,29 @@ fn collision_setup(
         }
         None => SrdfCollisions::default(),
     };
-    let mut setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &srdf);
-    findings.extend(setup.unknown_srdf_links.drain(..).map(srdf_problem));
+    let setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &srdf);
+    // One finding per SRDF: an SRDF written for a larger model can name hundreds of absent links.
+    if let (Some(path), false) = (&path, setup.unknown_srdf_links.is_empty()) {
+        let mentions = setup.unknown_srdf_links.len();
+        let shown: Vec<&str> = setup
+            .unknown_srdf_links
+            .iter()
+            .take(3)
+            .map(String::as_str)
+            .collect();
+        findings.push(srdf_problem(format!(
+            "SRDF {}: {mentions} link name{} the robot does not have ({}{}) — {} ignored",
+            path.display(),
+            if mentions == 1 { "" } else { "s" },
+            shown.join("; "),
+            if mentions > shown.len() { "; …" } else { "" },
+            if mentions == 1 {
+                "that entry is"
+            } else {
+                "those entries are"
+            },
+        )));
+    }
     Ok((setup, findings))
 }
 

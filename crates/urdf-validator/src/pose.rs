@@ -47,7 +47,7 @@ pub struct PoseOptions {
     pub kind: PoseKind,
     /// `--joint-angles "j1=0.5,j2=30deg"` for `Custom`.
     pub joint_angles: Option<String>,
-    /// `--srdf FILE` for `Home`; when absent, `<stem>.srdf` beside the URDF (or in `../srdf/`) is used.
+    /// `--srdf FILE` for `Home`; when absent, the one [`find_srdf`] finds.
     pub srdf: Option<PathBuf>,
     /// The `group_state` name for `Home`.
     pub state: String,
@@ -126,7 +126,7 @@ pub fn resolve(
                 set_joint(robot, model, &mut q, &name, value, &mut notes)?;
             }
         }
-        PoseKind::Home => match find_srdf(urdf_path, options.srdf.as_deref()) {
+        PoseKind::Home => match find_srdf(urdf_path, robot_name(robot), options.srdf.as_deref()) {
             Some(srdf) => {
                 let text = std::fs::read_to_string(&srdf)
                     .map_err(|e| format!("{}: cannot read SRDF: {e}", srdf.display()))?;
@@ -168,7 +168,7 @@ pub fn resolve(
                 ))
             }
             None => notes.push(
-                "--pose home: no SRDF given (--srdf) or found beside the URDF; using the zero pose"
+                "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose"
                     .to_string(),
             ),
         },
@@ -285,19 +285,35 @@ pub fn group_states(text: &str) -> Result<Vec<GroupState>, String> {
         .collect())
 }
 
-/// The SRDF to use: the explicit one, else `<stem>.srdf` beside the URDF or in a sibling `srdf/` folder.
-pub fn find_srdf(urdf_path: &Path, explicit: Option<&Path>) -> Option<PathBuf> {
+/// The SRDF to use: the explicit one, else `<stem>.srdf`, else `<robot name>.srdf` (the name MoveIt's
+/// setup assistant gives it), each beside the URDF or in a sibling `srdf/` folder.
+pub fn find_srdf(
+    urdf_path: &Path,
+    robot_name: Option<&str>,
+    explicit: Option<&Path>,
+) -> Option<PathBuf> {
     if let Some(path) = explicit {
         return path.is_file().then(|| path.to_path_buf());
     }
-    let stem = urdf_path.file_name()?.to_str()?;
-    let stem = stem.strip_suffix(".xacro").unwrap_or(stem);
+    let file_name = urdf_path.file_name()?.to_str()?;
+    let stem = file_name.strip_suffix(".xacro").unwrap_or(file_name);
     let stem = stem.strip_suffix(".urdf").unwrap_or(stem);
     let dir = urdf_path.parent().unwrap_or(Path::new("."));
-    let name = format!("{stem}.srdf");
-    [dir.join(&name), dir.join("../srdf").join(&name)]
+    // A robot name is a file name only when it cannot leave the folder.
+    let safe_name = robot_name.filter(|n| !n.is_empty() && !n.contains(['/', '\\']) && *n != "..");
+    [Some(stem), safe_name]
         .into_iter()
+        .flatten()
+        .flat_map(|name| {
+            let name = format!("{name}.srdf");
+            [dir.join(&name), dir.join("../srdf").join(&name)]
+        })
         .find(|p| p.is_file())
+}
+
+/// The robot's `name` attribute, when it has one.
+pub fn robot_name(robot: &Robot) -> Option<&str> {
+    robot.name.as_ref().map(|name| name.value.as_str())
 }
 
 /// A seeded uniform sampler over the configuration space (continuous joints over a full turn; joints

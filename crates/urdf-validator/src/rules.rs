@@ -256,7 +256,7 @@ rules! {
         fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
     }
     SRDF_PROBLEM = "U602" "srdf-problem" Warn {
-        what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` beside the URDF) cannot be read, or one of its `<disable_collisions>`, `<enable_collisions>` or `<disable_default_collisions>` names a link the robot does not have.",
+        what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` / `<robot name>.srdf` beside the URDF or in `../srdf/`) cannot be read, or one of its `<disable_collisions>`, `<enable_collisions>` or `<disable_default_collisions>` names a link the robot does not have.",
         why: "Its allowed collisions (or that entry) are not applied, so self-collision may report contacts MoveIt would ignore; a stale SRDF also misleads MoveIt itself.",
         fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
     }

@@ -3039,6 +3039,17 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
     .unwrap();
     let hit_message = the_one(&run().findings, "U602").message.clone();
     assert!(hit_message.contains("elbow"), "{hit_message}");
+    // An SRDF of a larger model names many absent links: one finding for the file, not one per name.
+    let absent: String = (0..40)
+        .map(|i| format!(r#"<disable_collisions link1="base" link2="gone{i}"/>"#))
+        .collect();
+    fs::write(&srdf, format!(r#"<robot name="r">{absent}</robot>"#)).unwrap();
+    let hit_message = the_one(&run().findings, "U602").message.clone();
+    assert!(
+        hit_message.contains("40 link names the robot does not have")
+            && hit_message.contains("'gone2'; …) — those entries are ignored"),
+        "{hit_message}"
+    );
     // A valid one is used quietly.
     fs::write(
         &srdf,
@@ -3047,6 +3058,10 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
     .unwrap();
     let report = run();
     assert!(with_code(&report.findings, "U602").is_empty());
+    assert_eq!(report.workspace.unwrap().self_collision_srdf_disabled, 1);
+    // Without `<stem>.srdf`, MoveIt's `<robot name>.srdf` is found.
+    fs::rename(&srdf, dir.join("r.srdf")).unwrap();
+    let report = run();
     assert_eq!(report.workspace.unwrap().self_collision_srdf_disabled, 1);
     // An explicit --srdf that does not exist is a usage error.
     let options = Options {
