@@ -158,6 +158,9 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         None => (detected, Confidence::Estimated),
     };
 
+    // Pairs in contact here are left out of self-collision sampling, as MoveIt's setup assistant leaves
+    // out those in contact at the default pose: at the --pose configuration a contact is a collision.
+    let reference_data = data.clone();
     forward_kinematics(model, &q, &mut data);
     let com = statics.full_body_com.map(Vector3::from);
     let placed = PlacedRobot {
@@ -201,16 +204,12 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
     let (collision, mut findings) = if arms.is_empty() {
         (None, Vec::new())
     } else {
-        let (setup, findings) = collision_setup(robot, model, &data, inputs)?;
+        let (setup, findings) = collision_setup(robot, model, &reference_data, inputs)?;
         (Some(setup), findings)
     };
     let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
     if let Some(c) = &collision {
-        findings.extend(contact_findings(
-            robot,
-            &c.touching,
-            statics_options.pose.kind.as_str(),
-        ));
+        findings.extend(contact_findings(robot, &c.touching));
     }
     Ok(Physics {
         statics,
@@ -287,8 +286,9 @@ fn collision_setup(
     Ok((setup, findings))
 }
 
-/// One U601 finding per link pair in contact at the reference pose, at the second link's collision.
-fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)], pose: &str) -> Vec<Finding> {
+/// One U601 finding per link pair in contact at the reference (clamped zero) pose, at the second link's
+/// collision.
+fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)]) -> Vec<Finding> {
     touching
         .iter()
         .map(|&(a, b)| {
@@ -298,7 +298,7 @@ fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)], pose: &str) ->
                 &rules::CONTACT_AT_REFERENCE,
                 span,
                 format!(
-                    "Links '{}' and '{}' have collision geometry in contact at the {pose} pose — left out of self-collision sampling",
+                    "Links '{}' and '{}' have collision geometry in contact at the zero pose — left out of self-collision sampling",
                     a.name.value, b.name.value
                 ),
             )

@@ -570,12 +570,18 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
             line.push_str(&format!("  worst pair {a} × {b}"));
         }
         let _ = writeln!(out, "{indent}{line}");
+    } else if let Some(why) = &workspace.self_collision_not_assessed {
+        let _ = writeln!(
+            out,
+            "{indent}self-collision: {} — {why}",
+            paint(YELLOW, "not assessed")
+        );
     }
     let touching = workspace.self_collision_touching_at_reference.len();
     if touching > 0 {
         let _ = writeln!(
             out,
-            "{indent}{touching} link pair(s) already in contact at the reference pose: not checked (U601)"
+            "{indent}{touching} link pair(s) already in contact at the zero pose: not checked (U601)"
         );
     }
     if let (Some(reason), true) = (&workspace.reason, workspace.status != Status::Pass) {

@@ -407,11 +407,15 @@ pub struct WorkspaceSection {
     /// The pair found in contact in the most colliding samples (each colliding sample counts its first
     /// contact in a fixed pair order), else the pair with the smallest clearance.
     pub self_collision_worst_pair: Option<[String; 2]>,
-    /// Link pairs already in contact at the reference pose: excluded from sampling.
+    /// Link pairs already in contact at the zero pose (joints clamped into their limits): excluded from
+    /// sampling.
     pub self_collision_touching_at_reference: Vec<[String; 2]>,
     /// Link pairs excluded by the SRDF (`disable_collisions`, and `disable_default_collisions` links'
     /// pairs no `enable_collisions` names) and not by adjacency or rigid attachment.
     pub self_collision_srdf_disabled: usize,
+    /// Why self-collision was not assessed (no pair the arms move can collide, or their links have no
+    /// usable collision geometry), when it was not.
+    pub self_collision_not_assessed: Option<String>,
     /// Why the status is N/A or UNKNOWN, or what lowered it.
     pub reason: Option<String>,
 }

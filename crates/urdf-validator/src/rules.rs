@@ -261,7 +261,7 @@ rules! {
         fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
     }
     CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
-        what: "Two links that are not joined to each other have collision geometry in contact at the reference pose.",
+        what: "Two links that are not joined to each other have collision geometry in contact at the zero pose (joints clamped into their limits).",
         why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",
         fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
     }

@@ -7,8 +7,10 @@ use std::path::Path;
 
 use urdf_validator::classify::RobotType;
 use urdf_validator::physics::Overrides;
+use urdf_validator::pose::{PoseKind, PoseOptions};
 use urdf_validator::report::{Confidence, Report, Status, WorkspaceSection};
 use urdf_validator::resolve::PackageResolver;
+use urdf_validator::statics_section::StaticsOptions;
 use urdf_validator::workspace::target::{Orientation, Task};
 use urdf_validator::workspace::WorkspaceOptions;
 use urdf_validator::{validate, validate_text, Options};
@@ -304,12 +306,71 @@ fn a_pair_touching_at_the_reference_pose_is_reported_and_not_sampled() {
         .report;
     let ws = report.workspace.unwrap();
     assert_eq!(ws.self_collision_touching_at_reference, [["base", "rod"]]);
-    // Nothing else can collide: no pair is sampled.
+    // Nothing else can collide: no pair is sampled, and the report says why.
     assert_eq!(ws.self_collision_free_fraction, None);
+    assert!(
+        ws.self_collision_not_assessed
+            .as_deref()
+            .is_some_and(|why| why.starts_with("no pair the arms move can collide")),
+        "{:?}",
+        ws.self_collision_not_assessed
+    );
     assert!(report
         .findings
         .iter()
         .any(|f| f.rule == "U601" && f.message.contains("'base' and 'rod'")));
+}
+
+/// Self-collision that cannot run says so (it is not silently dropped from a PASS).
+#[test]
+fn missing_collision_meshes_are_named_when_self_collision_cannot_run() {
+    let urdf = swinging_ball(0.5, 0.6, 0.05).replace(
+        r#"<sphere radius="0.05"/>"#,
+        r#"<mesh filename="package://nowhere/meshes/ball.stl"/>"#,
+    );
+    let ws = workspace_of(&urdf, declared_arm("mount", "rod"), WorkspaceOptions::default());
+    assert_eq!(ws.self_collision_free_fraction, None);
+    assert_eq!(
+        ws.self_collision_not_assessed.as_deref(),
+        Some("1 of the 1 links the arms move have <collision> geometry that could not be used (meshes not found or unreadable): rod")
+    );
+    assert!(ws.self_collision_touching_at_reference.is_empty());
+    let fine = workspace_of(
+        &swinging_ball(0.5, 0.6, 0.05),
+        declared_arm("mount", "rod"),
+        WorkspaceOptions::default(),
+    );
+    assert_eq!(fine.self_collision_not_assessed, None);
+}
+
+/// Contacts are excluded at the zero pose only: at the `--pose` configuration a contact is a collision.
+#[test]
+fn contacts_at_the_statics_pose_are_sampled_not_excluded() {
+    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
+    let options = Options {
+        overrides: declared_arm("mount", "rod"),
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                kind: PoseKind::Custom,
+                // The ball through the base plate.
+                joint_angles: Some("swing=3.14159".to_string()),
+                ..PoseOptions::default()
+            },
+            ..StaticsOptions::default()
+        },
+        ..Options::default()
+    };
+    let report = validate_text(swinging_ball(h, l, r), Path::new("t.urdf"), &options)
+        .unwrap()
+        .report;
+    assert!(report.findings.iter().all(|f| f.rule != "U601"));
+    let ws = report.workspace.unwrap();
+    assert!(ws.self_collision_touching_at_reference.is_empty());
+    let colliding = 2.0 * ((h - r) / l).acos() / std::f64::consts::TAU;
+    let free = ws
+        .self_collision_free_fraction
+        .expect("the pair is sampled");
+    assert!((free - (1.0 - colliding)).abs() < 0.01, "free {free}");
 }
 
 #[test]

@@ -391,6 +391,7 @@ fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSectio
         self_collision_worst_pair: None,
         self_collision_touching_at_reference: Vec::new(),
         self_collision_srdf_disabled: 0,
+        self_collision_not_assessed: None,
         reason: Some(reason),
     }
 }
@@ -658,7 +659,52 @@ fn summarize(
             .map(|c| c.touching.iter().map(|&p| names(robot, p)).collect())
             .unwrap_or_default(),
         self_collision_srdf_disabled: collision.map_or(0, |c| c.srdf_disabled),
+        self_collision_not_assessed: checked
+            .is_empty()
+            .then(|| collision_not_assessed(robot, jobs, collision)),
         reason: (!reasons.is_empty()).then(|| reasons.join("; ")),
+    }
+}
+
+/// Why no pair was checked for self-collision.
+fn collision_not_assessed(
+    robot: &Robot,
+    jobs: &[ArmJob],
+    collision: Option<&CollisionSetup>,
+) -> String {
+    let Some(collision) = collision else {
+        return "no collision model".to_string();
+    };
+    let mut moved: Vec<LinkId> = jobs
+        .iter()
+        .flat_map(|j| j.moving_links.iter().copied())
+        .collect();
+    moved.sort_unstable();
+    moved.dedup();
+    let without: Vec<LinkId> = moved
+        .iter()
+        .copied()
+        .filter(|&l| !collision.model.has_geometry(l))
+        .collect();
+    let unusable: Vec<&str> = without
+        .iter()
+        .map(|l| &robot.links[l.0])
+        .filter(|link| !link.collisions.is_empty())
+        .map(|link| link.name.value.as_str())
+        .collect();
+    if !unusable.is_empty() {
+        let shown: Vec<&str> = unusable.iter().copied().take(4).collect();
+        format!(
+            "{} of the {} links the arms move have <collision> geometry that could not be used (meshes not found or unreadable): {}{}",
+            unusable.len(),
+            moved.len(),
+            shown.join(", "),
+            if unusable.len() > shown.len() { ", …" } else { "" }
+        )
+    } else if without.len() == moved.len() {
+        "the links the arms move have no <collision> geometry".to_string()
+    } else {
+        "no pair the arms move can collide (adjacent, rigidly attached, allowed by the SRDF or in contact at the zero pose)".to_string()
     }
 }
 
