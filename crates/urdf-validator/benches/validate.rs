@@ -190,6 +190,7 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
         ground: classification.ground_z.unwrap_or(0.0),
         support_polygon: &[],
         robot_type: classification.robot_type,
+        payload: None,
     };
     let workspace = WorkspaceOptions::default();
     bencher.bench_local(|| {

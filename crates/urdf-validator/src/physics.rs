@@ -200,6 +200,10 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
             &[]
         },
         robot_type,
+        payload: statics_options.payload_mass.map(|mass| {
+            let link = statics_options.payload_link.as_deref();
+            (mass, link.and_then(|name| model.link(name)))
+        }),
     };
     let (collision, mut findings) = if arms.is_empty() {
         (None, Vec::new())

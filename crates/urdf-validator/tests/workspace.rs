@@ -179,6 +179,39 @@ fn reaching_with_a_heavy_tool_tips_a_light_base_over() {
     assert!((0.0075..0.0085).contains(&shift), "shift {shift}");
 }
 
+/// `--payload-mass` hangs at the reaching arm's tip: a 10 kg payload tips the light base as a 10 kg tool does.
+#[test]
+fn a_payload_at_the_tip_counts_in_the_com_during_reach() {
+    let urdf = planar_arm(0.5, 0.3, 1.0, 1.0, 0.001);
+    let with_payload = |payload_mass: Option<f64>| {
+        let options = Options {
+            overrides: standing_arm("base", "tip"),
+            workspace: WorkspaceOptions {
+                task: Some(Task::Custom(1.0)),
+                ..WorkspaceOptions::default()
+            },
+            statics: StaticsOptions {
+                payload_mass,
+                ..StaticsOptions::default()
+            },
+            ..Options::default()
+        };
+        validate_text(urdf.clone(), Path::new("t.urdf"), &options)
+            .expect("loads")
+            .report
+            .workspace
+            .expect("a workspace section")
+    };
+    let empty = with_payload(None);
+    assert_eq!(empty.task_com_stable_during_reach, Some(true));
+    let loaded = with_payload(Some(10.0));
+    assert_eq!(loaded.task_com_stable_during_reach, Some(false));
+    let margin = loaded.task_com_margin_mm.unwrap();
+    // COM x ≈ 10·0.8 / 11.003 ≈ 0.727 m; margin = 0.1 − 0.727 → about −627 mm.
+    assert!((-640.0..-600.0).contains(&margin), "margin {margin}");
+    assert_eq!(loaded.status, Status::Fail);
+}
+
 #[test]
 fn orientation_fraction_matches_the_swept_angle() {
     // Both joints turn about y, so the tool's z axis points at angle q1 + q2 in the x-z plane, uniform
@@ -328,7 +361,11 @@ fn missing_collision_meshes_are_named_when_self_collision_cannot_run() {
         r#"<sphere radius="0.05"/>"#,
         r#"<mesh filename="package://nowhere/meshes/ball.stl"/>"#,
     );
-    let ws = workspace_of(&urdf, declared_arm("mount", "rod"), WorkspaceOptions::default());
+    let ws = workspace_of(
+        &urdf,
+        declared_arm("mount", "rod"),
+        WorkspaceOptions::default(),
+    );
     assert_eq!(ws.self_collision_free_fraction, None);
     assert_eq!(
         ws.self_collision_not_assessed.as_deref(),

@@ -83,6 +83,9 @@ pub struct Scene<'a> {
     pub support_polygon: &'a [Point2],
     /// The robot category (for the N/A reason).
     pub robot_type: RobotType,
+    /// `--payload-mass` in kg and `--payload-link`: the load the reaching arm carries, at that link, or at
+    /// the arm's tip when no link is given.
+    pub payload: Option<(f64, Option<LinkId>)>,
 }
 
 /// Self-collision set-up: the model with its allowed pairs, and what was excluded.
@@ -708,21 +711,29 @@ fn collision_not_assessed(
     }
 }
 
-/// Whole-body COM at the reference pose with `job`'s arm at `q_arm`: (over the polygon, horizontal shift
-/// from the reference COM in metres, margin in mm).
+/// Whole-body COM, with the payload, at the reference pose with `job`'s arm at `q_arm`: (over the polygon,
+/// horizontal shift from the reference COM in metres, margin in mm).
 fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)> {
     let model = scene.model;
     let mut q: Configuration = scene.q.to_vec();
     let mut statics = StaticsData::new(model);
+    let com_with_payload = |statics: &StaticsData| {
+        let (mass, com) = mass_and_com(model, statics);
+        let com = com?;
+        let Some((load, link)) = scene.payload else {
+            return Some(com);
+        };
+        let at = statics.kinematics.link_placement[link.unwrap_or(job.arm.tip).0].translation;
+        Some((com * mass + at.vector * load) / (mass + load))
+    };
     evaluate(model, &q, &mut statics);
-    let (_, reference_com) = mass_and_com(model, &statics);
+    let reference_com = com_with_payload(&statics);
     for (value, (joint, _, _)) in q_arm.iter().zip(&job.chain.sampled) {
         q[joint.0] = *value;
     }
     model.apply_mimic(&mut q);
     evaluate(model, &q, &mut statics);
-    let (_, com) = mass_and_com(model, &statics);
-    let (reference_com, com) = (reference_com?, com?);
+    let (reference_com, com) = (reference_com?, com_with_payload(&statics)?);
     let m = margin(scene.support_polygon, [com.x, com.y])?;
     let shift = (com.xy() - reference_com.xy()).norm();
     Some((m.distance >= 0.0, shift, m.distance * 1000.0))
