@@ -16,7 +16,7 @@ pub struct Args {
     #[arg(value_name = "URDF_OR_DIR")]
     pub inputs: Vec<PathBuf>,
 
-    /// A xacro argument (repeatable), as `name:=value` on the command line does.
+    /// A xacro argument (repeatable): NAME=VALUE or NAME:=VALUE, as `name:=value` on the command line does.
     #[arg(long, value_name = "NAME=VALUE")]
     pub xacro_arg: Vec<String>,
 

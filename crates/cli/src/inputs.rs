@@ -18,6 +18,21 @@ pub fn split_xacro_args(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<(String, Strin
     (paths, args)
 }
 
+/// A `--xacro-arg` value: `NAME=VALUE` or xacro's own `NAME:=VALUE` (the name trimmed, without `:`).
+pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
+    let (name, value) = arg
+        .split_once(":=")
+        .or_else(|| arg.split_once('='))
+        .ok_or_else(|| format!("--xacro-arg expects NAME=VALUE, got '{arg}'"))?;
+    let name = name.trim();
+    if name.is_empty() || name.contains(':') || name.contains(char::is_whitespace) {
+        return Err(format!(
+            "--xacro-arg expects NAME=VALUE with a name of letters, digits and '_', got '{arg}'"
+        ));
+    }
+    Ok((name.to_string(), value.to_string()))
+}
+
 /// Files named directly are kept as given; directories contribute every `*.urdf` below them and every
 /// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted. Inputs that
 /// do not exist come back as error lines.

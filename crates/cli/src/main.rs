@@ -80,12 +80,10 @@ fn run(args: Args) -> u8 {
     };
     let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
     for arg in &args.xacro_arg {
-        match arg.split_once('=') {
-            Some((name, value)) if !name.trim().is_empty() => {
-                xacro_args.push((name.trim().to_string(), value.to_string()))
-            }
-            _ => {
-                eprintln!("error: --xacro-arg expects NAME=VALUE, got '{arg}'");
+        match inputs::parse_xacro_arg_flag(arg) {
+            Ok(pair) => xacro_args.push(pair),
+            Err(message) => {
+                eprintln!("error: {message}");
                 return 2;
             }
         }

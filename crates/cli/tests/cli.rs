@@ -316,6 +316,14 @@ fn xacro_arguments_reach_the_expansion() {
     assert_eq!(mass(&[]), 1.0);
     assert_eq!(mass(&["mass:=2.5"]), 2.5);
     assert_eq!(mass(&["--xacro-arg", "mass=4"]), 4.0);
+    assert_eq!(mass(&["--xacro-arg", "mass:=5"]), 5.0, "xacro's spelling");
+    let bad = run(&[robot, "--no-write", "--xacro-arg", "ma:ss=1"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        text(&bad.stderr).contains("'ma:ss=1'"),
+        "{}",
+        text(&bad.stderr)
+    );
 }
 
 #[test]
