@@ -8,7 +8,8 @@ use anstyle::{AnsiColor, Style};
 
 use crate::finding::Severity;
 use crate::report::{
-    FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status, WorkspaceSection,
+    ArmWorkspace, FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
+    WorkspaceSection,
 };
 use crate::Validation;
 
@@ -480,6 +481,47 @@ fn stability_section(out: &mut String, report: &Report, stability: &StabilitySec
     }
 }
 
+/// The tool approach axes the orientation was tested with: `approach axis +z (default)` when every arm
+/// uses the same, else one per arm tip; a hint when the default (`z`) was used.
+fn approach_axes(workspace: &WorkspaceSection) -> String {
+    let axis = |arm: &ArmWorkspace| {
+        let [x, y, z] = arm.approach_axis.map(|v| if v == 0.0 { 0.0 } else { v });
+        let unit = [(x, "x"), (y, "y"), (z, "z")]
+            .into_iter()
+            .find(|&(v, _)| (v.abs() - 1.0).abs() < 1e-9);
+        let text = match unit {
+            Some((v, name)) => format!("{}{name}", if v > 0.0 { "+" } else { "-" }),
+            None => format!("({x:.3}, {y:.3}, {z:.3})"),
+        };
+        let source = match arm.approach_axis_source.as_str() {
+            "fingers" => "hand → fingers",
+            "declared" => "--approach-axis",
+            _ => "default",
+        };
+        format!("{text} ({source})")
+    };
+    let mut axes: Vec<String> = workspace.arms.iter().map(axis).collect();
+    axes.dedup();
+    let listed = match axes.as_slice() {
+        [one] => format!("approach axis {one}"),
+        _ => workspace
+            .arms
+            .iter()
+            .map(|arm| format!("{}: {}", arm.tip_link, axis(arm)))
+            .collect::<Vec<_>>()
+            .join(", "),
+    };
+    if workspace
+        .arms
+        .iter()
+        .any(|arm| arm.approach_axis_source == "z")
+    {
+        format!("{listed}; set it with --approach-axis")
+    } else {
+        listed
+    }
+}
+
 fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: bool) {
     let head = paint(BOLD, "[WORKSPACE]");
     let indent = " ".repeat(13);
@@ -538,6 +580,18 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
         }
         let _ = writeln!(out, "{indent}{line}");
     }
+    let assessed = workspace.status != Status::NotApplicable;
+    if let (Some(orientation), None, true) = (
+        &workspace.orientation,
+        workspace.orientation_reachable,
+        assessed,
+    ) {
+        let _ = writeln!(
+            out,
+            "{indent}orientation {orientation}: {} — no sampled pose within 5 cm of the task height",
+            paint(YELLOW, "not assessed")
+        );
+    }
     if let (Some(orientation), Some(reachable)) =
         (&workspace.orientation, workspace.orientation_reachable)
     {
@@ -549,8 +603,9 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
         };
         let _ = writeln!(
             out,
-            "{indent}orientation {orientation} ±{:.0}°: {fraction:.1}% of samples {verdict}",
-            workspace.orientation_tolerance_deg
+            "{indent}orientation {orientation} ±{:.0}°: {fraction:.1}% of samples {verdict}  {}",
+            workspace.orientation_tolerance_deg,
+            approach_axes(workspace)
         );
     }
     if let Some(free) = workspace.self_collision_free_fraction {

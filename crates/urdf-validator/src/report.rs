@@ -394,7 +394,7 @@ pub struct WorkspaceSection {
     /// `--orientation`.
     pub orientation: Option<String>,
     /// Whether at least 5% of samples (within 5 cm of the task height when a task is given) meet the
-    /// orientation.
+    /// orientation; `null` when no sample was within 5 cm of the task height (not assessed).
     pub orientation_reachable: Option<bool>,
     /// Fraction of those samples meeting the orientation (best arm).
     pub orientation_fraction: Option<f64>,

@@ -143,6 +143,19 @@ fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
     assert!(floor.reason.unwrap().contains("pick_from_ground"));
     let high = run(Task::Custom(1.9));
     assert_eq!(high.task_height_reachable, Some(false));
+    // No sample at that height: the orientation is not assessed (not "met by 0%").
+    let high_side = workspace_of(
+        &urdf,
+        declared_arm("base", "tip"),
+        WorkspaceOptions {
+            task: Some(Task::Custom(1.9)),
+            orientation: Some(Orientation::Side),
+            ..WorkspaceOptions::default()
+        },
+    );
+    assert_eq!(high_side.orientation_fraction, None);
+    assert_eq!(high_side.orientation_reachable, None);
+    assert!(!high_side.reason.unwrap().contains("orientation"));
     let just = run(Task::Custom(1.79));
     assert_eq!(just.task_height_reachable, Some(true));
 }

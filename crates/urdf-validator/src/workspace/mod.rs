@@ -584,15 +584,17 @@ fn summarize(
         .iter()
         .filter_map(|a| a.orientation_fraction)
         .reduce(f64::max);
+    // No fraction: no sampled pose at the task height, so the orientation was not assessed.
     let orientation_reachable = options
         .orientation
-        .map(|_| orientation_fraction.is_some_and(|f| f >= ORIENTATION_PASS_FRACTION));
+        .and(orientation_fraction)
+        .map(|f| f >= ORIENTATION_PASS_FRACTION);
     if orientation_reachable == Some(false) {
         status = status.worst(Status::Warn);
         reasons.push(format!(
             "orientation {} is met by {:.1}% of samples (< {:.0}%)",
             options.orientation.map(|o| o.label()).unwrap_or_default(),
-            orientation_fraction.unwrap_or(0.0) * 100.0,
+            orientation_fraction.unwrap_or_default() * 100.0,
             ORIENTATION_PASS_FRACTION * 100.0
         ));
     }

@@ -69,8 +69,17 @@ pub enum Orientation {
     /// The approach axis is horizontal (any heading).
     Side,
     /// The approach axis points along `rotation · approach axis` (a full target orientation; the roll
-    /// about the approach axis is free, as for a symmetric grasp).
-    Frame(UnitQuaternion<f64>),
+    /// about the approach axis is free, as for a symmetric grasp), with the numbers as given.
+    Frame(UnitQuaternion<f64>, GivenRotation),
+}
+
+/// A target rotation as written on the command line, echoed in reports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GivenRotation {
+    /// `r,p,y` in radians.
+    Rpy([f64; 3]),
+    /// `qw,qx,qy,qz`.
+    Quaternion([f64; 4]),
 }
 
 impl Orientation {
@@ -84,15 +93,19 @@ impl Orientation {
         let numbers = parse_numbers(text)
             .map_err(|e| format!("--orientation: {e} (expected top_down, side, \"r,p,y\" in radians or \"qw,qx,qy,qz\")"))?;
         match numbers.as_slice() {
-            [r, p, y] => Ok(Orientation::Frame(UnitQuaternion::from_euler_angles(
-                *r, *p, *y,
-            ))),
+            [r, p, y] => Ok(Orientation::Frame(
+                UnitQuaternion::from_euler_angles(*r, *p, *y),
+                GivenRotation::Rpy([*r, *p, *y]),
+            )),
             [w, x, y, z] => {
                 let q = Quaternion::new(*w, *x, *y, *z);
                 if q.norm() < 1e-9 {
                     return Err("--orientation: the quaternion has zero length".to_string());
                 }
-                Ok(Orientation::Frame(UnitQuaternion::from_quaternion(q)))
+                Ok(Orientation::Frame(
+                    UnitQuaternion::from_quaternion(q),
+                    GivenRotation::Quaternion([*w, *x, *y, *z]),
+                ))
             }
             _ => Err(format!(
                 "--orientation: expected 3 numbers (r,p,y) or 4 (qw,qx,qy,qz), got {}",
@@ -106,9 +119,13 @@ impl Orientation {
         match self {
             Orientation::TopDown => "top_down".to_string(),
             Orientation::Side => "side".to_string(),
-            Orientation::Frame(q) => {
-                let (r, p, y) = q.euler_angles();
-                format!("rpy({r:.3}, {p:.3}, {y:.3})")
+            Orientation::Frame(_, given) => {
+                let (kind, numbers) = match given {
+                    GivenRotation::Rpy(rpy) => ("rpy", rpy.as_slice()),
+                    GivenRotation::Quaternion(wxyz) => ("quat", wxyz.as_slice()),
+                };
+                let numbers: Vec<String> = numbers.iter().map(|v| v.to_string()).collect();
+                format!("{kind}({})", numbers.join(", "))
             }
         }
     }
@@ -123,7 +140,7 @@ impl Orientation {
             Orientation::Side => OrientationMatcher::Horizontal {
                 max_sin: tolerance_rad.sin(),
             },
-            Orientation::Frame(q) => OrientationMatcher::Direction {
+            Orientation::Frame(q, _) => OrientationMatcher::Direction {
                 target: q * approach_local,
                 min_cos: tolerance_rad.cos(),
             },
@@ -231,6 +248,11 @@ mod tests {
         let identity = Orientation::parse("1,0,0,0").unwrap().matcher(&z, 0.01);
         assert!(identity.accepts(&z));
         assert!(Orientation::parse("0,0,0,0").is_err());
+        // Reports echo the numbers as given (euler_angles() would print (π, 1.571, π) here).
+        let given = |text: &str| Orientation::parse(text).unwrap().label();
+        assert_eq!(given("0,1.5708,0"), "rpy(0, 1.5708, 0)");
+        assert_eq!(given(" 1, 0, 0, 0 "), "quat(1, 0, 0, 0)");
+        assert_eq!(given("top_down"), "top_down");
         assert!(Orientation::parse("1,2").is_err());
         assert!(Orientation::parse("a,b,c").is_err());
     }
