@@ -8,6 +8,30 @@ use crate::Options;
 /// How many ancestors of the current file the walk-up of `$(find)` visits.
 const MAX_WALK_UP: usize = 64;
 
+/// Longest `package.xml` read while looking for a package.
+const MAX_PACKAGE_XML: usize = 1 << 20;
+
+/// Read a source file (xacro, YAML, `package.xml`): a regular file of at most `limit` bytes. Devices and
+/// FIFOs (`/dev/zero`, `/dev/stdin`) or huge files would otherwise hang or exhaust memory.
+pub(crate) fn read_text(path: &Path, limit: usize) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    // Checked before opening: opening a FIFO blocks until something writes to it.
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(limit as u64 + 1)
+        .read_to_string(&mut text)?;
+    if text.len() > limit {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {limit} bytes"),
+        ));
+    }
+    Ok(text)
+}
+
 /// `abs_filename_spec`: `spec` relative to the directory of `current` unless absolute.
 pub(crate) fn abs_filename(spec: &str, current: &Path) -> PathBuf {
     let p = Path::new(spec);
@@ -32,7 +56,13 @@ pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
         require_literal_leading_dot: true,
         ..Default::default()
     };
-    let mut files: Vec<PathBuf> = match glob::glob_with(spec, opts) {
+    // Python's glob is not recursive unless asked: its `**` is `*`. The glob crate's recursive `**`
+    // differed, and walked whole file systems (`/**/*.xacro`) for minutes.
+    let mut spec = spec.to_string();
+    while spec.contains("**") {
+        spec = spec.replace("**", "*");
+    }
+    let mut files: Vec<PathBuf> = match glob::glob_with(&spec, opts) {
         Ok(paths) => paths.filter_map(Result::ok).collect(),
         Err(_) => Vec::new(),
     };
@@ -42,7 +72,7 @@ pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
 
 /// The `<name>` of a `package.xml`.
 fn package_xml_name(dir: &Path) -> Option<String> {
-    let text = std::fs::read_to_string(dir.join("package.xml")).ok()?;
+    let text = read_text(&dir.join("package.xml"), MAX_PACKAGE_XML).ok()?;
     let start = text.find("<name>")? + "<name>".len();
     let end = start + text[start..].find("</name>")?;
     Some(text[start..end].trim().to_string())

@@ -185,7 +185,7 @@ pub fn parse_arg(text: &str) -> Option<(String, String)> {
 
 /// Expand the xacro file at `path`.
 pub fn expand_file(path: &Path, opts: &Options) -> Result<Expansion, XacroError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = include::read_text(path, opts.limits.max_output_bytes).map_err(|e| {
         XacroError::new(
             ErrorKind::Io,
             format!("cannot read {}: {e}", path.display()),

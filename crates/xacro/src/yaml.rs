@@ -81,15 +81,12 @@ fn convert(
                 .collect::<Result<_, _>>()?,
         )),
         Yaml::Mapping(map) => {
-            let mut out: Vec<(Value, Value)> = Vec::with_capacity(map.len());
-            for (k, v) in map {
-                let (k, v) = (convert(k, eval, depth + 1)?, convert(v, eval, depth + 1)?);
-                match out.iter_mut().find(|(old, _)| *old == k) {
-                    Some(slot) => slot.1 = v,
-                    None => out.push((k, v)),
-                }
-            }
-            Value::Dict(Rc::new(out))
+            let pairs = map
+                .iter()
+                .map(|(k, v)| Ok((convert(k, eval, depth + 1)?, convert(v, eval, depth + 1)?)))
+                .collect::<Result<Vec<_>, EvalError>>()?;
+            // Duplicate keys keep the last value (Python dict semantics, in linear time).
+            Value::dict(pairs)
         }
         Yaml::Tagged(tag, inner) => match &**inner {
             Yaml::Representation(text, style, _) => scalar(text, *style, Some(tag), eval)?,

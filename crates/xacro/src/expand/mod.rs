@@ -261,16 +261,19 @@ impl<'o> Expander<'o> {
         if let Some((_, doc)) = self.docs.borrow().get(path) {
             return Ok(doc.clone());
         }
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            let kind = if e.kind() == std::io::ErrorKind::NotFound {
-                ErrorKind::IncludeNotFound
+        let limit = self.opts.limits.max_output_bytes;
+        let text = include::read_text(path, limit).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::NotFound {
+                XacroError::new(
+                    ErrorKind::IncludeNotFound,
+                    format!("No such file or directory: {} ({e})", path.display()),
+                )
             } else {
-                ErrorKind::Io
-            };
-            XacroError::new(
-                kind,
-                format!("No such file or directory: {} ({e})", path.display()),
-            )
+                XacroError::new(
+                    ErrorKind::Io,
+                    format!("cannot read {}: {e}", path.display()),
+                )
+            }
         })?;
         self.register(path, text).map(|(_, d)| d)
     }

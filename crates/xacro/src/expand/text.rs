@@ -130,6 +130,10 @@ pub(super) fn host_error(kind: &'static str, message: String) -> EvalError {
     }
 }
 
+fn too_long() -> XacroError {
+    XacroError::new(ErrorKind::Limit, "a string exceeds the output size limit")
+}
+
 pub(super) fn str_arg(args: &[Value], i: usize) -> Option<String> {
     args.get(i).map(Value::to_xacro_string)
 }
@@ -190,12 +194,16 @@ impl Expander<'_> {
         if results.len() == 1 {
             return Ok(results.pop().unwrap_or(Value::None));
         }
-        let joined: String = results.iter().map(Value::to_xacro_string).collect();
-        if joined.len() > self.opts.limits.max_output_bytes {
-            return Err(XacroError::new(
-                ErrorKind::Limit,
-                "a string exceeds the output size limit",
-            ));
+        // Checked as it grows: the parts may each be near the limit (and share one string).
+        let mut joined = String::new();
+        for r in &results {
+            match r {
+                Value::Str(s) => joined.push_str(s),
+                v => joined.push_str(&self.text_within_limit(v)?),
+            }
+            if joined.len() > self.opts.limits.max_output_bytes {
+                return Err(too_long());
+            }
         }
         Ok(Value::Str(joined.into()))
     }
@@ -249,15 +257,22 @@ impl Expander<'_> {
                 return Err(self.expr_error(e, inner, Some(symbols)));
             }
         };
-        if let Value::Str(s) = &value {
-            if s.len() > self.opts.limits.max_output_bytes {
-                return Err(XacroError::new(
-                    ErrorKind::Limit,
-                    "a string exceeds the output size limit",
-                ));
+        match &value {
+            Value::Str(s) if s.len() > self.opts.limits.max_output_bytes => return Err(too_long()),
+            // Containers share their items, so a short expression can build a list whose text is
+            // exponentially long: make sure it fits before it is used as text anywhere.
+            Value::List(_) | Value::Tuple(_) | Value::Dict(_) => {
+                self.text_within_limit(&value)?;
             }
+            _ => {}
         }
         Ok(value)
+    }
+
+    /// `str(v)`, or a limit error when longer than the output size limit.
+    fn text_within_limit(&self, v: &Value) -> Result<String, XacroError> {
+        v.to_xacro_string_within(self.opts.limits.max_output_bytes)
+            .map_err(|_| too_long())
     }
 
     pub(super) fn expr_error(
@@ -315,7 +330,7 @@ impl Expander<'_> {
             return match result {
                 Ok(v) => {
                     self.pending.borrow_mut().take();
-                    Ok(Value::Str(v.to_xacro_string().into()))
+                    Ok(Value::Str(self.text_within_limit(&v)?.into()))
                 }
                 Err(e) => match self.pending.borrow_mut().take() {
                     Some(detail) => Err(detail),
@@ -592,7 +607,7 @@ impl Expander<'_> {
         if let Some(value) = self.yaml_files.borrow().get(&path) {
             return Ok(value.clone());
         }
-        let text = std::fs::read_to_string(&path).map_err(|e| {
+        let text = include::read_text(&path, self.opts.limits.max_output_bytes).map_err(|e| {
             XacroError::new(
                 ErrorKind::Io,
                 format!("cannot read YAML file {}: {e}", path.display()),

@@ -8,7 +8,7 @@ use std::rc::Rc;
 use super::eval::{add, Args, Ctx};
 use super::format;
 use super::math;
-use super::ops::{check_items, check_str_len, int_divmod, int_overflow, too_large};
+use super::ops::{check_items, check_str_len, int_divmod, int_overflow, too_large, MAX_STR_BYTES};
 use super::value::{as_num, py_cmp, py_eq, Num, TWO_POW_63};
 use super::{EvalError, Value};
 
@@ -89,6 +89,12 @@ const XACRO_BARE: &[&str] = &["load_yaml", "abs_filename", "dotify"];
 
 fn err(kind: &'static str, message: impl Into<String>) -> EvalError {
     EvalError::new(kind, message)
+}
+
+/// `repr(v)` for an error message, bounded (a tuple repeating a long string can have a huge repr).
+fn shown(v: &Value) -> String {
+    v.repr_within(MAX_STR_BYTES)
+        .unwrap_or_else(|_| format!("<{} too large to show>", v.type_name()))
 }
 
 fn type_err(message: impl Into<String>) -> EvalError {
@@ -346,11 +352,11 @@ pub(crate) fn index(obj: &Value, idx: &Value) -> Result<Value, EvalError> {
                 .iter()
                 .find(|(k, _)| py_eq(k, idx))
                 .map(|(_, v)| v.clone())
-                .ok_or_else(|| err("KeyError", idx.repr()))
+                .ok_or_else(|| err("KeyError", shown(idx)))
         }
         Value::Namespace(ns) => match idx {
-            Value::Str(name) => namespace_attr(ns, name).ok_or_else(|| err("KeyError", idx.repr())),
-            _ => Err(err("KeyError", idx.repr())),
+            Value::Str(name) => namespace_attr(ns, name).ok_or_else(|| err("KeyError", shown(idx))),
+            _ => Err(err("KeyError", shown(idx))),
         },
         other => Err(type_err(format!(
             "'{}' object is not subscriptable",
@@ -492,7 +498,11 @@ fn call_xacro(ctx: &mut Ctx, short: &str, args: Args) -> Result<Value, EvalError
             Ok(Value::list(parts))
         }
         "fatal" => {
-            let words: Vec<String> = args.pos.iter().map(Value::to_xacro_string).collect();
+            let words = args
+                .pos
+                .iter()
+                .map(|v| v.to_xacro_string_within(MAX_STR_BYTES))
+                .collect::<Result<Vec<_>, _>>()?;
             Err(err("XacroException", words.join(" ")))
         }
         _ => Err(err(
@@ -865,11 +875,14 @@ fn call_python(ctx: &mut Ctx, name: &str, args: Args) -> Result<Value, EvalError
         }
         "str" => {
             let pos = arity(&args, name, 0, 1)?;
-            Ok(Value::from(
-                pos.first().map(Value::to_xacro_string).unwrap_or_default(),
-            ))
+            match pos.first() {
+                Some(v) => Ok(Value::from(v.to_xacro_string_within(MAX_STR_BYTES)?)),
+                None => Ok(Value::from("")),
+            }
         }
-        "repr" => Ok(Value::from(arity(&args, name, 1, 1)?[0].repr())),
+        "repr" => Ok(Value::from(
+            arity(&args, name, 1, 1)?[0].repr_within(MAX_STR_BYTES)?,
+        )),
         "float" => {
             let pos = arity(&args, name, 0, 1)?;
             Ok(Value::Float(match pos.first() {
@@ -1207,7 +1220,7 @@ pub(crate) fn call_method(
                             err(
                                 "ValueError",
                                 if what == "list" {
-                                    format!("{} is not in list", pos[0].repr())
+                                    format!("{} is not in list", shown(&pos[0]))
                                 } else {
                                     "tuple.index(x): x not in tuple".to_string()
                                 },

@@ -1,5 +1,6 @@
 //! Tree-walking evaluator.
 
+use std::cell::Cell;
 use std::cmp::Ordering;
 use std::rc::Rc;
 
@@ -9,14 +10,54 @@ use super::parser::{Arg, BinOp, CmpOp, CompKind, Kind, Node, Target};
 use super::value::{py_cmp, py_eq};
 use super::{EvalError, Scope, Value};
 
-/// Most loop iterations (comprehension steps, items built by `range` and friends) in one evaluation.
+/// Most steps in one evaluation: loop iterations (comprehension steps, items built by `range` and
+/// friends) and the values visited by deep operations (comparisons, membership tests, `str()`).
 const STEP_BUDGET: u64 = 10_000_000;
 
-/// Evaluation state: the host scope, comprehension variables and the remaining step budget.
+thread_local! {
+    /// The steps left to the innermost evaluation running on this thread, and whether it ran out. A
+    /// thread-local rather than a `Ctx` field so that the deep operations of [`super::value`] (`==`, `<`,
+    /// `repr`), called from everywhere, are charged too: containers share their items, so a short
+    /// expression can build a list whose comparison or `str()` visits exponentially many values.
+    static BUDGET: Cell<(u64, bool)> = const { Cell::new((u64::MAX, false)) };
+}
+
+/// Spend `n` steps of the running evaluation's budget. False when it ran out: the caller stops early, and
+/// the evaluation fails with [`budget_error`] as soon as the current node is done (see [`Ctx::eval`]).
+pub(crate) fn charge(n: usize) -> bool {
+    BUDGET.with(|b| {
+        let (left, exhausted) = b.get();
+        let n = n as u64;
+        if exhausted || n > left {
+            b.set((0, true));
+            false
+        } else {
+            b.set((left - n, false));
+            true
+        }
+    })
+}
+
+fn budget_exhausted() -> bool {
+    BUDGET.with(|b| b.get().1)
+}
+
+pub(crate) fn budget_error() -> EvalError {
+    EvalError::new("MemoryError", "evaluation too long (step budget exhausted)")
+}
+
+/// Evaluation state: the host scope, comprehension variables, and the step budget of the enclosing
+/// evaluation (restored on drop: properties are evaluated lazily, inside other evaluations).
 pub(crate) struct Ctx<'a> {
     pub(crate) scope: &'a dyn Scope,
     locals: Vec<(Rc<str>, Value)>,
-    budget: u64,
+    outer_budget: (u64, bool),
+}
+
+impl Drop for Ctx<'_> {
+    fn drop(&mut self) {
+        BUDGET.with(|b| b.set(self.outer_budget));
+    }
 }
 
 /// Call arguments after evaluation.
@@ -37,26 +78,26 @@ impl<'a> Ctx<'a> {
         Ctx {
             scope,
             locals: Vec::new(),
-            budget: STEP_BUDGET,
+            outer_budget: BUDGET.with(|b| b.replace((STEP_BUDGET, false))),
         }
     }
 
     /// Spend `n` steps of the budget.
     pub(crate) fn spend(&mut self, n: usize) -> Result<(), EvalError> {
-        let n = n as u64;
-        if n > self.budget {
-            return Err(EvalError::new(
-                "MemoryError",
-                "evaluation too long (step budget exhausted)",
-            ));
+        if charge(n) {
+            Ok(())
+        } else {
+            Err(budget_error())
         }
-        self.budget -= n;
-        Ok(())
     }
 
     pub(crate) fn eval(&mut self, node: &Node) -> Result<Value, EvalError> {
-        self.eval_inner(node)
-            .map_err(|e| with_offset(e, node.offset))
+        let result = match self.eval_inner(node) {
+            // A deep operation ran out of budget and returned early: its result is not to be trusted.
+            _ if budget_exhausted() => Err(budget_error()),
+            result => result,
+        };
+        result.map_err(|e| with_offset(e, node.offset))
     }
 
     fn eval_inner(&mut self, node: &Node) -> Result<Value, EvalError> {

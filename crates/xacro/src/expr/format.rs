@@ -1,7 +1,7 @@
 //! String formatting: `fmt % args` (printf style) and `str.format` with the format-spec mini-language.
 
 use super::builtins::{float_to_int, get_attr, index};
-use super::ops::check_str_len;
+use super::ops::{check_str_len, MAX_STR_BYTES};
 use super::value::{as_num, float_repr, Num};
 use super::{EvalError, Value};
 
@@ -11,6 +11,28 @@ fn err(kind: &'static str, message: impl Into<String>) -> EvalError {
 
 /// Largest field width or precision accepted (keeps results within the size limit).
 const MAX_WIDTH: usize = 1 << 20;
+
+/// Precisions above this are formatted as this precision plus zeros: the exact decimal expansion of an
+/// f64 has at most 767 significant and 1074 fractional digits, so the further digits are all zeros (and
+/// Rust's formatter panics on precisions above `u16::MAX`, while Python accepts any up to [`MAX_WIDTH`]).
+const EXACT_DIGITS: usize = 1100;
+
+/// `a` with `prec` digits after the point (`{a:.prec$}` for any precision).
+fn fixed(a: f64, prec: usize) -> String {
+    let mut s = format!("{a:.*}", prec.min(EXACT_DIGITS));
+    s.extend(std::iter::repeat_n('0', prec.saturating_sub(EXACT_DIGITS)));
+    s
+}
+
+/// `a` in Rust's exponent style with `prec` digits after the point (`{a:.prec$e}` for any precision).
+fn scientific(a: f64, prec: usize) -> String {
+    let s = format!("{a:.*e}", prec.min(EXACT_DIGITS));
+    if prec <= EXACT_DIGITS {
+        return s;
+    }
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    format!("{m}{}e{e}", "0".repeat(prec - EXACT_DIGITS))
+}
 
 /// Format the magnitude of a finite or non-finite float (no sign) in style `conv` (`f e g` or upper case,
 /// `r` for repr-like, `n` for the spec-less `str.format` style with a precision).
@@ -27,7 +49,7 @@ fn float_body(x: f64, conv: char, prec: usize, alt: bool) -> String {
     }
     let s = match conv.to_ascii_lowercase() {
         'f' => {
-            let mut s = format!("{a:.prec$}");
+            let mut s = fixed(a, prec);
             if alt && prec == 0 {
                 s.push('.');
             }
@@ -43,7 +65,7 @@ fn float_body(x: f64, conv: char, prec: usize, alt: bool) -> String {
             let p = prec.max(1);
             let exp = if a == 0.0 { 0 } else { decimal_exponent(a, p) };
             let mut s = if exp >= -4 && exp < p as i32 {
-                format!("{a:.*}", (p as i32 - 1 - exp) as usize)
+                fixed(a, (p as i32 - 1 - exp) as usize)
             } else {
                 exp_format(a, p - 1, alt)
             };
@@ -65,7 +87,7 @@ fn float_body(x: f64, conv: char, prec: usize, alt: bool) -> String {
 
 /// The decimal exponent of `a` once rounded to `p` significant digits.
 fn decimal_exponent(a: f64, p: usize) -> i32 {
-    let s = format!("{:.*e}", p - 1, a);
+    let s = scientific(a, p - 1);
     s.split_once('e')
         .and_then(|(_, e)| e.parse().ok())
         .unwrap_or(0)
@@ -73,7 +95,7 @@ fn decimal_exponent(a: f64, p: usize) -> i32 {
 
 /// `d.ddde+XX` with at least two exponent digits.
 fn exp_format(a: f64, prec: usize, alt: bool) -> String {
-    let s = format!("{a:.prec$e}");
+    let s = scientific(a, prec);
     let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
     let e: i32 = e.parse().unwrap_or(0);
     let mut m = m.to_string();
@@ -310,9 +332,9 @@ fn percent_one(spec: &Percent, v: &Value, start: usize, fmt: &str) -> Result<Str
     match spec.conv {
         's' | 'r' | 'a' => {
             let mut s = if spec.conv == 's' {
-                v.to_xacro_string()
+                v.to_xacro_string_within(MAX_STR_BYTES)?
             } else {
-                v.repr()
+                v.repr_within(MAX_STR_BYTES)?
             };
             if let Some(p) = spec.prec {
                 s = s.chars().take(p).collect();
@@ -495,7 +517,7 @@ fn parse_spec(spec: &str) -> Result<Spec, EvalError> {
 /// Python's `format(value, spec)`.
 pub(crate) fn format_value(v: &Value, spec_text: &str) -> Result<String, EvalError> {
     if spec_text.is_empty() {
-        return Ok(v.to_xacro_string());
+        return v.to_xacro_string_within(MAX_STR_BYTES);
     }
     let spec = parse_spec(spec_text)?;
     let unknown = |t: char| {
@@ -714,8 +736,8 @@ fn format_inner(
         let value = resolve_field(name, pos, kw, auto, mode)?;
         let value = match conv {
             None => value,
-            Some('s') => Value::from(value.to_xacro_string()),
-            Some('r' | 'a') => Value::from(value.repr()),
+            Some('s') => Value::from(value.to_xacro_string_within(MAX_STR_BYTES)?),
+            Some('r' | 'a') => Value::from(value.repr_within(MAX_STR_BYTES)?),
             Some(other) => {
                 return Err(err(
                     "ValueError",

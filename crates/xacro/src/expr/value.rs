@@ -1,6 +1,7 @@
 //! Python semantics of [`Value`]: `str()`, `repr()`, truthiness, equality and ordering.
 
 use std::cmp::Ordering;
+use std::collections::hash_map::{Entry, HashMap};
 use std::rc::Rc;
 
 use super::{EvalError, Value};
@@ -8,6 +9,9 @@ use super::{EvalError, Value};
 impl Value {
     /// Python's `str(value)`: floats as `repr` (`1.0`, `0.1`, `1e-05`, `inf`), `True`/`False`, lists as
     /// `[1, 'a']`, dicts as `{'a': 1}`.
+    ///
+    /// Unbounded: containers share their items, so a value built by a short expression can have an
+    /// exponentially long `str`. For values from untrusted input use [`Value::to_xacro_string_within`].
     pub fn to_xacro_string(&self) -> String {
         match self {
             Value::Str(s) => s.to_string(),
@@ -15,29 +19,56 @@ impl Value {
         }
     }
 
-    /// Python's `repr(value)` (strings quoted as Python quotes them).
+    /// Python's `repr(value)` (strings quoted as Python quotes them). Unbounded, as
+    /// [`Value::to_xacro_string`].
     pub fn repr(&self) -> String {
         let mut out = String::new();
-        self.write_repr(&mut out);
+        let _ = self.write_repr(&mut out, usize::MAX);
         out
     }
 
-    fn write_repr(&self, out: &mut String) {
+    /// [`Value::to_xacro_string`], or a `MemoryError` as soon as the text grows beyond `limit` bytes (so in
+    /// time and memory proportional to `limit`).
+    pub fn to_xacro_string_within(&self, limit: usize) -> Result<String, EvalError> {
+        match self {
+            Value::Str(s) if s.len() > limit => Err(too_long()),
+            Value::Str(s) => Ok(s.to_string()),
+            other => other.repr_within(limit),
+        }
+    }
+
+    /// [`Value::repr`], or a `MemoryError` as soon as the text grows beyond `limit` bytes.
+    pub fn repr_within(&self, limit: usize) -> Result<String, EvalError> {
+        let mut out = String::new();
+        self.write_repr(&mut out, limit)?;
+        Ok(out)
+    }
+
+    /// Append the repr to `out`, failing once `out` is longer than `limit`. Each value visited costs a step
+    /// of the running evaluation's budget.
+    fn write_repr(&self, out: &mut String, limit: usize) -> Result<(), EvalError> {
+        if out.len() > limit {
+            return Err(too_long());
+        }
+        if !super::eval::charge(1) {
+            return Err(super::eval::budget_error());
+        }
         match self {
             Value::None => out.push_str("None"),
             Value::Bool(true) => out.push_str("True"),
             Value::Bool(false) => out.push_str("False"),
             Value::Int(i) => out.push_str(&i.to_string()),
             Value::Float(f) => out.push_str(&float_repr(*f)),
+            Value::Str(s) if s.len() > limit => return Err(too_long()),
             Value::Str(s) => out.push_str(&str_repr(s)),
             Value::List(items) => {
                 out.push('[');
-                write_items(items, out);
+                write_items(items, out, limit)?;
                 out.push(']');
             }
             Value::Tuple(items) => {
                 out.push('(');
-                write_items(items, out);
+                write_items(items, out, limit)?;
                 if items.len() == 1 {
                     out.push(',');
                 }
@@ -49,9 +80,9 @@ impl Value {
                     if i > 0 {
                         out.push_str(", ");
                     }
-                    k.write_repr(out);
+                    k.write_repr(out, limit)?;
                     out.push_str(": ");
-                    v.write_repr(out);
+                    v.write_repr(out, limit)?;
                 }
                 out.push('}');
             }
@@ -67,6 +98,10 @@ impl Value {
                 out.push('>');
             }
         }
+        if out.len() > limit {
+            return Err(too_long());
+        }
+        Ok(())
     }
 
     /// Python truthiness.
@@ -117,10 +152,30 @@ impl Value {
     /// A `dict` value from key/value pairs in insertion order (later duplicates replace earlier values, as in
     /// Python).
     pub fn dict(pairs: Vec<(Value, Value)>) -> Value {
+        // Numbers and strings are found through a hash map (a linear search made building a large dict
+        // quadratic); other keys (tuples, NaN, functions) are compared with each earlier such key.
         let mut out: Vec<(Value, Value)> = Vec::with_capacity(pairs.len());
+        let mut hashed: HashMap<KeyHash, usize> = HashMap::new();
+        let mut others: Vec<usize> = Vec::new();
         for (k, v) in pairs {
-            match out.iter_mut().find(|(ok, _)| py_eq(ok, &k)) {
-                Some(slot) => slot.1 = v,
+            let found = match KeyHash::of(&k) {
+                Some(h) => match hashed.entry(h) {
+                    Entry::Occupied(e) => Some(*e.get()),
+                    Entry::Vacant(e) => {
+                        e.insert(out.len());
+                        None
+                    }
+                },
+                None => {
+                    let found = others.iter().copied().find(|&i| py_eq(&out[i].0, &k));
+                    if found.is_none() {
+                        others.push(out.len());
+                    }
+                    found
+                }
+            };
+            match found {
+                Some(i) => out[i].1 = v,
                 None => out.push((k, v)),
             }
         }
@@ -173,13 +228,45 @@ impl From<String> for Value {
     }
 }
 
-fn write_items(items: &[Value], out: &mut String) {
+fn write_items(items: &[Value], out: &mut String, limit: usize) -> Result<(), EvalError> {
     for (i, v) in items.iter().enumerate() {
         if i > 0 {
             out.push_str(", ");
         }
-        v.write_repr(out);
+        v.write_repr(out, limit)?;
     }
+    Ok(())
+}
+
+/// A dict key's identity under Python `==`, for the keys that have a simple one: `True == 1 == 1.0`.
+#[derive(PartialEq, Eq, Hash)]
+enum KeyHash {
+    None,
+    Int(i64),
+    Float(u64),
+    Str(Rc<str>),
+}
+
+impl KeyHash {
+    fn of(v: &Value) -> Option<KeyHash> {
+        Some(match v {
+            Value::None => KeyHash::None,
+            Value::Bool(b) => KeyHash::Int(i64::from(*b)),
+            Value::Int(i) => KeyHash::Int(*i),
+            Value::Float(f) if f.is_nan() => return None,
+            // Integral floats in the i64 range equal that int (-0.0 included); the cast is then exact.
+            Value::Float(f) if f.fract() == 0.0 && *f >= -TWO_POW_63 && *f < TWO_POW_63 => {
+                KeyHash::Int(*f as i64)
+            }
+            Value::Float(f) => KeyHash::Float(f.to_bits()),
+            Value::Str(s) => KeyHash::Str(s.clone()),
+            _ => return None,
+        })
+    }
+}
+
+fn too_long() -> EvalError {
+    EvalError::new("MemoryError", "string result too large")
 }
 
 /// Python's `repr(float)`: the shortest string that round-trips, in exponent form when the decimal
@@ -329,7 +416,13 @@ pub(crate) fn cmp_num(a: Num, b: Num) -> Option<Ordering> {
 }
 
 /// Python `==`.
+///
+/// Each call costs a step of the running evaluation's budget (containers share items, so a comparison can
+/// visit exponentially many); when it runs out the answer is `false` and the evaluation fails.
 pub(crate) fn py_eq(a: &Value, b: &Value) -> bool {
+    if !super::eval::charge(1) {
+        return false;
+    }
     if let (Some(x), Some(y)) = (as_num(a), as_num(b)) {
         return cmp_num(x, y) == Some(Ordering::Equal);
     }
@@ -354,6 +447,9 @@ pub(crate) fn py_eq(a: &Value, b: &Value) -> bool {
 /// Python ordering (`<` and friends); `None` for incomparable values (NaN), a `TypeError` for
 /// unsupported type pairs.
 pub(crate) fn py_cmp(a: &Value, b: &Value, op: &str) -> Result<Option<Ordering>, EvalError> {
+    if !super::eval::charge(1) {
+        return Err(super::eval::budget_error());
+    }
     if let (Some(x), Some(y)) = (as_num(a), as_num(b)) {
         return Ok(cmp_num(x, y));
     }
