@@ -193,25 +193,12 @@ impl Model {
         vec![0.0; self.joint_data.len()]
     }
 
-    /// Overwrite every mimic follower with `multiplier · q_leader + offset` (chains resolved leader first).
+    /// Overwrite every mimic follower with `multiplier · q_leader + offset` (chains resolved leader first,
+    /// in the order [`Model::mimic_order`] prepared once: linear in the number of joints).
     pub fn apply_mimic(&self, q: &mut Configuration) {
-        for follower in 0..q.len() {
-            if self.mimic[follower].is_none() {
-                continue;
-            }
-            // Walk to the independent leader, then apply the relations back down the chain.
-            let mut chain = vec![follower];
-            while let Some(link) = self.mimic[*chain.last().unwrap_or(&follower)] {
-                if chain.len() > q.len() {
-                    break;
-                }
-                chain.push(link.leader.0);
-            }
-            for pair in chain.windows(2).rev() {
-                let (joint, leader) = (pair[0], pair[1]);
-                if let Some(link) = self.mimic[joint] {
-                    q[joint] = link.multiplier * q[leader] + link.offset;
-                }
+        for &JointId(joint) in &self.mimic_order {
+            if let Some(link) = self.mimic[joint] {
+                q[joint] = link.multiplier * q[link.leader.0] + link.offset;
             }
         }
     }

@@ -13,7 +13,8 @@
 //!   translations included) and `<up_axis>` turned into Z up at the root (see [`UpAxisPolicy`]).
 //!
 //! Files are untrusted: nothing here panics on file content, memory and time are bounded
-//! ([`MAX_FILE_BYTES`], [`MAX_VERTICES`], an XML node limit, a node-instancing depth and count limit),
+//! ([`MAX_FILE_BYTES`], [`MAX_VERTICES`], an XML node limit, a node-instancing depth and count limit,
+//! instantiated COLLADA vertices proportional to the file size: [`MAX_INSTANCED_PER_BYTE`]),
 //! and every error names the file and, where possible, the line (text formats) or byte offset (binary
 //! STL).
 //!
@@ -47,6 +48,13 @@ const HULL_PREFILTER_MIN: usize = 10_000;
 const HULL_CONTAINMENT_CHECK_LIMIT: usize = 2_000_000;
 /// Grid resolution (cells per axis) of the first thinning step above [`HULL_EXACT_LIMIT`].
 const HULL_GRID_CELLS: u32 = 128;
+/// Fewest vertices a COLLADA file may instantiate whatever its size (see [`MAX_INSTANCED_PER_BYTE`]).
+pub const MIN_INSTANCED_VERTICES: usize = 1_000_000;
+/// Most vertices a COLLADA file may instantiate per byte of file (above [`MIN_INSTANCED_VERTICES`]).
+/// A position takes at least 6 bytes of text ("0 0 0 "), so this allows every position to be
+/// instantiated a dozen times, but keeps a few kilobytes of nested `<instance_node>`s from expanding
+/// into [`MAX_VERTICES`] vertices (1.6 GB and 30 s for a 50 KB file).
+pub const MAX_INSTANCED_PER_BYTE: usize = 2;
 /// Largest number of XML nodes accepted in a COLLADA file.
 const MAX_XML_NODES: u32 = 5_000_000;
 /// A point cloud whose smallest principal variance is below this fraction of the largest is flat.
@@ -333,20 +341,40 @@ fn bounds(vertices: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
     (min, max)
 }
 
-/// Collects vertices, dropping exact duplicates and enforcing [`MAX_VERTICES`].
-#[derive(Default)]
+/// Collects vertices, dropping exact duplicates and enforcing a vertex limit ([`MAX_VERTICES`] unless
+/// set lower).
 struct VertexSink {
     vertices: Vec<[f64; 3]>,
     seen: HashSet<[u64; 3]>,
     read: usize,
+    limit: usize,
+}
+
+impl Default for VertexSink {
+    fn default() -> Self {
+        VertexSink {
+            vertices: Vec::new(),
+            seen: HashSet::new(),
+            read: 0,
+            limit: MAX_VERTICES,
+        }
+    }
 }
 
 impl VertexSink {
     /// Add one vertex; `Err` with a message (without location) past the limit or on a non-finite value.
     fn push(&mut self, v: [f64; 3]) -> Result<(), String> {
         self.read += 1;
-        if self.read > MAX_VERTICES {
-            return Err(format!("more than {MAX_VERTICES} vertices (limit)"));
+        if self.read > self.limit {
+            return Err(if self.limit == MAX_VERTICES {
+                format!("more than {MAX_VERTICES} vertices (limit)")
+            } else {
+                format!(
+                    "more than {} vertices instantiated (limit: {MAX_INSTANCED_PER_BYTE} per byte of \
+                     the file, at least {MIN_INSTANCED_VERTICES})",
+                    self.limit
+                )
+            });
         }
         if !v.iter().all(|c| c.is_finite()) {
             return Err(format!("non-finite vertex {v:?}"));
@@ -600,7 +628,13 @@ fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, String> {
         doc: &doc,
         ids: HashMap::new(),
         geometries: HashMap::new(),
-        sink: VertexSink::default(),
+        sink: VertexSink {
+            limit: bytes
+                .len()
+                .saturating_mul(MAX_INSTANCED_PER_BYTE)
+                .clamp(MIN_INSTANCED_VERTICES, MAX_VERTICES),
+            ..VertexSink::default()
+        },
         triangles: 0,
         instances: 0,
     };
@@ -672,8 +706,16 @@ fn floats(doc: &Document, node: Node, limit: usize) -> Result<Vec<f64>, String> 
         match number(token.as_bytes()) {
             Some(v) => out.push(v),
             None => {
+                // Offsets in the text are offsets in the file only when the text is the file's bytes
+                // as they are: entity and character references change its length (and an entity's
+                // text lies in the DTD), so then the element's position is given instead.
                 let offset = token.as_ptr() as usize - text.as_ptr() as usize;
-                let pos = doc.text_pos_at(base + offset);
+                let verbatim = doc.input_text().get(text_node.range()) == Some(text);
+                let pos = doc.text_pos_at(if verbatim {
+                    base + offset
+                } else {
+                    node.range().start
+                });
                 return Err(format!(
                     "line {}, column {}: expected a finite number in <{}>, found '{}'",
                     pos.row,

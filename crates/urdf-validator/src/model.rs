@@ -49,6 +49,11 @@ pub struct Model {
     pub topological_order: Vec<LinkId>,
     /// For each joint, its mimic leader when the reference is valid and acyclic.
     pub mimic: Vec<Option<MimicLink>>,
+    /// The mimic followers, every leader before its followers (the order `apply_mimic` resolves them in).
+    pub mimic_order: Vec<JointId>,
+    /// For each joint, the independent joint its motion comes from and d q_joint / d q_leader (itself
+    /// and 1 for a joint that mimics nothing).
+    pub independent_leader: Vec<(JointId, f64)>,
     /// For each joint, its numbers ready for kinematics.
     pub joint_data: Vec<JointData>,
     /// For each link, its mass properties.
@@ -324,46 +329,96 @@ fn resolve_mimics(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>)
             ),
         }
     }
-    // Follow each chain of leaders; a chain that comes back to where it started is a cycle.
+    // Each joint has at most one leader, so every walk along leaders either ends at an independent
+    // joint or runs into a cycle. Walking from every joint not visited yet, and stopping at joints
+    // already visited, touches each joint once: linear time even for a chain of thousands of mimics.
     let n = robot.joints.len();
+    #[derive(Clone, Copy, PartialEq)]
+    enum Visit {
+        New,
+        OnPath,
+        Done,
+    }
+    let mut visit = vec![Visit::New; n];
     let mut in_cycle = vec![false; n];
+    let mut path = Vec::new();
     for start in 0..n {
-        let mut path = vec![start];
+        path.clear();
         let mut current = start;
-        while let Some(link) = model.mimic[current] {
-            current = link.leader.0;
-            if current == start {
-                let names: Vec<&str> = path
-                    .iter()
-                    .map(|&j| robot.joints[j].name.value.as_str())
-                    .collect();
-                if !path.iter().any(|&j| in_cycle[j]) {
-                    let span = robot.joints[start]
-                        .mimic
-                        .as_ref()
-                        .map_or(robot.joints[start].span, |m| m.span);
-                    findings.push(Finding::new(
-                        &rules::MIMIC_CYCLE,
-                        span,
-                        format!(
-                            "Mimic joints follow each other in a cycle: {} → {}",
-                            names.join(" → "),
-                            names[0]
-                        ),
-                    ));
-                }
-                path.iter().for_each(|&j| in_cycle[j] = true);
-                break;
-            }
-            if path.contains(&current) || path.len() > n {
-                break; // A cycle further along; reported from one of its own members.
-            }
+        while visit[current] == Visit::New {
+            visit[current] = Visit::OnPath;
             path.push(current);
+            match model.mimic[current] {
+                Some(link) => current = link.leader.0,
+                None => break,
+            }
         }
+        if visit[current] == Visit::OnPath && model.mimic[current].is_some() {
+            // The walk came back to a joint of its own path: the path from there on is a cycle.
+            // Reported from its first member in document order, following the leaders.
+            let at = path.iter().position(|&j| j == current).unwrap_or(0);
+            let cycle = &path[at..];
+            let first = cycle
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, &j)| j)
+                .map_or(0, |(i, _)| i);
+            let names: Vec<&str> = cycle[first..]
+                .iter()
+                .chain(&cycle[..first])
+                .map(|&j| robot.joints[j].name.value.as_str())
+                .collect();
+            let head = cycle[first];
+            let span = robot.joints[head]
+                .mimic
+                .as_ref()
+                .map_or(robot.joints[head].span, |m| m.span);
+            findings.push(Finding::new(
+                &rules::MIMIC_CYCLE,
+                span,
+                format!(
+                    "Mimic joints follow each other in a cycle: {} → {}",
+                    names.join(" → "),
+                    names[0]
+                ),
+            ));
+            cycle.iter().for_each(|&j| in_cycle[j] = true);
+        }
+        path.iter().for_each(|&j| visit[j] = Visit::Done);
     }
     for (i, cyclic) in in_cycle.into_iter().enumerate() {
         if cyclic {
             model.mimic[i] = None;
+        }
+    }
+    resolve_mimic_order(model);
+}
+
+/// `mimic_order` and `independent_leader` from the (acyclic) `mimic` relation, in linear time.
+fn resolve_mimic_order(model: &mut Model) {
+    let n = model.mimic.len();
+    let mut resolved = vec![false; n];
+    model.independent_leader = (0..n).map(|j| (JointId(j), 1.0)).collect();
+    model.mimic_order = Vec::new();
+    let mut chain = Vec::new();
+    for start in 0..n {
+        // Climb to a joint already resolved (or an independent one), then resolve back down.
+        chain.clear();
+        let mut current = start;
+        while !resolved[current] {
+            chain.push(current);
+            match model.mimic[current] {
+                Some(link) => current = link.leader.0,
+                None => break,
+            }
+        }
+        for &joint in chain.iter().rev() {
+            resolved[joint] = true;
+            if let Some(link) = model.mimic[joint] {
+                let (leader, factor) = model.independent_leader[link.leader.0];
+                model.independent_leader[joint] = (leader, link.multiplier * factor);
+                model.mimic_order.push(JointId(joint));
+            }
         }
     }
 }

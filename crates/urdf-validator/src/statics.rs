@@ -124,20 +124,14 @@ fn joint_torque(model: &Model, data: &Data, sums: &SubtreeSums, joint: JointId) 
     }
 }
 
-/// The independent joint a joint's motion comes from, and d q_joint / d q_leader.
+/// The independent joint a joint's motion comes from, and d q_joint / d q_leader (precomputed by
+/// [`Model::build`]).
 pub fn independent_leader(model: &Model, joint: JointId) -> (JointId, f64) {
-    let mut current = joint;
-    let mut factor = 1.0;
-    for _ in 0..model.mimic.len() {
-        match model.mimic[current.0] {
-            Some(link) => {
-                factor *= link.multiplier;
-                current = link.leader;
-            }
-            None => break,
-        }
-    }
-    (current, factor)
+    model
+        .independent_leader
+        .get(joint.0)
+        .copied()
+        .unwrap_or((joint, 1.0))
 }
 
 /// `folded[leader] = raw[leader] + Σ factor · raw[follower]`; followers keep their raw value.
