@@ -77,9 +77,14 @@ fn has_word(name: &str, words: &[&str]) -> bool {
         .any(|token| words.contains(&token))
 }
 
-/// A joint whose own name says it moves a finger or a gripper.
+/// Parts of names of wrist rotations (`LeftGripperYaw` turns the whole hand: it is not a finger).
+const WRIST_PARTS: [&str; 4] = ["yaw", "pitch", "roll", "wrist"];
+
+/// A joint whose own name says it moves a finger or a gripper's jaws.
 fn finger_joint_name(name: &str) -> bool {
-    has_part(name, &FINGER_PARTS) || has_part(name, &["gripper"]) || has_word(name, &FINGER_WORDS)
+    has_part(name, &FINGER_PARTS)
+        || has_word(name, &FINGER_WORDS)
+        || (has_part(name, &["gripper"]) && !has_part(name, &WRIST_PARTS))
 }
 
 /// A link whose name says it is a finger (a link named `gripper` is the hand itself).
@@ -152,7 +157,15 @@ fn finger_joints(robot: &Robot, model: &Model, by_name: bool) -> Vec<bool> {
                 && (finger_joint_name(&robot.joints[j.0].name.value)
                     || child(model, j)
                         .is_some_and(|c| finger_link_name(&robot.links[c.0].name.value)));
-            if model.mimic[j.0].is_some() || (named && model.joint_data[j.0].is_actuated()) {
+            // A name marks a branch only as small as a finger: a joint named `gripper_*` that carries a
+            // whole hand is the wrist.
+            let finger_sized = || {
+                let sub = subtree_joints(model, j);
+                sub.iter().filter(|s| independent(model, **s)).count() <= FINGER_JOINTS
+            };
+            if model.mimic[j.0].is_some()
+                || (named && model.joint_data[j.0].is_actuated() && finger_sized())
+            {
                 mark(&mut finger, j);
                 any_named = true;
             }
@@ -315,8 +328,14 @@ impl Detector<'_> {
                     .collect()
             })
             .unwrap_or_default();
-        // A tool frame (tcp, tool, grasp, end effector) beats a `tip` link; deeper beats shallower. Links
-        // named like fingers are fingers when the arm has a hand.
+        // A tool frame (tcp, tool, grasp, end effector) beats a `tip` link, deeper beating shallower; then
+        // the first link named `hand`, `palm` or `gripper` (not its welded jaws). Links named like fingers
+        // are fingers when the arm has a hand, and a frame above the hand (a wrist force-torque sensor's
+        // `ft_tool_link`) is not the tool.
+        let hand_via = hand.and_then(|h| welded.iter().find(|(l, _)| *l == h).map(|(_, via)| via));
+        let above_hand = |via: &Vec<JointId>| {
+            hand_via.is_some_and(|hand_via| hand_via.len() > via.len() && hand_via.starts_with(via))
+        };
         let tool_score = |link: LinkId| -> usize {
             let name = self.robot.links[link.0].name.value.to_ascii_lowercase();
             if hand.is_some() && finger_link_name(&name) {
@@ -325,15 +344,28 @@ impl Detector<'_> {
                 || has_word(&name, &["ee"])
                 || name.ends_with("ee_link")
             {
+                3
+            } else if has_word(&name, &["tip"]) {
                 2
             } else {
-                usize::from(has_word(&name, &["tip"]))
+                usize::from(has_word(&name, &["hand", "palm", "gripper"]))
+            }
+        };
+        let depth_preference = |score: usize, via: &Vec<JointId>| {
+            let depth = via.len() as isize;
+            if score == 1 {
+                -depth
+            } else {
+                depth
             }
         };
         let tool = welded
             .iter()
-            .filter(|(l, _)| tool_score(*l) > 0)
-            .max_by_key(|(l, via)| (tool_score(*l), via.len()));
+            .filter(|(l, via)| tool_score(*l) > 0 && !above_hand(via))
+            .max_by_key(|(l, via)| {
+                let score = tool_score(*l);
+                (score, depth_preference(score, via))
+            });
         let (tip, via) = match (tool, hand) {
             (Some((tool, via)), _) => (*tool, via.clone()),
             (None, Some(hand)) => welded

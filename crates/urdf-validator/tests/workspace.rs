@@ -655,6 +655,53 @@ fn arms_are_found_on_multi_arm_and_legged_robots() {
     }
 }
 
+/// Where arms end: a wrist joint named `*GripperYaw` that carries a whole hand is the arm's 7th joint, not
+/// a finger; a force-torque sensor's `ft_tool_link` above the hand is not the tool; a welded `hand` link
+/// beats the wrist; a one-jaw gripper (z1's `jointGripper`) stays out of the arm.
+#[test]
+fn arms_end_at_the_hand_not_above_it_nor_in_its_jaws() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let cases: [(&str, &str, usize); 5] = [
+        (
+            "alex_description/urdf/alex_psyonic_hands.urdf",
+            "Left_thumb_base",
+            7,
+        ),
+        (
+            "alex_description/urdf/alex_sake_hands.urdf",
+            "LeftSakePalmLink",
+            7,
+        ),
+        (
+            "talos_data/robots/talos_full_v2.urdf",
+            "gripper_left_base_link",
+            7,
+        ),
+        (
+            "g1_description/urdf/g1_29dof_rev_1_0.urdf",
+            "left_rubber_hand",
+            7,
+        ),
+        ("z1_description/urdf/z1.urdf", "gripperStator", 6),
+    ];
+    for (file, tip, dof) in cases {
+        let ws = real_report(&corpus.join(file)).workspace.unwrap();
+        let arm = ws
+            .arms
+            .iter()
+            .find(|a| a.tip_link == tip)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{file}: no arm ends at {tip}: {:?}",
+                    ws.arms.iter().map(|a| &a.tip_link).collect::<Vec<_>>()
+                )
+            });
+        assert_eq!(arm.joints.len(), dof, "{file}");
+    }
+}
+
 #[test]
 fn pr2_reports_both_arms_to_their_tool_frames() {
     let Some(shared) = common::shared_robots() else {
