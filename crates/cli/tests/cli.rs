@@ -414,3 +414,31 @@ fn expand_only_takes_one_xacro_file() {
     let out = run(&[robot, robot, "--expand-only"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn a_misspelled_xacro_argument_is_warned_with_the_close_name() {
+    let dir = temp_dir();
+    let robot = write(
+        &dir,
+        "flag.urdf.xacro",
+        r#"<robot name="flag" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="flag" default="default"/>
+  <link name="base_$(arg flag)"/>
+</robot>"#,
+    );
+    for args in [
+        vec![robot.to_str().unwrap(), "flg:=given", "--no-write"],
+        vec![
+            robot.to_str().unwrap(),
+            "--xacro-arg",
+            "flg=given",
+            "--no-write",
+        ],
+    ] {
+        let out = text(&run(&args).stdout);
+        assert!(out.contains("argument 'flg' was given"), "{out}");
+        assert!(out.contains("did you mean 'flag'?"), "{out}");
+    }
+    let out = text(&run(&[robot.to_str().unwrap(), "flag:=given", "--no-write"]).stdout);
+    assert!(!out.contains("was given"), "{out}");
+}

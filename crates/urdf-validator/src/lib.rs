@@ -182,6 +182,7 @@ fn validate_source(
             report.column = Some(at.column);
             report.end_line = Some(at.end_line);
             report.end_column = Some(at.end_column);
+            report.expanded_from = at.stack;
         }
         report_findings.push(report);
         findings.push(finding);

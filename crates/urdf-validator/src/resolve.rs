@@ -126,6 +126,12 @@ impl PackageResolver {
         (None, searched)
     }
 
+    /// Whether any package folder is configured (`--package-path`, `ROS_PACKAGE_PATH` or
+    /// `AMENT_PREFIX_PATH`); without one, only the walk up from the file can find packages.
+    pub fn has_configured_paths(&self) -> bool {
+        !self.explicit.is_empty() || !self.ros_paths.is_empty() || !self.ament_prefixes.is_empty()
+    }
+
     /// Resolve the part of a `package://` URI after the scheme.
     fn resolve_package(&self, rest: &str, urdf_dir: &Path) -> Resolution {
         let (package, file) = rest.split_once('/').unwrap_or((rest, ""));

@@ -54,11 +54,27 @@ pub fn expand(
         .unwrap_or(Path::new("."))
         .to_path_buf();
     let finder = resolver.clone();
+    // A `$(find)` miss lists the package folders tried, and says how to add one.
+    let package_hint = if resolver.has_configured_paths() {
+        "hint: pass --package-path DIR with the folder that holds the package"
+    } else {
+        "no --package-path given; ROS_PACKAGE_PATH and AMENT_PREFIX_PATH unset; \
+         hint: pass --package-path DIR with the folder that holds the package"
+    };
     let options = xacro::Options {
         args: args.to_vec(),
-        find_package: Some(Arc::new(move |package: &str| -> Option<PathBuf> {
-            finder.find_package(package, &start_dir)
-        })),
+        find_package: Some(Arc::new(
+            move |package: &str| -> Result<PathBuf, Vec<String>> {
+                match finder.find_package_searched(package, &start_dir) {
+                    (Some(dir), _) => Ok(dir),
+                    (None, searched) => Err(searched
+                        .iter()
+                        .map(|dir| dir.display().to_string())
+                        .collect()),
+                }
+            },
+        )),
+        package_hint: Some(package_hint.to_string()),
         banner,
         ..xacro::Options::default()
     };
@@ -108,7 +124,7 @@ impl Expanded {
                         column: to_u32(l.col),
                         end_line: to_u32(end_line),
                         end_column: to_u32(end_column),
-                        stack: Vec::new(),
+                        stack: w.stack.iter().map(stack_line).collect(),
                     }
                 });
                 (w.message.clone(), location)
@@ -147,6 +163,15 @@ impl Expanded {
             end_column: to_u32(end_column),
             stack,
         })
+    }
+}
+
+/// `in macro 'wheel' called at robot.urdf.xacro:40:3`, as [`Expanded::locate`] writes frames.
+fn stack_line(entry: &xacro::StackEntry) -> String {
+    let place = &entry.location;
+    match entry.kind {
+        xacro::FrameKind::Macro => format!("in macro '{}' called at {place}", entry.name),
+        xacro::FrameKind::Include => format!("in {} included at {place}", entry.name),
     }
 }
 

@@ -215,3 +215,171 @@ fn pr2_xacro_validates_like_its_expanded_urdf() {
         }
     }
 }
+
+#[test]
+fn a_misspelled_xacro_argument_is_a_u010_warning_with_the_close_name() {
+    let dir = scratch("xacro_misspelled_arg");
+    let robot = write_robot(&dir);
+    let validation = validate(&robot, &options(&[("bad_ixxx", "-0.5")])).expect("expands");
+    let u010: Vec<_> = validation
+        .report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U010")
+        .collect();
+    assert_eq!(u010.len(), 1, "{u010:?}");
+    let finding = u010[0];
+    assert!(
+        finding.message.contains("'bad_ixxx'"),
+        "{}",
+        finding.message
+    );
+    assert!(
+        finding.message.contains("did you mean 'bad_ixx'?"),
+        "{}",
+        finding.message
+    );
+    assert!(
+        finding
+            .file
+            .as_deref()
+            .unwrap()
+            .ends_with("walker.urdf.xacro"),
+        "{:?}",
+        finding.file
+    );
+    // The declared argument given correctly: no U010.
+    let fine = validate(&robot, &options(&[("bad_ixx", "0.02")])).expect("expands");
+    assert!(fine.report.findings.iter().all(|f| f.rule != "U010"));
+}
+
+#[test]
+fn xacro_warnings_inside_macros_carry_the_call_stack() {
+    let dir = scratch("xacro_warning_stack");
+    std::fs::write(
+        dir.join("leg.xacro"),
+        r#"<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="leg" params="name">
+    <xacro:if value="true" bogus="1">
+      <link name="${name}_link"/>
+    </xacro:if>
+  </xacro:macro>
+</robot>"#,
+    )
+    .unwrap();
+    let robot = dir.join("legs.urdf.xacro");
+    std::fs::write(
+        &robot,
+        r#"<robot name="legs" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="leg.xacro"/>
+  <link name="body"/>
+  <xacro:leg name="left"/>
+  <xacro:leg name="right"/>
+  <joint name="l" type="fixed"><parent link="body"/><child link="left_link"/></joint>
+  <joint name="r" type="fixed"><parent link="body"/><child link="right_link"/></joint>
+</robot>"#,
+    )
+    .unwrap();
+    let resolver = urdf_validator::resolve::PackageResolver::new(Vec::new(), None, None);
+    let expanded =
+        urdf_validator::xacro_input::expand(&robot, &[], &resolver, false).expect("expands");
+    let stacks: Vec<Vec<String>> = expanded
+        .warnings()
+        .into_iter()
+        .filter(|(message, _)| message.contains("bogus"))
+        .map(|(_, at)| at.expect("located").stack)
+        .collect();
+    assert_eq!(stacks.len(), 2, "{stacks:?}");
+    assert!(
+        stacks[0][0].starts_with("in macro 'leg' called at ")
+            && stacks[0][0].ends_with("legs.urdf.xacro:4:3"),
+        "{stacks:?}"
+    );
+    assert!(stacks[1][0].ends_with("legs.urdf.xacro:5:3"), "{stacks:?}");
+    // The U010 findings of the report carry it too, so the two calls are told apart.
+    let report = validate(&robot, &Options::default()).unwrap().report;
+    let from: Vec<&Vec<String>> = report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U010" && f.message.contains("bogus"))
+        .map(|f| &f.expanded_from)
+        .collect();
+    assert_eq!(from.len(), 2);
+    assert_ne!(from[0], from[1], "{from:?}");
+}
+
+#[test]
+fn a_missing_package_names_the_package_paths_searched() {
+    let dir = scratch("xacro_missing_package");
+    let robot = dir.join("pkg.urdf.xacro");
+    std::fs::write(
+        &robot,
+        r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="$(find nopkg)/x.xacro"/></robot>"#,
+    )
+    .unwrap();
+    let pp = dir.join("pp");
+    std::fs::create_dir_all(&pp).unwrap();
+    let with_path = Options {
+        resolver: urdf_validator::resolve::PackageResolver::new(vec![pp.clone()], None, None),
+        ..Options::default()
+    };
+    let message = validate(&robot, &with_path)
+        .expect_err("package not found")
+        .to_string();
+    assert!(
+        message.contains(&pp.join("nopkg").display().to_string()),
+        "{message}"
+    );
+    assert!(
+        !message.contains("the caller's package finder"),
+        "{message}"
+    );
+    assert!(message.contains("--package-path DIR"), "{message}");
+    // Nothing configured: say so.
+    let bare = Options {
+        resolver: urdf_validator::resolve::PackageResolver::new(Vec::new(), None, None),
+        ..Options::default()
+    };
+    let message = validate(&robot, &bare)
+        .expect_err("package not found")
+        .to_string();
+    assert!(
+        message.contains("no --package-path given; ROS_PACKAGE_PATH and AMENT_PREFIX_PATH unset"),
+        "{message}"
+    );
+    assert!(message.contains("--package-path DIR"), "{message}");
+}
+
+#[test]
+fn a_missing_include_names_the_resolved_path() {
+    let dir = scratch("xacro_missing_include_path");
+    let robot = dir.join("inc.urdf.xacro");
+    std::fs::write(
+        &robot,
+        r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="sub/missing_file.xacro"/></robot>"#,
+    )
+    .unwrap();
+    // Validated through a relative path, as a user in that folder would.
+    let cwd = std::env::current_dir().unwrap();
+    let relative = pathdiff(&robot, &cwd);
+    let message = validate(&relative, &Options::default())
+        .expect_err("missing include")
+        .to_string();
+    let abs = dir.join("sub/missing_file.xacro");
+    assert!(message.contains(&abs.display().to_string()), "{message}");
+}
+
+/// `path` relative to `base` (both absolute), through `..` as needed.
+fn pathdiff(path: &Path, base: &Path) -> PathBuf {
+    let path: Vec<_> = path.components().collect();
+    let base: Vec<_> = base.components().collect();
+    let common = path.iter().zip(&base).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..base.len() {
+        out.push("..");
+    }
+    for c in &path[common..] {
+        out.push(c);
+    }
+    out
+}

@@ -91,10 +91,10 @@ pub(crate) fn find_package(
 ) -> Result<PathBuf, Vec<String>> {
     let mut searched = Vec::new();
     if let Some(finder) = &opts.find_package {
-        if let Some(p) = finder(pkg) {
-            return Ok(p);
+        match finder(pkg) {
+            Ok(p) => return Ok(p),
+            Err(places) => searched.extend(places),
         }
-        searched.push("the caller's package finder".to_string());
     }
     let valid = !pkg.is_empty() && !pkg.contains(['/', '\\']) && pkg != "." && pkg != "..";
     if !valid {

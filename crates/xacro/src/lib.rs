@@ -47,8 +47,9 @@ use std::sync::Arc;
 pub use error::{ErrorKind, Location, StackEntry, XacroError};
 pub use source_map::{Entry, Frame, FrameKind, Origin, Piece, SourceFile, SourceMap};
 
-/// Finds the directory of a ROS package by name (for `$(find pkg)`).
-pub type PackageFinder = Arc<dyn Fn(&str) -> Option<PathBuf> + Send + Sync>;
+/// Finds the directory of a ROS package by name (for `$(find pkg)`): the directory, or, when it is not
+/// found, the places searched (folder paths or short descriptions, listed in the error message in order).
+pub type PackageFinder = Arc<dyn Fn(&str) -> Result<PathBuf, Vec<String>> + Send + Sync>;
 
 /// Looks up an environment variable (for `$(env)`, `$(optenv)`, `AMENT_PREFIX_PATH`, `ROS_PACKAGE_PATH`).
 pub type EnvLookup = Arc<dyn Fn(&str) -> Option<String> + Send + Sync>;
@@ -90,8 +91,11 @@ pub struct Options {
     /// names `pkg`. Searched after [`Options::find_package`], before `AMENT_PREFIX_PATH`,
     /// `ROS_PACKAGE_PATH` and the walk up from the current file to a `package.xml` naming the package.
     pub package_paths: Vec<PathBuf>,
-    /// A package finder tried first (e.g. the validator's `package://` resolver).
+    /// A package finder tried first (e.g. the validator's `package://` resolver). The places it reports
+    /// having searched are listed in the "package not found" error.
     pub find_package: Option<PackageFinder>,
+    /// A hint appended to "package not found" errors (e.g. which command-line option adds a folder).
+    pub package_hint: Option<String>,
     /// Environment lookup; `None` reads the process environment.
     pub env: Option<EnvLookup>,
     /// Safety limits.
@@ -106,6 +110,7 @@ impl std::fmt::Debug for Options {
             .field("args", &self.args)
             .field("package_paths", &self.package_paths)
             .field("find_package", &self.find_package.as_ref().map(|_| "<fn>"))
+            .field("package_hint", &self.package_hint)
             .field("env", &self.env.as_ref().map(|_| "<fn>"))
             .field("limits", &self.limits)
             .field("banner", &self.banner)
@@ -114,13 +119,16 @@ impl std::fmt::Debug for Options {
 }
 
 /// A non-fatal message (xacro's warnings: unknown attributes on xacro tags, includes matching no file,
-/// `xacro.warning(...)`, ...).
+/// `xacro.warning(...)`, arguments given but never declared, ...).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Warning {
     /// The message.
     pub message: String,
     /// Where, when known.
     pub location: Option<Location>,
+    /// The macro calls and includes that led there, innermost first (empty at the top level of the entry
+    /// file), as for [`XacroError::stack`].
+    pub stack: Vec<StackEntry>,
 }
 
 /// The result of an expansion.

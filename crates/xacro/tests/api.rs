@@ -85,7 +85,9 @@ fn package_finder_and_environment_are_injectable() {
     let found = dir.clone();
     let opts = Options {
         find_package: Some(Arc::new(move |pkg: &str| {
-            (pkg == "anything").then(|| found.clone())
+            (pkg == "anything")
+                .then(|| found.clone())
+                .ok_or_else(Vec::new)
         })),
         env: Some(Arc::new(|name: &str| {
             (name == "WHO").then(|| "tests".to_string())
@@ -116,5 +118,106 @@ fn package_finder_and_environment_are_injectable() {
         x.xml.contains(&format!("p=\"{}\"", dir.display())),
         "{}",
         x.xml
+    );
+}
+
+#[test]
+fn given_arguments_nobody_declares_are_warned_with_a_close_name() {
+    let doc = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="flag" default="default"/>
+  <xacro:arg name="other" default="x"/>
+  <link name="$(arg flag)_$(arg read_only)"/>
+</robot>"#;
+    let opts = Options {
+        args: vec![
+            ("flg".into(), "given".into()),
+            ("read_only".into(), "r".into()),
+            ("other".into(), "y".into()),
+        ],
+        ..Options::default()
+    };
+    let x = expand_str(doc, Path::new("/nowhere/r.xacro"), &opts).expect("expands");
+    assert!(x.xml.contains("name=\"default_r\""), "{}", x.xml);
+    // Only the misspelled one: `other` is declared, `read_only` is read by $(arg).
+    assert_eq!(x.warnings.len(), 1, "{:?}", x.warnings);
+    let w = &x.warnings[0];
+    assert!(w.message.contains("'flg'"), "{}", w.message);
+    assert!(w.message.contains("did you mean 'flag'?"), "{}", w.message);
+    let loc = w.location.as_ref().expect("located");
+    assert_eq!(loc.path, Path::new("/nowhere/r.xacro"));
+    assert_eq!((loc.line, loc.col), (1, 1));
+    // Declared (or read) and given: no warning.
+    let opts = Options {
+        args: vec![
+            ("flag".into(), "given".into()),
+            ("read_only".into(), "r".into()),
+        ],
+        ..Options::default()
+    };
+    let x = expand_str(doc, Path::new("/nowhere/r.xacro"), &opts).expect("expands");
+    assert!(x.warnings.is_empty(), "{:?}", x.warnings);
+}
+
+#[test]
+fn warnings_inside_macros_carry_the_call_stack() {
+    let doc = r#"<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="m" params="n">
+    <xacro:if value="true" bogus="1"><link name="${n}"/></xacro:if>
+  </xacro:macro>
+  <xacro:m n="a"/>
+  <xacro:m n="b"/>
+</robot>"#;
+    let x = expand_str(doc, Path::new("/nowhere/r.xacro"), &Options::default()).expect("expands");
+    assert_eq!(x.warnings.len(), 2, "{:?}", x.warnings);
+    let calls: Vec<(usize, FrameKind, &str)> = x
+        .warnings
+        .iter()
+        .map(|w| {
+            assert_eq!(w.location.as_ref().map(|l| l.line), Some(3));
+            assert_eq!(w.stack.len(), 1, "{w:?}");
+            let s = &w.stack[0];
+            (s.location.line, s.kind, s.name.as_str())
+        })
+        .collect();
+    assert_eq!(
+        calls,
+        [(5, FrameKind::Macro, "m"), (6, FrameKind::Macro, "m")]
+    );
+}
+
+#[test]
+fn package_not_found_lists_what_the_finder_searched_and_the_hint() {
+    let opts = Options {
+        find_package: Some(Arc::new(|pkg: &str| {
+            Err(vec![format!("/pp1/{pkg}"), format!("/pp2/{pkg}")])
+        })),
+        package_hint: Some("hint: pass --package-path DIR".into()),
+        env: Some(Arc::new(|_: &str| None)),
+        ..Options::default()
+    };
+    let doc = r#"<robot><x p="$(find nopkg)"/></robot>"#;
+    let e = expand_str(doc, Path::new("/nowhere/r.xacro"), &opts).unwrap_err();
+    assert!(
+        e.message
+            .starts_with("package 'nopkg' not found; searched: /pp1/nopkg, /pp2/nopkg, "),
+        "{e}"
+    );
+    assert!(!e.message.contains("the caller's package finder"), "{e}");
+    assert!(
+        e.message.ends_with("; hint: pass --package-path DIR"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_missing_include_names_the_absolute_path_looked_for() {
+    // A relative entry path: the include's written name is relative too.
+    let entry = Path::new("tests/fixtures/error_missing_include.xacro");
+    let e = xacro::expand_file(entry, &Options::default()).unwrap_err();
+    assert_eq!(e.kind, xacro::ErrorKind::IncludeNotFound);
+    let abs = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/inc/missing_file.xacro");
+    assert!(
+        e.message.contains(&format!("looked for {}", abs.display())),
+        "{e}"
     );
 }

@@ -33,7 +33,7 @@ fn options() -> &'static xacro::Options {
             find_package: Some(Arc::new(move |pkg: &str| {
                 let valid =
                     !pkg.is_empty() && !pkg.contains(['/', '\\']) && pkg != "." && pkg != "..";
-                valid.then(|| dir.join(pkg))
+                valid.then(|| dir.join(pkg)).ok_or_else(Vec::new)
             })),
             env: Some(Arc::new(|name: &str| match name {
                 "FUZZ_VAR" => Some("value".into()),

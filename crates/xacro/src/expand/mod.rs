@@ -2,7 +2,7 @@
 //! the immutable [`crate::document`] tree, building new output nodes.
 
 use std::cell::{Cell, RefCell};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
@@ -60,6 +60,9 @@ pub(crate) struct Expander<'o> {
     sources: RefCell<Vec<SourceFile>>,
     docs: RefCell<HashMap<PathBuf, (u32, Rc<ParsedDoc>)>>,
     args: RefCell<HashMap<String, String>>,
+    /// Argument names declared by `xacro:arg` or read by `$(arg)` / `xacro.arg()` (given arguments not
+    /// in here are reported: likely misspelled).
+    known_args: RefCell<HashSet<String>>,
     /// Python's `filestack`: the files being processed (includes), innermost last.
     file_stack: RefCell<Vec<PathBuf>>,
     /// The canonical paths of `file_stack` (include cycles).
@@ -103,6 +106,7 @@ pub(crate) fn run(
         sources: RefCell::default(),
         docs: RefCell::default(),
         args: RefCell::new(opts.args.iter().cloned().collect()),
+        known_args: RefCell::default(),
         file_stack: RefCell::new(vec![path.to_path_buf()]),
         open_files: RefCell::new(vec![Some(lexical_absolute(path))]),
         pending: RefCell::default(),
@@ -158,6 +162,7 @@ impl Expander<'_> {
             _ => root,
         };
         let built = x.eval_element(&root, &macros, &symbols, &ctx)?;
+        x.warn_unknown_args(root.src.loc);
         let mut top: Vec<NodeRef> = doc.children.clone();
         if let Some(slot) = top.get_mut(doc.root) {
             *slot = built.into_node();
@@ -264,9 +269,19 @@ impl<'o> Expander<'o> {
         let limit = self.opts.limits.max_output_bytes;
         let text = include::read_text(path, limit).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
+                // Name the absolute path looked for: the written name is relative to the including file.
+                let abs = lexical_absolute(path);
+                let looked = if abs == path {
+                    String::new()
+                } else {
+                    format!("looked for {}: ", abs.display())
+                };
                 XacroError::new(
                     ErrorKind::IncludeNotFound,
-                    format!("No such file or directory: {} ({e})", path.display()),
+                    format!(
+                        "No such file or directory: {} ({looked}{e})",
+                        path.display()
+                    ),
                 )
             } else {
                 XacroError::new(
@@ -319,11 +334,33 @@ impl<'o> Expander<'o> {
         e
     }
 
-    fn warn(&self, message: String, loc: Option<Loc>) {
+    /// Record a warning at `loc`, with the macro calls and includes of `ctx` that led there.
+    fn warn(&self, message: String, loc: Option<Loc>, ctx: &Ctx) {
         let location = loc.and_then(|l| self.location(l));
-        self.warnings
-            .borrow_mut()
-            .push(Warning { message, location });
+        let stack = self.stack(ctx);
+        self.warnings.borrow_mut().push(Warning {
+            message,
+            location,
+            stack,
+        });
+    }
+
+    /// Warn about each given argument that no `xacro:arg` declared and no `$(arg)` read (Python xacro
+    /// ignores them silently; usually a misspelling), at `loc` (the root element).
+    fn warn_unknown_args(&self, loc: Loc) {
+        let known = self.known_args.borrow();
+        let mut reported = HashSet::new();
+        for (name, _) in &self.opts.args {
+            if known.contains(name) || !reported.insert(name) {
+                continue;
+            }
+            let hint = did_you_mean(name, known.iter().map(String::as_str));
+            self.warn(
+                format!("argument '{name}' was given but no <xacro:arg> declares it and no $(arg) reads it{hint}"),
+                Some(loc),
+                &Ctx::default(),
+            );
+        }
     }
 
     /// Fail (and remember why) when this run has used its stack budget.
@@ -415,6 +452,7 @@ impl<'o> Expander<'o> {
             self.warn(
                 format!("{}: unknown attribute(s): {}", el.name, extra.join(", ")),
                 Some(node.src.loc),
+                ctx,
             );
         }
         Ok(out)
@@ -578,7 +616,7 @@ impl<'o> Expander<'o> {
     }
 
     /// Lift `xmlns:*` attributes of an expanded macro body or included root to the parent element.
-    fn import_namespaces(&self, parent_attrs: &mut Vec<Attr>, attrs: &[Attr], loc: Loc) {
+    fn import_namespaces(&self, parent_attrs: &mut Vec<Attr>, attrs: &[Attr], loc: Loc, ctx: &Ctx) {
         for a in attrs.iter().filter(|a| a.name.starts_with("xmlns:")) {
             match parent_attrs.iter().find(|p| p.name == a.name) {
                 Some(old) if old.value != a.value => self.warn(
@@ -587,6 +625,7 @@ impl<'o> Expander<'o> {
                         a.name, old.value, a.value
                     ),
                     Some(loc),
+                    ctx,
                 ),
                 Some(_) => {}
                 None => parent_attrs.push(a.clone()),
@@ -740,6 +779,7 @@ impl<'o> Expander<'o> {
             "xacro:arg" => {
                 let attrs = self.check_attrs(node, el, &["name", "default"], &[], ctx)?;
                 if let [Some(name), Some(default)] = attrs[..] {
+                    self.known_args.borrow_mut().insert(name.value.to_string());
                     if !self.args.borrow().contains_key(&*name.value) {
                         let value = self.eval_attr(default, symbols, ctx)?.to_xacro_string();
                         self.args.borrow_mut().insert(name.value.to_string(), value);

@@ -82,6 +82,7 @@ impl Expander<'_> {
                 self.warn(
                     format!("{name}: default property value can only be defined on local scope"),
                     Some(loc),
+                    ctx,
                 );
             }
             if self.has_symbol(symbols, &name) {
@@ -120,7 +121,7 @@ impl Expander<'_> {
             _ => symbols.clone(),
         };
         if value.is_some() {
-            self.warn_if_builtin(&name, loc);
+            self.warn_if_builtin(&name, loc, ctx);
         }
         match value {
             None => target.set_entry(&format!("**{name}"), Entry::Block(node.clone())),
@@ -165,6 +166,7 @@ impl Expander<'_> {
             self.warn(
                 format!("macro names must not contain prefix 'xacro:': {name}"),
                 Some(loc),
+                ctx,
             );
             name = stripped;
         }
@@ -311,7 +313,7 @@ impl Expander<'_> {
             };
             params.remove(pos);
             let value = self.eval_attr(a, symbols, ctx)?;
-            self.warn_if_builtin(&a.name, a.name_loc);
+            self.warn_if_builtin(&a.name, a.name_loc, ctx);
             scoped_symbols.set_value(&a.name, value);
         }
         // The call's children (blocks) are evaluated in the caller's scope.
@@ -371,7 +373,7 @@ impl Expander<'_> {
                     },
                 }
                 .map_err(|e| self.locate(e, loc, ctx))?;
-                self.warn_if_builtin(&param, loc);
+                self.warn_if_builtin(&param, loc, ctx);
                 scoped_symbols.set_value(&param, value);
                 params.retain(|p| *p != param);
             }
@@ -388,7 +390,7 @@ impl Expander<'_> {
         }
         let body = self.eval_element(&m.body, &scoped_macros, &scoped_symbols, &call_ctx)?;
         let sep = self.remove_previous_comments(out, has_next);
-        self.import_namespaces(parent_attrs, &body.attrs, loc);
+        self.import_namespaces(parent_attrs, &body.attrs, loc, ctx);
         out.extend(body.children);
         if sep {
             self.push_separator(out, &node.src);
@@ -446,6 +448,7 @@ impl Expander<'_> {
             self.warn(
                 "Child elements of a <xacro:include> tag are ignored".into(),
                 Some(loc),
+                ctx,
             );
         }
         let spec = self.eval_attr(filename, symbols, ctx)?.to_xacro_string();
@@ -457,6 +460,7 @@ impl Expander<'_> {
                 self.warn(
                     format!("Include tag's filename spec \"{path_text}\" matched no files."),
                     Some(loc),
+                    ctx,
                 );
             }
             files
@@ -521,7 +525,7 @@ impl Expander<'_> {
             self.file_stack.borrow_mut().pop();
             self.open_files.borrow_mut().pop();
             let built = built?;
-            self.import_namespaces(parent_attrs, &built.attrs, loc);
+            self.import_namespaces(parent_attrs, &built.attrs, loc, ctx);
             included.extend(built.children);
         }
         let sep = self.remove_previous_comments(out, has_next);

@@ -343,6 +343,7 @@ impl Expander<'_> {
     }
 
     pub(super) fn arg_value(&self, name: &str) -> Result<String, XacroError> {
+        self.known_args.borrow_mut().insert(name.to_string());
         let args = self.args.borrow();
         args.get(name).cloned().ok_or_else(|| {
             let hint = did_you_mean(name, args.keys().map(String::as_str));
@@ -384,9 +385,15 @@ impl Expander<'_> {
             } else {
                 format!("; searched: {}", searched.join(", "))
             };
+            let hint = self
+                .opts
+                .package_hint
+                .as_deref()
+                .map(|h| format!("; {h}"))
+                .unwrap_or_default();
             XacroError::new(
                 ErrorKind::PackageNotFound,
-                format!("package '{pkg}' not found{where_}"),
+                format!("package '{pkg}' not found{where_}{hint}"),
             )
         })
     }
@@ -506,9 +513,9 @@ impl Expander<'_> {
     }
 
     /// Python xacro's warning when a property or parameter shadows a built-in name.
-    pub(super) fn warn_if_builtin(&self, name: &str, loc: Loc) {
+    pub(super) fn warn_if_builtin(&self, name: &str, loc: Loc, ctx: &Ctx) {
         if self.is_builtin(name) {
-            self.warn(format!("redefining global symbol: {name}"), Some(loc));
+            self.warn(format!("redefining global symbol: {name}"), Some(loc), ctx);
         }
     }
 
@@ -544,9 +551,14 @@ impl Expander<'_> {
             }
             "xacro.message" | "xacro.warning" | "xacro.error" | "xacro.print_location" => {
                 let text: Vec<String> = args.iter().map(Value::to_xacro_string).collect();
+                // At the innermost macro call (or include), with the calls that led there.
                 let loc = ctx.frame.as_ref().map(|f| f.loc);
+                let outer = Ctx {
+                    frame: ctx.frame.as_ref().and_then(|f| f.parent.clone()),
+                    ..ctx.clone()
+                };
                 if name != "xacro.print_location" {
-                    self.warn(text.join(" "), loc);
+                    self.warn(text.join(" "), loc, &outer);
                 }
                 Ok(Value::Str("".into()))
             }
