@@ -131,24 +131,45 @@ fn independent(model: &Model, joint: JointId) -> bool {
     model.joint_data[joint.0].is_actuated() && model.mimic[joint.0].is_none()
 }
 
+/// Per joint, for the subtree hanging from it (itself included): whether it holds an actuated joint, and
+/// how many independent joints it holds. One pass from the leaves up.
+fn subtree_counts(model: &Model) -> (Vec<bool>, Vec<usize>) {
+    let n = model.joint_data.len();
+    let (mut actuated, mut independents) = (vec![false; n], vec![0; n]);
+    for &link in model.topological_order.iter().rev() {
+        for &j in &model.child_joints[link.0] {
+            let below = child(model, j).map_or(&[][..], |c| &model.child_joints[c.0][..]);
+            actuated[j.0] =
+                model.joint_data[j.0].is_actuated() || below.iter().any(|b| actuated[b.0]);
+            independents[j.0] = usize::from(independent(model, j))
+                + below.iter().map(|b| independents[b.0]).sum::<usize>();
+        }
+    }
+    (actuated, independents)
+}
+
 /// Joints inside finger branches (`by_name`: also branches named like fingers).
 fn finger_joints(robot: &Robot, model: &Model, by_name: bool) -> Vec<bool> {
     let mut finger = vec![false; model.joint_data.len()];
+    // Parents come first, so a marked top has its whole subtree marked already.
     let mark = |finger: &mut Vec<bool>, top: JointId| {
-        for j in subtree_joints(model, top) {
-            finger[j.0] = true;
+        if !finger[top.0] {
+            for j in subtree_joints(model, top) {
+                finger[j.0] = true;
+            }
         }
     };
+    let (actuated, independents) = subtree_counts(model);
+    let small = |j: JointId| independents[j.0] <= 2;
     for &link in &model.topological_order {
-        let branches: Vec<(JointId, Vec<JointId>)> = model.child_joints[link.0]
+        let branches: Vec<JointId> = model.child_joints[link.0]
             .iter()
-            .map(|&j| (j, subtree_joints(model, j)))
-            .filter(|(_, sub)| sub.iter().any(|s| model.joint_data[s.0].is_actuated()))
+            .copied()
+            .filter(|j| actuated[j.0])
             .collect();
-        let small = |sub: &[JointId]| sub.iter().filter(|s| independent(model, **s)).count() <= 2;
-        if branches.len() >= 2 && branches.iter().all(|(_, sub)| small(sub)) {
-            for (top, _) in &branches {
-                mark(&mut finger, *top);
+        if branches.len() >= 2 && branches.iter().all(|&j| small(j)) {
+            for &top in &branches {
+                mark(&mut finger, top);
             }
         }
         let mut any_named = false;
@@ -159,12 +180,9 @@ fn finger_joints(robot: &Robot, model: &Model, by_name: bool) -> Vec<bool> {
                         .is_some_and(|c| finger_link_name(&robot.links[c.0].name.value)));
             // A name marks a branch only as small as a finger: a joint named `gripper_*` that carries a
             // whole hand is the wrist.
-            let finger_sized = || {
-                let sub = subtree_joints(model, j);
-                sub.iter().filter(|s| independent(model, **s)).count() <= FINGER_JOINTS
-            };
+            let finger_sized = independents[j.0] <= FINGER_JOINTS;
             if model.mimic[j.0].is_some()
-                || (named && model.joint_data[j.0].is_actuated() && finger_sized())
+                || (named && model.joint_data[j.0].is_actuated() && finger_sized)
             {
                 mark(&mut finger, j);
                 any_named = true;
@@ -172,9 +190,9 @@ fn finger_joints(robot: &Robot, model: &Model, by_name: bool) -> Vec<bool> {
         }
         // Beside a finger, every small actuated branch is a finger too (TIAGo's `hand_mrl_joint`).
         if any_named {
-            for (top, sub) in &branches {
-                if small(sub) {
-                    mark(&mut finger, *top);
+            for &top in &branches {
+                if small(top) {
+                    mark(&mut finger, top);
                 }
             }
         }

@@ -140,6 +140,7 @@ fn branch_points(model: &Model) -> Vec<bool> {
 }
 
 /// A chain from a link up to the body.
+#[derive(Clone, Copy)]
 struct Chain {
     /// Limb joints passed.
     limb_joints: usize,
@@ -149,28 +150,40 @@ struct Chain {
     body: LinkId,
 }
 
-/// Walk up from `link` to the nearest branch point (or the root).
-fn chain_to_body(model: &Model, branch: &[bool], link: LinkId) -> Chain {
-    let mut chain = Chain {
-        limb_joints: 0,
-        top: None,
-        body: link,
-    };
-    for _ in 0..model.parent_joint.len() {
-        let Some(joint) = model.parent_joint[chain.body.0] else {
-            break;
+/// For every link, the walk up from it to the nearest branch point (or the root), found parents first in
+/// one pass (walking up from every link of a long chain would be quadratic).
+fn chains_to_body(model: &Model, branch: &[bool]) -> Vec<Chain> {
+    let mut chains: Vec<Chain> = (0..model.parent_joint.len())
+        .map(|l| Chain {
+            limb_joints: 0,
+            top: None,
+            body: LinkId(l),
+        })
+        .collect();
+    for &link in &model.topological_order {
+        let Some(joint) = model.parent_joint[link.0] else {
+            continue;
         };
         let Some((parent, _)) = model.joint_links[joint.0] else {
-            break;
+            continue;
         };
-        chain.limb_joints += usize::from(is_limb_joint(model, joint));
-        chain.top = Some(joint);
-        chain.body = parent;
-        if branch[parent.0] {
-            break;
-        }
+        let limb = usize::from(is_limb_joint(model, joint));
+        chains[link.0] = if branch[parent.0] {
+            Chain {
+                limb_joints: limb,
+                top: Some(joint),
+                body: parent,
+            }
+        } else {
+            let above = chains[parent.0];
+            Chain {
+                limb_joints: above.limb_joints + limb,
+                top: above.top.or(Some(joint)),
+                body: above.body,
+            }
+        };
     }
-    chain
+    chains
 }
 
 fn name_has_rotor(name: &str) -> bool {
@@ -250,14 +263,14 @@ fn add_leg(legs: &mut Vec<Leg>, lowest: &[Option<f64>], top_joint: JointId, foot
 fn leaves_named_like_legs(
     robot: &Robot,
     model: &Model,
-    branch: &[bool],
+    chains: &[Chain],
     in_tree: &BTreeSet<usize>,
     lowest: &[Option<f64>],
 ) -> Vec<Leg> {
     const LEG: [&str; 6] = ["leg", "knee", "ankle", "foot", "thigh", "shin"];
     let mut legs = Vec::new();
     for &l in in_tree {
-        let chain = chain_to_body(model, branch, LinkId(l));
+        let chain = chains[l];
         let name = robot.links[l].name.value.to_ascii_lowercase();
         let Some(top) = chain.top else { continue };
         let top_name = robot.joints[top.0].name.value.to_ascii_lowercase();
@@ -348,6 +361,7 @@ pub fn classify(
     let tolerance = ground_tolerance(top - ground);
     let touches = |l: usize| lowest[l].is_some_and(|z| z <= ground + tolerance);
     let branch = branch_points(model);
+    let chains = chains_to_body(model, &branch);
     // The body rests on the ground when the root or anything welded to it touches it (a fixed base).
     let mut welded = vec![false; model.parent_joint.len()];
     for &link in &model.topological_order {
@@ -370,7 +384,7 @@ pub fn classify(
         if !touches(l) {
             continue;
         }
-        let chain = chain_to_body(model, &branch, LinkId(l));
+        let chain = chains[l];
         let body_off_ground = lowest[chain.body.0].is_none_or(|z| z > ground + lift);
         let is_leg = chain.limb_joints >= 2
             && body_off_ground
@@ -382,7 +396,7 @@ pub fn classify(
     // A model that is not z-up (lying on its side) shows no legs by height: fall back to leg names.
     let mut by_name = false;
     if legs.len() < 2 {
-        let named: Vec<Leg> = leaves_named_like_legs(robot, model, &branch, &in_tree, &lowest);
+        let named: Vec<Leg> = leaves_named_like_legs(robot, model, &chains, &in_tree, &lowest);
         if named.len() >= 2 {
             legs = named;
             by_name = true;

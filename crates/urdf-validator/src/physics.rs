@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 use crate::arms::{self, Arm};
 use crate::classify::{classify, RobotType};
-use crate::collision::{srdf_collisions, SrdfCollisions};
+use crate::collision::{srdf_collisions, SrdfCollisions, MAX_COLLISION_LINKS};
 use crate::finding::Finding;
 use crate::geometry::LinkSupports;
 use crate::kinematics::{forward_kinematics, Data};
@@ -205,7 +205,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
             (mass, link.and_then(|name| model.link(name)))
         }),
     };
-    let (collision, mut findings) = if arms.is_empty() {
+    let (collision, mut findings) = if arms.is_empty() || robot.links.len() > MAX_COLLISION_LINKS {
         (None, Vec::new())
     } else {
         let (setup, findings) = collision_setup(robot, model, &reference_data, inputs)?;

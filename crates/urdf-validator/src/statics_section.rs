@@ -305,10 +305,13 @@ fn capacity(
     let Some(link) = link else {
         return (None, None);
     };
-    let on_path = path_joints(model, link);
+    let mut on_path = vec![false; model.joint_data.len()];
+    for joint in path_joints(model, link) {
+        on_path[joint.0] = true;
+    }
     let relevant: Vec<(f64, f64, f64)> = constraints
         .iter()
-        .filter(|c| on_path.contains(&c.3))
+        .filter(|c| on_path[c.3 .0])
         .map(|&(t, u, e, _)| (t, u, e))
         .collect();
     if relevant.is_empty() {

@@ -47,6 +47,11 @@ use crate::model::{JointId, LinkId, Model};
 use crate::robot::Robot;
 
 pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
+
+/// The most links a self-collision model is built for: the allowed-collision matrix and the pair lists
+/// grow with the square of it (real robots have at most a few hundred links; a generated 6,000-link
+/// chain took minutes and gigabytes).
+pub const MAX_COLLISION_LINKS: usize = 1024;
 pub use srdf::{srdf_collisions, SrdfCollisions, SrdfLink, SrdfPair};
 
 use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};

@@ -77,7 +77,11 @@ impl ArmChain {
                 Some((j, lo, hi))
             })
             .collect();
-        let index_of = |j: JointId| sampled.iter().position(|&(s, _, _)| s == j);
+        let mut sampled_index = vec![None; model.joint_data.len()];
+        for (i, &(j, _, _)) in sampled.iter().enumerate() {
+            sampled_index[j.0] = Some(i);
+        }
+        let index_of = |j: JointId| sampled_index[j.0];
         let reference_value = |j: JointId| q_reference.get(j.0).copied().unwrap_or(0.0);
         let base = reference.link_placement[arm.base.0];
         let mut joints = Vec::new();

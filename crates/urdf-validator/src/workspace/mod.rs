@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use crate::arms::{subtree_links, Arm};
+use crate::arms::Arm;
 use crate::classify::RobotType;
 use crate::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
 use crate::kinematics::{forward_kinematics_links, Configuration, Data};
@@ -306,25 +306,18 @@ fn moved_links(model: &Model, joints: &[JointId]) -> Vec<LinkId> {
     for joint in joints {
         varies[joint.0] = true;
     }
-    // Followers of varying joints vary too (chains: until nothing changes).
-    for _ in 0..varies.len() {
-        let mut changed = false;
-        for (joint, mimic) in model.mimic.iter().enumerate() {
-            if mimic.is_some_and(|m| varies[m.leader.0]) && !varies[joint] {
-                varies[joint] = true;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
+    // Followers of varying joints vary too (leaders come first in `mimic_order`).
+    for follower in &model.mimic_order {
+        if model.mimic[follower.0].is_some_and(|m| varies[m.leader.0]) {
+            varies[follower.0] = true;
         }
     }
+    // A link moves when its parent does or its parent joint varies (parents first).
     let mut moved = vec![false; model.parent_joint.len()];
-    for (joint, links) in model.joint_links.iter().enumerate() {
-        if let (true, Some((_, child))) = (varies[joint], links) {
-            for link in subtree_links(model, *child) {
-                moved[link.0] = true;
-            }
+    for &link in &model.topological_order {
+        if let Some(joint) = model.parent_joint[link.0] {
+            let parent_moved = model.joint_links[joint.0].is_some_and(|(p, _)| moved[p.0]);
+            moved[link.0] = parent_moved || varies[joint.0];
         }
     }
     model
@@ -400,7 +393,7 @@ fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSectio
 }
 
 /// The workspace section for `arms` (detected or declared). `collision` is `None` when self-collision is
-/// not assessed.
+/// not assessed (more than [`crate::collision::MAX_COLLISION_LINKS`] links).
 pub fn analyse(
     scene: &Scene,
     arms: &[Arm],
@@ -678,7 +671,10 @@ fn collision_not_assessed(
     collision: Option<&CollisionSetup>,
 ) -> String {
     let Some(collision) = collision else {
-        return "no collision model".to_string();
+        return format!(
+            "the robot has more than {} links (a limit that bounds self-collision's time and memory)",
+            crate::collision::MAX_COLLISION_LINKS
+        );
     };
     let mut moved: Vec<LinkId> = jobs
         .iter()
