@@ -571,6 +571,13 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
                     "  COM margin {} at full reach (COM shift {shift:.3} m)",
                     paint(style, &format!("{margin:.1} mm"))
                 ));
+                if let Some(worst) = workspace.task_com_worst_margin_mm {
+                    let style = if worst >= 0.0 { GREEN } else { YELLOW };
+                    line.push_str(&format!(
+                        ", worst {} over the poses at that height",
+                        paint(style, &format!("{worst:.1} mm"))
+                    ));
+                }
             }
             _ => {
                 if let Some(why) = &workspace.task_com_not_assessed {

@@ -389,6 +389,9 @@ pub struct WorkspaceSection {
     pub task_com_shift_estimate_m: Option<f64>,
     /// Stability margin at that pose, mm (positive inside the polygon).
     pub task_com_margin_mm: Option<f64>,
+    /// The smallest margin over every sampled pose within 5 cm of the task height (at most 4,096, the first
+    /// sampled), mm: negative when some heading tips the robot.
+    pub task_com_worst_margin_mm: Option<f64>,
     /// Why the COM during the reach was not assessed, when it was not.
     pub task_com_not_assessed: Option<String>,
     /// `--orientation`.

@@ -190,6 +190,45 @@ fn reaching_with_a_heavy_tool_tips_a_light_base_over() {
     assert!((88.0..96.0).contains(&margin), "margin {margin}");
     let shift = heavy.task_com_shift_estimate_m.unwrap();
     assert!((0.0075..0.0085).contains(&shift), "shift {shift}");
+    // Every pose at that height is checked too: the worst is the arm stretched either way, as far out.
+    let worst = heavy.task_com_worst_margin_mm.unwrap();
+    assert!(
+        worst <= margin && (88.0..96.0).contains(&worst),
+        "worst {worst}"
+    );
+}
+
+/// The margin at the single furthest pose depends on which heading the seed happened to sample; the worst
+/// over every pose at the task height does not.
+#[test]
+fn the_worst_com_margin_at_the_task_height_is_stable_across_seeds() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/robots/mobile_manipulator.urdf");
+    let run = |seed: u64| {
+        let options = Options {
+            workspace: WorkspaceOptions {
+                task: Some(Task::PickFromTable),
+                seed,
+                ..WorkspaceOptions::default()
+            },
+            ..Options::default()
+        };
+        validate(&path, &options).unwrap().report.workspace.unwrap()
+    };
+    let runs: Vec<WorkspaceSection> = (1..=3).map(run).collect();
+    let worst: Vec<f64> = runs
+        .iter()
+        .map(|w| w.task_com_worst_margin_mm.unwrap())
+        .collect();
+    let at_furthest: Vec<f64> = runs.iter().map(|w| w.task_com_margin_mm.unwrap()).collect();
+    for (w, f) in worst.iter().zip(&at_furthest) {
+        assert!(w <= f, "worst {w} above the furthest pose's {f}");
+    }
+    let spread = |v: &[f64]| {
+        v.iter().copied().fold(f64::MIN, f64::max) - v.iter().copied().fold(f64::MAX, f64::min)
+    };
+    assert!(spread(&worst) < 1.0, "worst margins {worst:?}");
+    assert!(runs.iter().all(|w| w.status == Status::Pass));
 }
 
 /// `--payload-mass` hangs at the reaching arm's tip: a 10 kg payload tips the light base as a 10 kg tool does.

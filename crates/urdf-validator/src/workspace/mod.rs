@@ -32,6 +32,8 @@ use target::{Orientation, OrientationMatcher, Task};
 const CHUNK: usize = 1024;
 /// Half-width of the height band around a task height, metres.
 pub const TASK_BAND: f64 = 0.05;
+/// The most poses within the task band whose centre of mass is checked (the first ones sampled).
+const MAX_BAND_POSES: usize = 4096;
 /// Fraction of samples that must meet an orientation.
 pub const ORIENTATION_PASS_FRACTION: f64 = 0.05;
 /// Fraction of samples that must be free of self-collision.
@@ -147,6 +149,8 @@ struct ArmStats {
     band_samples: usize,
     /// Furthest horizontal reach within the task band: (distance, sample index, arm values).
     band_best: Option<(f64, usize, Vec<f64>)>,
+    /// The first [`MAX_BAND_POSES`] samples within the task band (by sample index): (index, arm values).
+    band_poses: Vec<(usize, Vec<f64>)>,
     orientation_ok: usize,
     orientation_considered: usize,
     collision_free: usize,
@@ -166,6 +170,7 @@ impl ArmStats {
             max_from_base: f64::NEG_INFINITY,
             band_samples: 0,
             band_best: None,
+            band_poses: Vec::new(),
             orientation_ok: 0,
             orientation_considered: 0,
             collision_free: 0,
@@ -192,6 +197,9 @@ impl ArmStats {
             ),
             (a, b) => a.or(b),
         };
+        self.band_poses.extend(other.band_poses);
+        self.band_poses.sort_unstable_by_key(|(index, _)| *index);
+        self.band_poses.truncate(MAX_BAND_POSES);
         self.orientation_ok += other.orientation_ok;
         self.orientation_considered += other.orientation_considered;
         self.collision_free += other.collision_free;
@@ -269,6 +277,9 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             stats.band_samples += 1;
             if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
                 stats.band_best = Some((horizontal, start + i, q.clone()));
+            }
+            if stats.band_poses.len() < MAX_BAND_POSES {
+                stats.band_poses.push((start + i, q.clone()));
             }
         }
         if let Some((matcher, pose)) = &tip {
@@ -377,6 +388,7 @@ fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSectio
         task_com_stable_during_reach: None,
         task_com_shift_estimate_m: None,
         task_com_margin_mm: None,
+        task_com_worst_margin_mm: None,
         task_com_not_assessed: None,
         orientation: options.orientation.map(|o| o.label()),
         orientation_reachable: None,
@@ -527,6 +539,7 @@ fn summarize(
     let task_height_reachable =
         target.map(|_| arms.iter().any(|a| a.task_height_reachable == Some(true)));
     let (mut com_stable, mut com_shift, mut com_margin, mut com_note) = (None, None, None, None);
+    let mut com_worst = None;
     if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
         if !reachable {
             status = status.worst(Status::Fail);
@@ -566,6 +579,26 @@ fn summarize(
                         "the robot tips over while reaching for the {} height (COM {:.1} mm outside the support polygon)",
                         task.name(),
                         -margin_mm
+                    ));
+                }
+            }
+            // The furthest pose is one heading; the worst over every pose at that height is stable
+            // from seed to seed and catches headings over a short edge of the polygon.
+            let mut probe = ComProbe::new(scene);
+            com_worst = jobs
+                .iter()
+                .zip(per_arm)
+                .flat_map(|(job, stats)| stats.band_poses.iter().map(move |(_, q)| (job, q)))
+                .filter_map(|(job, q_arm)| probe.margin(job, q_arm))
+                .reduce(f64::min)
+                .map(|worst| worst * 1000.0);
+            if let (Some(worst), Some(true)) = (com_worst, com_stable) {
+                if worst < 0.0 {
+                    status = status.worst(Status::Warn);
+                    reasons.push(format!(
+                        "some sampled poses at the {} height tip the robot over (worst: COM {:.1} mm outside the support polygon)",
+                        task.name(),
+                        -worst
                     ));
                 }
             }
@@ -645,6 +678,7 @@ fn summarize(
         task_com_stable_during_reach: com_stable,
         task_com_shift_estimate_m: com_shift,
         task_com_margin_mm: com_margin,
+        task_com_worst_margin_mm: com_worst,
         task_com_not_assessed: com_note,
         orientation: options.orientation.map(|o| o.label()),
         orientation_reachable,
@@ -709,29 +743,56 @@ fn collision_not_assessed(
     }
 }
 
-/// Whole-body COM, with the payload, at the reference pose with `job`'s arm at `q_arm`: (over the polygon,
-/// horizontal shift from the reference COM in metres, margin in mm).
-fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)> {
-    let model = scene.model;
-    let mut q: Configuration = scene.q.to_vec();
-    let mut statics = StaticsData::new(model);
-    let com_with_payload = |statics: &StaticsData| {
-        let (mass, com) = mass_and_com(model, statics);
+/// Whole-body COM, with the payload, at the reference pose with an arm moved: one scratch reused over
+/// many poses.
+struct ComProbe<'a> {
+    scene: &'a Scene<'a>,
+    q: Configuration,
+    statics: StaticsData,
+}
+
+impl<'a> ComProbe<'a> {
+    fn new(scene: &'a Scene<'a>) -> Self {
+        ComProbe {
+            scene,
+            q: scene.q.to_vec(),
+            statics: StaticsData::new(scene.model),
+        }
+    }
+
+    /// The COM with `job`'s arm at `q_arm` (`None`: the arm at the reference pose).
+    fn com(&mut self, job: &ArmJob, q_arm: Option<&[f64]>) -> Option<Vector3<f64>> {
+        let (scene, model) = (self.scene, self.scene.model);
+        self.q.copy_from_slice(scene.q);
+        if let Some(q_arm) = q_arm {
+            for (value, (joint, _, _)) in q_arm.iter().zip(&job.chain.sampled) {
+                self.q[joint.0] = *value;
+            }
+            model.apply_mimic(&mut self.q);
+        }
+        evaluate(model, &self.q, &mut self.statics);
+        let (mass, com) = mass_and_com(model, &self.statics);
         let com = com?;
         let Some((load, link)) = scene.payload else {
             return Some(com);
         };
-        let at = statics.kinematics.link_placement[link.unwrap_or(job.arm.tip).0].translation;
+        let at = self.statics.kinematics.link_placement[link.unwrap_or(job.arm.tip).0].translation;
         Some((com * mass + at.vector * load) / (mass + load))
-    };
-    evaluate(model, &q, &mut statics);
-    let reference_com = com_with_payload(&statics);
-    for (value, (joint, _, _)) in q_arm.iter().zip(&job.chain.sampled) {
-        q[joint.0] = *value;
     }
-    model.apply_mimic(&mut q);
-    evaluate(model, &q, &mut statics);
-    let (reference_com, com) = (reference_com?, com_with_payload(&statics)?);
+
+    /// The support-polygon margin of the COM with `job`'s arm at `q_arm`, metres.
+    fn margin(&mut self, job: &ArmJob, q_arm: &[f64]) -> Option<f64> {
+        let com = self.com(job, Some(q_arm))?;
+        Some(margin(self.scene.support_polygon, [com.x, com.y])?.distance)
+    }
+}
+
+/// Whole-body COM, with the payload, at the reference pose with `job`'s arm at `q_arm`: (over the polygon,
+/// horizontal shift from the reference COM in metres, margin in mm).
+fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)> {
+    let mut probe = ComProbe::new(scene);
+    let reference_com = probe.com(job, None)?;
+    let com = probe.com(job, Some(q_arm))?;
     let m = margin(scene.support_polygon, [com.x, com.y])?;
     let shift = (com.xy() - reference_com.xy()).norm();
     Some((m.distance >= 0.0, shift, m.distance * 1000.0))
