@@ -107,18 +107,50 @@ impl Hull {
             return None;
         }
         let centroid = vertices.iter().copied().sum::<Vector>() / n as f64;
-        for t in &triangles {
-            let [a, b, c] = t.map(|v| vertices[v as usize]);
-            let mut normal = (b - a).cross(c - a);
-            if normal.dot(centroid - a) > 0.0 {
-                normal = -normal;
+        let planes: Vec<Option<(Vector, Vector)>> = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| vertices[v as usize]);
+                let mut normal = (b - a).cross(c - a);
+                if normal.dot(centroid - a) > 0.0 {
+                    normal = -normal;
+                }
+                normal.try_normalize().map(|normal| (normal, a))
+            })
+            .collect();
+        let outside = |plane: &Option<(Vector, Vector)>, p: Vector| {
+            plane.is_some_and(|(normal, a)| normal.dot(p - a) > 1e-9)
+        };
+        if vertices.len() == points.len() {
+            // Every point is a vertex of the surface (the usual case: hull vertices in), so it is the hull
+            // when it is convex: closed, and convex across every edge, checked in O(faces).
+            let mut sides: Vec<((u32, u32), usize)> = Vec::with_capacity(triangles.len() * 3);
+            for (index, t) in triangles.iter().enumerate() {
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    sides.push(((a.min(b), a.max(b)), index));
+                }
             }
-            let Some(normal) = normal.try_normalize() else {
-                continue;
-            };
-            if points.iter().any(|p| normal.dot(*p - a) > 1e-9) {
-                return None;
+            sides.sort_unstable();
+            for pair in sides.chunks(2) {
+                let [(edge, first), (_, second)] = [pair[0], pair[1]];
+                let opposite = |t: usize| {
+                    let v = triangles[t]
+                        .into_iter()
+                        .find(|&v| v != edge.0 && v != edge.1);
+                    vertices[v.unwrap_or(edge.0) as usize]
+                };
+                if outside(&planes[first], opposite(second))
+                    || outside(&planes[second], opposite(first))
+                {
+                    return None;
+                }
             }
+        } else if planes
+            .iter()
+            .any(|plane| points.iter().any(|&p| outside(plane, p)))
+        {
+            return None;
         }
         edges.dedup();
         let mut adjacency = vec![Vec::new(); n];
