@@ -586,6 +586,20 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
             }
         }
         let _ = writeln!(out, "{indent}{line}");
+        let mut held: Vec<&str> = workspace
+            .arms
+            .iter()
+            .flat_map(|arm| arm.body_joints_held.iter().map(String::as_str))
+            .collect();
+        held.sort_unstable();
+        held.dedup();
+        if workspace.task_height_reachable == Some(false) && !held.is_empty() {
+            let _ = writeln!(
+                out,
+                "{indent}body joints held at the --pose values: {} (move them with --pose custom --joint-angles)",
+                held.join(", ")
+            );
+        }
     }
     let assessed = workspace.status != Status::NotApplicable;
     if let (Some(orientation), None, true) = (

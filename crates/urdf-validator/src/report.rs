@@ -434,6 +434,9 @@ pub struct ArmWorkspace {
     pub first_joint: Option<String>,
     /// The sampled joints, shoulder first.
     pub joints: Vec<String>,
+    /// Actuated joints between the robot's root and the arm (a torso lift, a waist), held at the `--pose`
+    /// values while the arm is sampled: `name=value`.
+    pub body_joints_held: Vec<String>,
     /// `exact` when declared with `--arm-root`/`--arm-tip`, else `estimated` (detected).
     pub confidence: Confidence,
     /// Where the fingers attach, when the arm has a gripper.

@@ -160,6 +160,53 @@ fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
     assert_eq!(just.task_height_reachable, Some(true));
 }
 
+/// A torso lift is body, not arm: it stays at the `--pose` value, and an unreachable task says so.
+#[test]
+fn body_joints_under_the_arm_are_held_and_named() {
+    let lifted = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1)
+        .replace(
+            r#"<joint name="shoulder" type="continuous"><parent link="base"/>"#,
+            r#"<joint name="lift" type="prismatic"><parent link="base"/><child link="torso"/><axis xyz="0 0 1"/><limit lower="0" upper="0.5" effort="1000" velocity="1"/></joint>
+  <link name="torso">{TORSO}</link>
+  <joint name="shoulder" type="continuous"><parent link="torso"/>"#,
+        )
+        .replace("{TORSO}", &inertial(1.0, [0.0; 3]));
+    let run = |pose: PoseOptions| {
+        let options = Options {
+            overrides: declared_arm("torso", "tip"),
+            workspace: WorkspaceOptions {
+                task: Some(Task::Custom(2.0)),
+                ..WorkspaceOptions::default()
+            },
+            statics: StaticsOptions {
+                pose,
+                ..StaticsOptions::default()
+            },
+            ..Options::default()
+        };
+        validate_text(lifted.clone(), Path::new("t.urdf"), &options)
+            .unwrap()
+            .report
+            .workspace
+            .unwrap()
+    };
+    // Tip heights reach 1.8 m with the lift down: 2.0 m is out of reach, and the reason names the lift.
+    let down = run(PoseOptions::default());
+    assert_eq!(down.arms[0].body_joints_held, ["lift=0.000"]);
+    assert_eq!(down.task_height_reachable, Some(false));
+    assert!(down
+        .reason
+        .unwrap()
+        .contains("with the body held at lift=0.000"));
+    let up = run(PoseOptions {
+        kind: PoseKind::Custom,
+        joint_angles: Some("lift=0.5".to_string()),
+        ..PoseOptions::default()
+    });
+    assert_eq!(up.arms[0].body_joints_held, ["lift=0.500"]);
+    assert_eq!(up.task_height_reachable, Some(true));
+}
+
 #[test]
 fn reaching_with_a_heavy_tool_tips_a_light_base_over() {
     let task = WorkspaceOptions {

@@ -505,6 +505,10 @@ fn summarize(
                 .iter()
                 .map(|(j, _, _)| robot.joints[j.0].name.value.clone())
                 .collect(),
+            body_joints_held: body_joints(model, job.arm.base)
+                .into_iter()
+                .map(|j| format!("{}={:.3}", robot.joints[j.0].name.value, scene.q[j.0]))
+                .collect(),
             confidence: if job.arm.declared {
                 Confidence::Exact
             } else {
@@ -543,10 +547,21 @@ fn summarize(
     if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
         if !reachable {
             status = status.worst(Status::Fail);
+            let mut held: Vec<&str> = arms
+                .iter()
+                .flat_map(|a| a.body_joints_held.iter().map(String::as_str))
+                .collect();
+            held.sort_unstable();
+            held.dedup();
             reasons.push(format!(
-                "no arm reaches the {} height ({:.2} m above the ground)",
+                "no arm reaches the {} height ({:.2} m above the ground){}",
                 task.name(),
-                task.height()
+                task.height(),
+                if held.is_empty() {
+                    String::new()
+                } else {
+                    format!(" with the body held at {}", held.join(", "))
+                }
             ));
         }
         let best = jobs
@@ -696,6 +711,27 @@ fn summarize(
             .then(|| collision_not_assessed(robot, jobs, collision)),
         reason: (!reasons.is_empty()).then(|| reasons.join("; ")),
     }
+}
+
+/// The independent actuated joints from the robot's root down to `link`, root first.
+fn body_joints(model: &Model, link: LinkId) -> Vec<JointId> {
+    let mut joints = Vec::new();
+    let mut at = link;
+    // At most one step per link: the tree has no cycles, but never loop on a broken one.
+    for _ in 0..model.parent_joint.len() {
+        let Some(joint) = model.parent_joint[at.0] else {
+            break;
+        };
+        if model.joint_data[joint.0].is_actuated() && model.mimic[joint.0].is_none() {
+            joints.push(joint);
+        }
+        let Some((parent, _)) = model.joint_links[joint.0] else {
+            break;
+        };
+        at = parent;
+    }
+    joints.reverse();
+    joints
 }
 
 /// Why no pair was checked for self-collision.
