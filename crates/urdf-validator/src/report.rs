@@ -380,7 +380,9 @@ pub struct WorkspaceSection {
     /// Height of the task above the ground, metres.
     pub task_target_height_m: Option<f64>,
     /// Whether some arm's tip can be at the task height (tip heights vary continuously over the joint
-    /// space, so lying between the lowest and highest sampled tip is enough).
+    /// space, so lying between the lowest and highest feasible sampled tip is enough). Feasible: free of
+    /// self-collision (when assessed), tip above the ground; the band poses and orientations below count
+    /// feasible samples only.
     pub task_height_reachable: Option<bool>,
     /// Whether the whole-body COM stays over the support polygon at the sampled pose that reaches
     /// furthest horizontally at the task height (null when the robot cannot tip: fixed base, no polygon).
@@ -455,11 +457,11 @@ pub struct ArmWorkspace {
     pub horizontal_reach: f64,
     /// Largest distance from the root frame, metres.
     pub reach_from_base: f64,
-    /// Whether the tip can be at the task height.
+    /// Whether the tip can be at the task height (feasible samples).
     pub task_height_reachable: Option<bool>,
-    /// Samples within 5 cm of the task height.
+    /// Feasible samples within 5 cm of the task height.
     pub task_band_samples: Option<usize>,
-    /// Fraction of samples meeting `--orientation` (within the task band when a task is given).
+    /// Fraction of feasible samples meeting `--orientation` (within the task band when a task is given).
     pub orientation_fraction: Option<f64>,
     /// Fraction of this arm's samples free of self-collision.
     pub self_collision_free_fraction: Option<f64>,

@@ -453,6 +453,38 @@ fn a_pair_touching_at_the_reference_pose_is_reported_and_not_sampled() {
         .any(|f| f.rule == "U601" && f.message.contains("'base' and 'rod'")));
 }
 
+/// Task heights count feasible poses only: a height the tip reaches only by passing through the base
+/// plate is out of reach.
+#[test]
+fn task_heights_count_only_poses_free_of_self_collision() {
+    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
+    // A tip frame at the ball's centre.
+    let urdf = swinging_ball(h, l, r).replace(
+        "</robot>",
+        &format!(
+            r#"<joint name="ball_joint" type="fixed"><parent link="rod"/><child link="ball"/><origin xyz="0 0 {l}"/></joint>
+  <link name="ball"/>
+</robot>"#
+        ),
+    );
+    let at = |height: f64| {
+        workspace_of(
+            &urdf,
+            declared_arm("mount", "ball"),
+            WorkspaceOptions {
+                task: Some(Task::Custom(height)),
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    // The ground is the plate's underside (z = −0.1); the ball's centre sweeps z ∈ [−0.1, 1.1], but it
+    // hits the plate (top z = 0) below z = r: feasible heights above the ground start at 0.1 + r.
+    let through_the_plate = at(0.1);
+    assert!(through_the_plate.arms[0].lowest_tip_height < 0.01);
+    assert_eq!(through_the_plate.task_height_reachable, Some(false));
+    assert_eq!(at(0.2).task_height_reachable, Some(true));
+}
+
 /// Self-collision that cannot run says so (it is not silently dropped from a PASS).
 #[test]
 fn missing_collision_meshes_are_named_when_self_collision_cannot_run() {

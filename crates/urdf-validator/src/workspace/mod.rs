@@ -144,6 +144,9 @@ struct ArmStats {
     max_reach: f64,
     max_height: f64,
     min_height: f64,
+    /// Tip height range over the feasible samples (free of self-collision, tip above the ground): what
+    /// task heights are judged on.
+    feasible_heights: Option<(f64, f64)>,
     max_horizontal: f64,
     max_from_base: f64,
     band_samples: usize,
@@ -166,6 +169,7 @@ impl ArmStats {
             max_reach: f64::NEG_INFINITY,
             max_height: f64::NEG_INFINITY,
             min_height: f64::INFINITY,
+            feasible_heights: None,
             max_horizontal: f64::NEG_INFINITY,
             max_from_base: f64::NEG_INFINITY,
             band_samples: 0,
@@ -184,6 +188,10 @@ impl ArmStats {
         self.max_reach = self.max_reach.max(other.max_reach);
         self.max_height = self.max_height.max(other.max_height);
         self.min_height = self.min_height.min(other.min_height);
+        self.feasible_heights = match (self.feasible_heights, other.feasible_heights) {
+            (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+            (a, b) => a.or(b),
+        };
         self.max_horizontal = self.max_horizontal.max(other.max_horizontal);
         self.max_from_base = self.max_from_base.max(other.max_from_base);
         self.band_samples += other.band_samples;
@@ -272,6 +280,35 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         stats.min_height = stats.min_height.min(p.z - scene.ground);
         stats.max_horizontal = stats.max_horizontal.max(horizontal);
         stats.max_from_base = stats.max_from_base.max(p.norm());
+        // Self-collision first: task heights, the band and orientations count feasible poses only.
+        let mut free = true;
+        if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
+            for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
+                q_full[joint.0] = *value;
+            }
+            scene.model.apply_mimic(q_full);
+            forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
+            let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
+            let check = model.check(pairs, &data.link_placement, cutoff, scratch);
+            free = check.is_free();
+            if free {
+                stats.collision_free += 1;
+                if let Some(clearance) = check.min_clearance {
+                    stats.min_clearance = Some(clearance);
+                }
+            }
+            if let Some(pair) = check.contact {
+                *stats.colliding.entry(pair).or_default() += 1;
+            }
+        }
+        let height = p.z - scene.ground;
+        if !free || height < 0.0 {
+            continue;
+        }
+        stats.feasible_heights = Some(match stats.feasible_heights {
+            Some((lo, hi)) => (lo.min(height), hi.max(height)),
+            None => (height, height),
+        });
         let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
         if in_band == Some(true) {
             stats.band_samples += 1;
@@ -286,24 +323,6 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             if in_band != Some(false) {
                 stats.orientation_considered += 1;
                 stats.orientation_ok += usize::from(matcher.accepts(&pose.approach));
-            }
-        }
-        if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
-            for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
-                q_full[joint.0] = *value;
-            }
-            scene.model.apply_mimic(q_full);
-            forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
-            let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
-            let check = model.check(pairs, &data.link_placement, cutoff, scratch);
-            if check.is_free() {
-                stats.collision_free += 1;
-                if let Some(clearance) = check.min_clearance {
-                    stats.min_clearance = Some(clearance);
-                }
-            }
-            if let Some(pair) = check.contact {
-                *stats.colliding.entry(pair).or_default() += 1;
             }
         }
     }
@@ -522,7 +541,11 @@ fn summarize(
             lowest_tip_height: stats.min_height,
             horizontal_reach: stats.max_horizontal,
             reach_from_base: stats.max_from_base,
-            task_height_reachable: target.map(|h| stats.min_height <= h && h <= stats.max_height),
+            task_height_reachable: target.map(|h| {
+                stats
+                    .feasible_heights
+                    .is_some_and(|(lo, hi)| lo <= h && h <= hi)
+            }),
             task_band_samples: target.map(|_| stats.band_samples),
             orientation_fraction: options
                 .orientation
