@@ -28,8 +28,8 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub output_dir: Option<PathBuf>,
 
-    /// Extra folder holding ROS packages, for package:// URIs (repeatable; searched before
-    /// ROS_PACKAGE_PATH and AMENT_PREFIX_PATH).
+    /// Extra folder holding ROS packages, for package:// URIs and xacro's $(find pkg) (repeatable;
+    /// searched before ROS_PACKAGE_PATH and AMENT_PREFIX_PATH).
     #[arg(long, value_name = "DIR")]
     pub package_path: Vec<PathBuf>,
 
@@ -130,7 +130,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
     pub color: ColorChoice,
 
-    /// Files validated in parallel (default: one per core).
+    /// Threads (default: one per core): files validated in parallel, and the workspace sampling of each.
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
 
@@ -226,7 +226,7 @@ impl From<RobotTypeArg> for urdf_validator::classify::RobotType {
 pub enum Format {
     /// Human-readable report.
     Text,
-    /// The JSON report (an array when several files are given).
+    /// The JSON report: an object for one named file, an array for directories and several inputs.
     Json,
 }
 
