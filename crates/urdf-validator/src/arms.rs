@@ -475,13 +475,40 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
             .flat_map(|c| subtree_links(model, c))
             .collect()
     };
-    let fingers = fingers_at(tip);
+    // The hand: the tip, or the nearest link welded to it (a tool frame hangs from the palm) that fingers
+    // attach to.
+    let mut welded = vec![tip];
+    let mut up = tip;
+    while up != root && welded.len() <= model.parent_joint.len() {
+        let Some(joint) = model.parent_joint[up.0] else {
+            break;
+        };
+        match model.joint_links[joint.0] {
+            Some((parent, _)) if model.joint_data[joint.0].kind == JointKind::Fixed => {
+                welded.push(parent);
+                up = parent;
+            }
+            _ => break,
+        }
+    }
+    let mut i = 0;
+    while i < welded.len() && welded.len() <= model.parent_joint.len() {
+        let below = model.child_joints[welded[i].0]
+            .iter()
+            .filter(|j| model.joint_data[j.0].kind == JointKind::Fixed)
+            .filter_map(|&j| child(model, j))
+            .filter(|c| !welded.contains(c))
+            .collect::<Vec<_>>();
+        welded.extend(below);
+        i += 1;
+    }
+    let hand = welded.into_iter().find(|&l| !fingers_at(l).is_empty());
     Some(Arm {
         base: root,
         tip,
         path,
-        hand: (!fingers.is_empty()).then_some(tip),
-        fingers,
+        hand,
+        fingers: hand.map(fingers_at).unwrap_or_default(),
         declared: true,
     })
 }

@@ -180,7 +180,31 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         statics.com_height_above_ground = Some(com.z - ground);
     }
     let arms = match declared {
-        Some(arm) => vec![arm],
+        Some(arm) => {
+            // The declared arm should be one the structure shows: its tip on a detected arm's path.
+            let link_name = |l: LinkId| robot.links[l.0].name.value.as_str();
+            let matches = |found: &Arm| {
+                found.tip == arm.tip
+                    || found
+                        .path
+                        .iter()
+                        .any(|j| model.joint_links[j.0].is_some_and(|(_, c)| c == arm.tip))
+            };
+            if !classification.arms.is_empty() && !classification.arms.iter().any(matches) {
+                let detected: Vec<String> = classification
+                    .arms
+                    .iter()
+                    .map(|a| format!("{} → {}", link_name(a.base), link_name(a.tip)))
+                    .collect();
+                warnings.push(format!(
+                    "User declared the arm {} → {}, but the structure suggests {}",
+                    link_name(arm.base),
+                    link_name(arm.tip),
+                    detected.join(", ")
+                ));
+            }
+            vec![arm]
+        }
         None if robot_type == RobotType::GroundVehicle => Vec::new(),
         None => classification.arms,
     };

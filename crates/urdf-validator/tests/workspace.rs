@@ -638,6 +638,38 @@ fn neighbouring_seeds_draw_different_samples() {
     assert_ne!(reach(4), reach(5));
 }
 
+/// A declared arm off every detected arm is checked against the structure, as a declared robot type is.
+#[test]
+fn a_declared_arm_unlike_the_detected_ones_is_warned_about() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/robots/mobile_manipulator.urdf");
+    let warnings = |root: &str, tip: &str| {
+        let options = Options {
+            overrides: declared_arm(root, tip),
+            workspace: WorkspaceOptions {
+                samples: 100,
+                ..WorkspaceOptions::default()
+            },
+            ..Options::default()
+        };
+        validate(&path, &options).unwrap().report.warnings
+    };
+    let wheel = warnings("base_link", "left_wheel_link");
+    assert!(
+        wheel.iter().any(|w| w
+            == "User declared the arm base_link → left_wheel_link, but the structure suggests arm_mount_link → tool0"),
+        "{wheel:?}"
+    );
+    // Part of the detected arm (to the wrist), or all of it: nothing to say.
+    for tip in ["wrist_2_link", "tool0"] {
+        let fine = warnings("arm_mount_link", tip);
+        assert!(
+            fine.iter().all(|w| !w.contains("declared the arm")),
+            "{fine:?}"
+        );
+    }
+}
+
 #[test]
 fn a_declared_arm_must_move() {
     let urdf = planar_arm(0.5, 0.3, 1.0, 10.0, 0.1);
@@ -847,4 +879,26 @@ fn pr2_reports_both_arms_to_their_tool_frames() {
         "base_link".to_string(),
         "fl_caster_l_wheel_link".to_string()
     ]));
+    // Declared to the tool frame, the arm still finds its hand (the palm the frame is welded to), so the
+    // approach axis is the detected arm's.
+    let options = Options {
+        overrides: declared_arm("torso_lift_link", "r_gripper_tool_frame"),
+        workspace: WorkspaceOptions {
+            samples: 1000,
+            ..WorkspaceOptions::default()
+        },
+        ..Options::default()
+    };
+    let declared = validate(
+        &shared.join("pr2/pr2_description/robots/pr2.urdf"),
+        &options,
+    )
+    .unwrap()
+    .report
+    .workspace
+    .unwrap();
+    let arm = &declared.arms[0];
+    assert_eq!(arm.hand_link.as_deref(), Some("r_gripper_palm_link"));
+    assert_eq!(arm.approach_axis_source, "fingers");
+    assert_eq!(arm.approach_axis, ws.arms[0].approach_axis);
 }
