@@ -586,13 +586,7 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
             }
         }
         let _ = writeln!(out, "{indent}{line}");
-        let mut held: Vec<&str> = workspace
-            .arms
-            .iter()
-            .flat_map(|arm| arm.body_joints_held.iter().map(String::as_str))
-            .collect();
-        held.sort_unstable();
-        held.dedup();
+        let held = workspace.body_joints_held();
         if workspace.task_height_reachable == Some(false) && !held.is_empty() {
             let _ = writeln!(
                 out,

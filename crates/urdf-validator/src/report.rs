@@ -425,6 +425,24 @@ pub struct WorkspaceSection {
     pub reason: Option<String>,
 }
 
+impl WorkspaceSection {
+    /// Every arm's `body_joints_held`, sorted, each once.
+    pub fn body_joints_held(&self) -> Vec<&str> {
+        body_joints_held(&self.arms)
+    }
+}
+
+/// The `body_joints_held` of `arms`, sorted, each once.
+pub fn body_joints_held(arms: &[ArmWorkspace]) -> Vec<&str> {
+    let mut held: Vec<&str> = arms
+        .iter()
+        .flat_map(|arm| arm.body_joints_held.iter().map(String::as_str))
+        .collect();
+    held.sort_unstable();
+    held.dedup();
+    held
+}
+
 /// The reach of one arm.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct ArmWorkspace {

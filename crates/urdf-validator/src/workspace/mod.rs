@@ -570,12 +570,7 @@ fn summarize(
     if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
         if !reachable {
             status = status.worst(Status::Fail);
-            let mut held: Vec<&str> = arms
-                .iter()
-                .flat_map(|a| a.body_joints_held.iter().map(String::as_str))
-                .collect();
-            held.sort_unstable();
-            held.dedup();
+            let held = crate::report::body_joints_held(&arms);
             reasons.push(format!(
                 "no arm reaches the {} height ({:.2} m above the ground){}",
                 task.name(),
