@@ -18,16 +18,16 @@ pub fn split_xacro_args(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<(String, Strin
     (paths, args)
 }
 
-/// A `--xacro-arg` value: `NAME=VALUE` or xacro's own `NAME:=VALUE` (the name trimmed, without `:`).
+/// A `--xacro-arg` value: `NAME=VALUE` or xacro's own `NAME:=VALUE`, split at the first `=` (the value
+/// may hold `=` and `:=`); the name trimmed, without `:` or spaces.
 pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
     let (name, value) = arg
-        .split_once(":=")
-        .or_else(|| arg.split_once('='))
+        .split_once('=')
         .ok_or_else(|| format!("--xacro-arg expects NAME=VALUE, got '{arg}'"))?;
-    let name = name.trim();
+    let name = name.strip_suffix(':').unwrap_or(name).trim();
     if name.is_empty() || name.contains(':') || name.contains(char::is_whitespace) {
         return Err(format!(
-            "--xacro-arg expects NAME=VALUE with a name of letters, digits and '_', got '{arg}'"
+            "--xacro-arg expects NAME=VALUE with a name without ':' or spaces, got '{arg}'"
         ));
     }
     Ok((name.to_string(), value.to_string()))
@@ -124,4 +124,22 @@ fn is_call(node: roxmltree::Node) -> bool {
         node.tag_name().name(),
         "property" | "macro" | "arg" | "include"
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_xacro_arg_flag;
+
+    #[test]
+    fn xacro_arg_flags_split_at_the_first_equals_sign() {
+        let parsed = |arg: &str| parse_xacro_arg_flag(arg).map_err(|_| ());
+        assert_eq!(parsed("mass=4"), Ok(("mass".into(), "4".into())));
+        assert_eq!(parsed("mass:=4"), Ok(("mass".into(), "4".into())));
+        assert_eq!(parsed("url=a:=b"), Ok(("url".into(), "a:=b".into())));
+        assert_eq!(parsed("x=y z:=w"), Ok(("x".into(), "y z:=w".into())));
+        assert_eq!(parsed(" name := v"), Ok(("name".into(), " v".into())));
+        assert_eq!(parsed("ma:ss=1"), Err(()));
+        assert_eq!(parsed("novalue"), Err(()));
+        assert_eq!(parsed("=1"), Err(()));
+    }
 }

@@ -77,14 +77,22 @@ fn has_word(name: &str, words: &[&str]) -> bool {
         .any(|token| words.contains(&token))
 }
 
-/// Parts of names of wrist rotations (`LeftGripperYaw` turns the whole hand: it is not a finger).
+/// Parts of names of wrist rotations (`LeftGripperYaw` turns the whole hand: it is not a finger). Parts,
+/// not words, for camel case; `roll` but not `roller` / `controller`.
 const WRIST_PARTS: [&str; 4] = ["yaw", "pitch", "roll", "wrist"];
+
+fn wrist_name(name: &str) -> bool {
+    has_part(
+        &name.to_ascii_lowercase().replace("roller", ""),
+        &WRIST_PARTS,
+    )
+}
 
 /// A joint whose own name says it moves a finger or a gripper's jaws.
 fn finger_joint_name(name: &str) -> bool {
     has_part(name, &FINGER_PARTS)
         || has_word(name, &FINGER_WORDS)
-        || (has_part(name, &["gripper"]) && !has_part(name, &WRIST_PARTS))
+        || (has_part(name, &["gripper"]) && !wrist_name(name))
 }
 
 /// A link whose name says it is a finger (a link named `gripper` is the hand itself).
@@ -310,22 +318,39 @@ impl Detector<'_> {
     /// Complete an arm ending at the wrist `wrist`: find the hand, the fingers and the tool frame.
     fn finish(&self, base: LinkId, mut path: Vec<JointId>, wrist: LinkId, declared: bool) -> Arm {
         let model = self.model;
-        // Links welded to the wrist, with the fixed joints that reach them.
-        let mut welded: Vec<(LinkId, Vec<JointId>)> = vec![(wrist, Vec::new())];
+        // Links welded to the wrist, each with the fixed joint into it and the index of its parent here
+        // (paths are rebuilt on demand: copying them per link is quadratic on long welded chains).
+        let mut welded: Vec<(LinkId, Option<(JointId, usize)>)> = vec![(wrist, None)];
         let mut i = 0;
         while i < welded.len() && welded.len() <= model.parent_joint.len() {
-            let (link, via) = welded[i].clone();
+            let link = welded[i].0;
             for &j in &model.child_joints[link.0] {
                 if model.joint_data[j.0].kind == JointKind::Fixed {
                     if let Some(c) = child(model, j) {
-                        let mut via = via.clone();
-                        via.push(j);
-                        welded.push((c, via));
+                        welded.push((c, Some((j, i))));
                     }
                 }
             }
             i += 1;
         }
+        let depth: Vec<usize> = {
+            let mut depth = vec![0; welded.len()];
+            for (index, (_, from)) in welded.iter().enumerate() {
+                if let Some((_, parent)) = from {
+                    depth[index] = depth[*parent] + 1;
+                }
+            }
+            depth
+        };
+        let via = |mut index: usize| -> Vec<JointId> {
+            let mut joints = Vec::new();
+            while let Some((joint, parent)) = welded[index].1 {
+                joints.push(joint);
+                index = parent;
+            }
+            joints.reverse();
+            joints
+        };
         let finger_tops = |link: LinkId| -> Vec<JointId> {
             model.child_joints[link.0]
                 .iter()
@@ -333,10 +358,8 @@ impl Detector<'_> {
                 .filter(|j| self.finger[j.0])
                 .collect()
         };
-        let hand = welded
-            .iter()
-            .find(|(l, _)| !finger_tops(*l).is_empty())
-            .map(|(l, _)| *l);
+        let hand_index = welded.iter().position(|(l, _)| !finger_tops(*l).is_empty());
+        let hand = hand_index.map(|index| welded[index].0);
         let fingers: Vec<LinkId> = hand
             .map(|h| {
                 finger_tops(h)
@@ -350,10 +373,13 @@ impl Detector<'_> {
         // the first link named `hand`, `palm` or `gripper` (not its welded jaws). Links named like fingers
         // are fingers when the arm has a hand, and a frame above the hand (a wrist force-torque sensor's
         // `ft_tool_link`) is not the tool.
-        let hand_via = hand.and_then(|h| welded.iter().find(|(l, _)| *l == h).map(|(_, via)| via));
-        let above_hand = |via: &Vec<JointId>| {
-            hand_via.is_some_and(|hand_via| hand_via.len() > via.len() && hand_via.starts_with(via))
-        };
+        let mut above_hand = vec![false; welded.len()];
+        if let Some(mut index) = hand_index {
+            while let Some((_, parent)) = welded[index].1 {
+                above_hand[parent] = true;
+                index = parent;
+            }
+        }
         let tool_score = |link: LinkId| -> usize {
             let name = self.robot.links[link.0].name.value.to_ascii_lowercase();
             if hand.is_some() && finger_link_name(&name) {
@@ -369,30 +395,23 @@ impl Detector<'_> {
                 usize::from(has_word(&name, &["hand", "palm", "gripper"]))
             }
         };
-        let depth_preference = |score: usize, via: &Vec<JointId>| {
-            let depth = via.len() as isize;
+        let depth_preference = |score: usize, index: usize| {
+            let depth = depth[index] as isize;
             if score == 1 {
                 -depth
             } else {
                 depth
             }
         };
-        let tool = welded
-            .iter()
-            .filter(|(l, via)| tool_score(*l) > 0 && !above_hand(via))
-            .max_by_key(|(l, via)| {
-                let score = tool_score(*l);
-                (score, depth_preference(score, via))
+        let tool = (0..welded.len())
+            .filter(|&index| tool_score(welded[index].0) > 0 && !above_hand[index])
+            .max_by_key(|&index| {
+                let score = tool_score(welded[index].0);
+                (score, depth_preference(score, index))
             });
-        let (tip, via) = match (tool, hand) {
-            (Some((tool, via)), _) => (*tool, via.clone()),
-            (None, Some(hand)) => welded
-                .iter()
-                .find(|(l, _)| *l == hand)
-                .map_or((wrist, Vec::new()), |(l, via)| (*l, via.clone())),
-            (None, None) => (wrist, Vec::new()),
-        };
-        path.extend(via);
+        let tip_index = tool.or(hand_index).unwrap_or(0);
+        let tip = welded[tip_index].0;
+        path.extend(via(tip_index));
         Arm {
             base,
             tip,
@@ -478,6 +497,8 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
     // The hand: the tip, or the nearest link welded to it (a tool frame hangs from the palm) that fingers
     // attach to.
     let mut welded = vec![tip];
+    let mut seen = vec![false; model.parent_joint.len()];
+    seen[tip.0] = true;
     let mut up = tip;
     while up != root && welded.len() <= model.parent_joint.len() {
         let Some(joint) = model.parent_joint[up.0] else {
@@ -486,6 +507,7 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
         match model.joint_links[joint.0] {
             Some((parent, _)) if model.joint_data[joint.0].kind == JointKind::Fixed => {
                 welded.push(parent);
+                seen[parent.0] = true;
                 up = parent;
             }
             _ => break,
@@ -493,13 +515,14 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
     }
     let mut i = 0;
     while i < welded.len() && welded.len() <= model.parent_joint.len() {
-        let below = model.child_joints[welded[i].0]
-            .iter()
-            .filter(|j| model.joint_data[j.0].kind == JointKind::Fixed)
-            .filter_map(|&j| child(model, j))
-            .filter(|c| !welded.contains(c))
-            .collect::<Vec<_>>();
-        welded.extend(below);
+        for &j in &model.child_joints[welded[i].0] {
+            if let (JointKind::Fixed, Some(c)) = (model.joint_data[j.0].kind, child(model, j)) {
+                if !seen[c.0] {
+                    seen[c.0] = true;
+                    welded.push(c);
+                }
+            }
+        }
         i += 1;
     }
     let hand = welded.into_iter().find(|&l| !fingers_at(l).is_empty());
@@ -511,4 +534,20 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
         fingers: hand.map(fingers_at).unwrap_or_default(),
         declared: true,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::finger_joint_name;
+
+    #[test]
+    fn gripper_joints_are_fingers_unless_they_turn_the_wrist() {
+        assert!(finger_joint_name("jointGripper"));
+        assert!(finger_joint_name("gripper_roller_joint"));
+        assert!(finger_joint_name("gripper_controller_joint"));
+        assert!(!finger_joint_name("LeftGripperYaw"));
+        assert!(!finger_joint_name("gripper_roll_joint"));
+        assert!(finger_joint_name("r_gripper_l_finger_joint"));
+        assert!(finger_joint_name("hand_index_flex_1"));
+    }
 }

@@ -125,6 +125,15 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         overrides,
         ..
     } = *inputs;
+    // An explicit --srdf must exist, whichever analyses end up reading it.
+    if let Some(path) = statics_options
+        .pose
+        .srdf
+        .as_deref()
+        .filter(|p| !p.is_file())
+    {
+        return Err(format!("--srdf {}: no such file", path.display()));
+    }
     let declared = declared_arm(robot, model, overrides)?;
     let declared_contacts = match &overrides.contact_links {
         Some(names) => Some(
@@ -255,7 +264,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
 /// The collision model at the chosen pose, with the allowed collisions of the SRDF (`--srdf`, else the one
 /// [`pose::find_srdf`] finds) applied.
 ///
-/// An explicit `--srdf` that does not exist is a usage error; an SRDF that cannot be read, or that names
+/// (An explicit `--srdf` that does not exist was refused by [`analyse`].) An SRDF that cannot be read, or that names
 /// links the robot does not have, gives U602 findings and the rest runs.
 fn collision_setup(
     robot: &Robot,
@@ -264,9 +273,6 @@ fn collision_setup(
     inputs: &Inputs,
 ) -> Result<(CollisionSetup, Vec<Finding>), String> {
     let explicit = inputs.statics.pose.srdf.as_deref();
-    if let Some(path) = explicit.filter(|p| !p.is_file()) {
-        return Err(format!("--srdf {}: no such file", path.display()));
-    }
     let mut findings = Vec::new();
     let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
     let path = pose::find_srdf(inputs.urdf_path, pose::robot_name(robot), explicit);
@@ -299,7 +305,7 @@ fn collision_setup(
             .map(String::as_str)
             .collect();
         findings.push(srdf_problem(format!(
-            "SRDF {}: {mentions} link name{} the robot does not have ({}{}) — {} ignored",
+            "SRDF {}: {mentions} mention{} of links the robot does not have ({}{}) — {} ignored",
             path.display(),
             if mentions == 1 { "" } else { "s" },
             shown.join("; "),

@@ -601,9 +601,14 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
         workspace.orientation_reachable,
         assessed,
     ) {
+        let why = if workspace.task.is_some() {
+            "no feasible sampled pose within 5 cm of the task height"
+        } else {
+            "no feasible sampled pose (each in self-collision or below the ground)"
+        };
         let _ = writeln!(
             out,
-            "{indent}orientation {orientation}: {} — no sampled pose within 5 cm of the task height",
+            "{indent}orientation {orientation}: {} — {why}",
             paint(YELLOW, "not assessed")
         );
     }

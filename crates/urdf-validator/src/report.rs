@@ -391,15 +391,15 @@ pub struct WorkspaceSection {
     pub task_com_shift_estimate_m: Option<f64>,
     /// Stability margin at that pose, mm (positive inside the polygon).
     pub task_com_margin_mm: Option<f64>,
-    /// The smallest margin over every sampled pose within 5 cm of the task height (at most 4,096, the first
-    /// sampled), mm: negative when some heading tips the robot.
+    /// The smallest margin over the feasible sampled poses within 5 cm of the task height (per arm, the
+    /// first 4,096 sampled), mm: negative when some heading tips the robot.
     pub task_com_worst_margin_mm: Option<f64>,
     /// Why the COM during the reach was not assessed, when it was not.
     pub task_com_not_assessed: Option<String>,
     /// `--orientation`.
     pub orientation: Option<String>,
-    /// Whether at least 5% of samples (within 5 cm of the task height when a task is given) meet the
-    /// orientation; `null` when no sample was within 5 cm of the task height (not assessed).
+    /// Whether at least 5% of feasible samples (within 5 cm of the task height when a task is given) meet
+    /// the orientation; `null` when there was no such sample (not assessed).
     pub orientation_reachable: Option<bool>,
     /// Fraction of those samples meeting the orientation (best arm).
     pub orientation_fraction: Option<f64>,

@@ -259,3 +259,55 @@ fn a_long_chain_is_validated_in_linear_time_and_self_collision_is_bounded() {
     let short = run(&box_chain(200)).workspace.expect("a workspace section");
     assert!(short.self_collision_free_fraction.is_some());
 }
+
+/// Found in review: every link welded below the wrist copied its whole path of fixed joints (quadratic:
+/// 20,000 welded links took 4.2 s and 2.5 GB).
+#[test]
+fn a_long_welded_chain_below_the_wrist_is_linear() {
+    let mut urdf = box_chain(4);
+    let mut welded = String::new();
+    for i in 0..20_000 {
+        let parent = if i == 0 {
+            "l4".to_string()
+        } else {
+            format!("w{}", i - 1)
+        };
+        welded += &format!(
+            "<link name=\"w{i}\"/><joint name=\"f{i}\" type=\"fixed\"><parent link=\"{parent}\"/><child link=\"w{i}\"/></joint>\n"
+        );
+    }
+    urdf = urdf.replace("</robot>", &format!("{welded}</robot>"));
+    let started = Instant::now();
+    let workspace = run(&urdf).workspace.expect("a workspace section");
+    assert_eq!(workspace.arms.len(), 1);
+    assert!(
+        started.elapsed() < Duration::from_secs(20),
+        "took {:?}",
+        started.elapsed()
+    );
+}
+
+/// Found in review: an SRDF repeating `disable_default_collisions` and `enable_collisions` entries by the
+/// thousand made the allowed-pair set-up cubic (823 KB: 20 s).
+#[test]
+fn a_huge_repetitive_srdf_is_applied_in_linear_time() {
+    let dir = scratch("huge-srdf");
+    let urdf = dir.join("chain.urdf");
+    std::fs::write(&urdf, box_chain(200)).unwrap();
+    let mut srdf = String::from("<robot name=\"r\">");
+    for _ in 0..9_000 {
+        srdf += "<disable_default_collisions link=\"l0\"/><enable_collisions link1=\"l0\" link2=\"l7\"/>";
+    }
+    srdf += "</robot>";
+    std::fs::write(dir.join("chain.srdf"), srdf).unwrap();
+    let mut options = Options::default();
+    options.workspace.samples = 64;
+    let started = Instant::now();
+    let report = urdf_validator::validate(&urdf, &options).unwrap().report;
+    assert!(report.workspace.unwrap().self_collision_srdf_disabled > 0);
+    assert!(
+        started.elapsed() < Duration::from_secs(20),
+        "took {:?}",
+        started.elapsed()
+    );
+}

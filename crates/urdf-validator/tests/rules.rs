@@ -3046,7 +3046,7 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
     fs::write(&srdf, format!(r#"<robot name="r">{absent}</robot>"#)).unwrap();
     let hit_message = the_one(&run().findings, "U602").message.clone();
     assert!(
-        hit_message.contains("40 link names the robot does not have")
+        hit_message.contains("40 mentions of links the robot does not have")
             && hit_message.contains("'gone2'; …) — those entries are ignored"),
         "{hit_message}"
     );

@@ -500,7 +500,7 @@ fn missing_collision_meshes_are_named_when_self_collision_cannot_run() {
     assert_eq!(ws.self_collision_free_fraction, None);
     assert_eq!(
         ws.self_collision_not_assessed.as_deref(),
-        Some("1 of the 1 links the arms move have <collision> geometry that could not be used (meshes not found or unreadable): rod")
+        Some("1 of the 1 links the arms move have <collision> geometry that could not be used (meshes not found or unreadable, or shapes of a millimetre or less): rod")
     );
     assert!(ws.self_collision_touching_at_reference.is_empty());
     let fine = workspace_of(
@@ -711,6 +711,19 @@ fn a_robot_without_arms_has_no_workspace() {
     assert_eq!(ws.status, Status::NotApplicable);
     assert!(ws.reason.unwrap().contains("no arm chain"));
     assert_eq!(ws.max_reach, None);
+    // No arm, so nothing reads an SRDF: a --srdf that does not exist is refused all the same.
+    let options = Options {
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                srdf: Some("/nonexistent/box.srdf".into()),
+                ..PoseOptions::default()
+            },
+            ..StaticsOptions::default()
+        },
+        ..Options::default()
+    };
+    let error = validate_text(urdf, Path::new("t.urdf"), &options).expect_err("usage error");
+    assert!(error.to_string().contains("box.srdf"), "{error}");
 }
 
 fn real_report(path: &Path) -> Report {

@@ -36,6 +36,7 @@
 mod shape;
 mod srdf;
 
+use std::collections::HashSet;
 use std::ops::Range;
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
@@ -415,15 +416,24 @@ impl CollisionModel {
                 .collect()
         };
         self.allow(&known(&srdf.disabled), Allowed::Disabled);
-        let enabled = known(&srdf.enabled);
-        let is_enabled =
-            |a: LinkId, b: LinkId| enabled.contains(&(a, b)) || enabled.contains(&(b, a));
-        let by_default: Vec<(LinkId, LinkId)> = srdf
+        // Sets, each entry once: an SRDF is untrusted input and may repeat entries by the thousand.
+        let enabled: HashSet<(LinkId, LinkId)> = known(&srdf.enabled)
+            .into_iter()
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .collect();
+        let mut by_default_links: Vec<LinkId> = srdf
             .disabled_by_default
             .iter()
             .filter_map(|entry| model.link(&entry.link))
+            .collect();
+        by_default_links.sort_unstable();
+        by_default_links.dedup();
+        let by_default: Vec<(LinkId, LinkId)> = by_default_links
+            .into_iter()
             .flat_map(|link| self.geometric.iter().map(move |&other| (link, other)))
-            .filter(|&(link, other)| link != other && !is_enabled(link, other))
+            .filter(|&(link, other)| {
+                link != other && !enabled.contains(&(link.min(other), link.max(other)))
+            })
             .collect();
         self.allow(&by_default, Allowed::Disabled);
         problems

@@ -121,9 +121,10 @@ impl Hull {
         let outside = |plane: &Option<(Vector, Vector)>, p: Vector| {
             plane.is_some_and(|(normal, a)| normal.dot(p - a) > 1e-9)
         };
-        if vertices.len() == points.len() {
+        if vertices.len() == points.len() && planes.iter().all(Option::is_some) {
             // Every point is a vertex of the surface (the usual case: hull vertices in), so it is the hull
-            // when it is convex: closed, and convex across every edge, checked in O(faces).
+            // when it is convex: closed, and convex across every edge, checked in O(faces). A degenerate
+            // (zero-area) face could hide a fold from its neighbours: then every point is checked.
             let mut sides: Vec<((u32, u32), usize)> = Vec::with_capacity(triangles.len() * 3);
             for (index, t) in triangles.iter().enumerate() {
                 for k in 0..3 {

@@ -1,6 +1,8 @@
 //! The allowed-collision entries of an SRDF, as MoveIt reads them: `<disable_collisions>`,
 //! `<enable_collisions>` and `<disable_default_collisions>`.
 
+use crate::source::SourceText;
+
 /// One `<disable_collisions>` or `<enable_collisions>` entry (`link1`, `link2`, `reason`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SrdfPair {
@@ -74,9 +76,12 @@ pub fn srdf_collisions(text: &str) -> Result<SrdfCollisions, String> {
         let at = e.pos();
         format!("{}:{}: not well-formed XML: {e}", at.row, at.col)
     })?;
+    // A line index: roxmltree's `text_pos_at` scans from the start each time (quadratic on a big SRDF).
+    let lines = SourceText::new("", text.to_string());
     let mut collisions = SrdfCollisions::default();
     for node in doc.root_element().children().filter(|n| n.is_element()) {
-        let position = doc.text_pos_at(node.range().start);
+        let (row, col) = lines.line_col(node.range().start);
+        let position = roxmltree::TextPos { row, col };
         let tag = node.tag_name().name();
         let attribute = |name: &str| {
             node.attribute(name).map(str::to_string).ok_or_else(|| {

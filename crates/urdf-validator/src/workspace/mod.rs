@@ -32,7 +32,8 @@ use target::{Orientation, OrientationMatcher, Task};
 const CHUNK: usize = 1024;
 /// Half-width of the height band around a task height, metres.
 pub const TASK_BAND: f64 = 0.05;
-/// The most poses within the task band whose centre of mass is checked (the first ones sampled).
+/// The most poses within the task band, per arm, whose centre of mass is checked (the first feasible ones
+/// sampled).
 const MAX_BAND_POSES: usize = 4096;
 /// Fraction of samples that must meet an orientation.
 pub const ORIENTATION_PASS_FRACTION: f64 = 0.05;
@@ -784,7 +785,7 @@ fn collision_not_assessed(
     if !unusable.is_empty() {
         let shown: Vec<&str> = unusable.iter().copied().take(4).collect();
         format!(
-            "{} of the {} links the arms move have <collision> geometry that could not be used (meshes not found or unreadable): {}{}",
+            "{} of the {} links the arms move have <collision> geometry that could not be used (meshes not found or unreadable, or shapes of a millimetre or less): {}{}",
             unusable.len(),
             moved.len(),
             shown.join(", "),
