@@ -75,13 +75,14 @@ pub struct Args {
     #[arg(long, value_name = "LINKS", value_delimiter = ',')]
     pub contact_links: Option<Vec<String>>,
 
-    /// First link of the arm chain (with --arm-tip); validated against the tree.
+    /// First link of an arm chain (with --arm-tip; repeat the pair for each arm); validated against
+    /// the tree.
     #[arg(long, value_name = "LINK", requires = "arm_tip")]
-    pub arm_root: Option<String>,
+    pub arm_root: Vec<String>,
 
-    /// End-effector link of the arm chain (with --arm-root).
+    /// End-effector link of an arm chain (with --arm-root; the n-th tip goes with the n-th root).
     #[arg(long, value_name = "LINK", requires = "arm_root")]
-    pub arm_tip: Option<String>,
+    pub arm_tip: Vec<String>,
 
     /// Task reachability: pick_from_ground (0.05 m above the ground), pick_from_table (0.75 m),
     /// push_button (1.0 m), custom (--height).

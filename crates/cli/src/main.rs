@@ -78,6 +78,14 @@ fn run(args: Args) -> u8 {
             return 2;
         }
     };
+    if args.arm_root.len() != args.arm_tip.len() {
+        eprintln!(
+            "error: {} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
+            args.arm_root.len(),
+            args.arm_tip.len()
+        );
+        return 2;
+    }
     let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
     for arg in &args.xacro_arg {
         match inputs::parse_xacro_arg_flag(arg) {
@@ -128,8 +136,12 @@ fn run(args: Args) -> u8 {
         overrides: Overrides {
             robot_type: args.robot_type.map(Into::into),
             contact_links: args.contact_links.clone(),
-            arm_root: args.arm_root.clone(),
-            arm_tip: args.arm_tip.clone(),
+            arms: args
+                .arm_root
+                .iter()
+                .cloned()
+                .zip(args.arm_tip.iter().cloned())
+                .collect(),
         },
         ..Options::default()
     };

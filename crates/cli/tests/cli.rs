@@ -442,3 +442,58 @@ fn a_misspelled_xacro_argument_is_warned_with_the_close_name() {
     let out = text(&run(&[robot.to_str().unwrap(), "flag:=given", "--no-write"]).stdout);
     assert!(!out.contains("was given"), "{out}");
 }
+
+#[test]
+fn several_arms_can_be_declared_in_pairs() {
+    let example = repo_root().join("examples/robots/mobile_manipulator.urdf");
+    let example = example.to_str().unwrap();
+    let mut args = vec![
+        example,
+        "--no-write",
+        "--format",
+        "json",
+        "--samples",
+        "500",
+    ];
+    args.extend([
+        "--arm-root",
+        "arm_mount_link",
+        "--arm-tip",
+        "tool0",
+        "--arm-root",
+        "shoulder_link",
+        "--arm-tip",
+        "wrist_2_link",
+    ]);
+    let out = run(&args);
+    assert!(
+        out.status.code().is_some_and(|c| c <= 2),
+        "{}",
+        text(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let tips: Vec<&str> = report["workspace"]["arms"]
+        .as_array()
+        .expect("arms")
+        .iter()
+        .map(|arm| arm["tip_link"].as_str().unwrap())
+        .collect();
+    assert_eq!(tips, ["tool0", "wrist_2_link"]);
+    // Roots and tips go in pairs.
+    let unpaired = run(&[
+        example,
+        "--no-write",
+        "--arm-root",
+        "arm_mount_link",
+        "--arm-root",
+        "shoulder_link",
+        "--arm-tip",
+        "tool0",
+    ]);
+    assert_eq!(unpaired.status.code(), Some(2));
+    assert!(
+        text(&unpaired.stderr).contains("2 --arm-root but 1 --arm-tip"),
+        "{}",
+        text(&unpaired.stderr)
+    );
+}

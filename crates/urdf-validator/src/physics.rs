@@ -30,10 +30,8 @@ pub struct Overrides {
     pub robot_type: Option<RobotType>,
     /// `--contact-links`.
     pub contact_links: Option<Vec<String>>,
-    /// `--arm-root` (with `arm_tip`).
-    pub arm_root: Option<String>,
-    /// `--arm-tip` (with `arm_root`).
-    pub arm_tip: Option<String>,
+    /// `--arm-root` / `--arm-tip` pairs, in order: the arms to analyse instead of the detected ones.
+    pub arms: Vec<(String, String)>,
 }
 
 /// The physics sections of a report.
@@ -68,36 +66,25 @@ fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
     })
 }
 
-/// The arm declared with `--arm-root`/`--arm-tip`: both or neither, existing links, the tip below the root.
-fn declared_arm(
-    robot: &Robot,
-    model: &Model,
-    overrides: &Overrides,
-) -> Result<Option<Arm>, String> {
-    match (&overrides.arm_root, &overrides.arm_tip) {
-        (None, None) => Ok(None),
-        (Some(_), None) | (None, Some(_)) => {
-            Err("--arm-root and --arm-tip must be given together".to_string())
-        }
-        (Some(root), Some(tip)) => {
-            let root_id = link_id(model, "--arm-root", root)?;
-            let tip_id = link_id(model, "--arm-tip", tip)?;
-            if root_id == tip_id {
-                return Err(format!(
-                    "--arm-root and --arm-tip both name '{root}' (expected the arm's base and its end effector)"
-                ));
-            }
-            let arm = arms::declared(robot, model, root_id, tip_id).ok_or_else(|| {
-                format!("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")
-            })?;
-            if arm.first_joint(model).is_none() {
-                return Err(format!(
-                    "no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)"
-                ));
-            }
-            Ok(Some(arm))
-        }
+/// One arm declared with `--arm-root`/`--arm-tip`: existing links, the tip below the root, an actuated
+/// joint between them.
+fn declared_arm(robot: &Robot, model: &Model, root: &str, tip: &str) -> Result<Arm, String> {
+    let root_id = link_id(model, "--arm-root", root)?;
+    let tip_id = link_id(model, "--arm-tip", tip)?;
+    if root_id == tip_id {
+        return Err(format!(
+            "--arm-root and --arm-tip both name '{root}' (expected the arm's base and its end effector)"
+        ));
     }
+    let arm = arms::declared(robot, model, root_id, tip_id).ok_or_else(|| {
+        format!("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")
+    })?;
+    if arm.first_joint(model).is_none() {
+        return Err(format!(
+            "no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)"
+        ));
+    }
+    Ok(arm)
 }
 
 /// What the analyses need besides the robot.
@@ -134,7 +121,11 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
     {
         return Err(format!("--srdf {}: no such file", path.display()));
     }
-    let declared = declared_arm(robot, model, overrides)?;
+    let declared = overrides
+        .arms
+        .iter()
+        .map(|(root, tip)| declared_arm(robot, model, root, tip))
+        .collect::<Result<Vec<Arm>, String>>()?;
     let declared_contacts = match &overrides.contact_links {
         Some(names) => Some(
             names
@@ -188,9 +179,15 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
     if let (Some(ground), Some(com)) = (stability.ground_height, com) {
         statics.com_height_above_ground = Some(com.z - ground);
     }
-    let arms = match declared {
-        Some(arm) => {
-            // The declared arm should be one the structure shows: its tip on a detected arm's path.
+    let arms = if declared.is_empty() {
+        if robot_type == RobotType::GroundVehicle {
+            Vec::new()
+        } else {
+            classification.arms
+        }
+    } else {
+        for arm in &declared {
+            // A declared arm should be one the structure shows: its tip on a detected arm's path.
             let link_name = |l: LinkId| robot.links[l.0].name.value.as_str();
             let matches = |found: &Arm| {
                 found.tip == arm.tip
@@ -212,10 +209,8 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
                     detected.join(", ")
                 ));
             }
-            vec![arm]
         }
-        None if robot_type == RobotType::GroundVehicle => Vec::new(),
-        None => classification.arms,
+        declared
     };
     let ground = stability
         .ground_height

@@ -270,8 +270,7 @@ fn arm_declarations_are_validated() {
     let urdf = cart([0.0; 3], None, 0.0);
     let check = |root: &str, tip: &str| {
         let overrides = Overrides {
-            arm_root: Some(root.into()),
-            arm_tip: Some(tip.into()),
+            arms: vec![(root.into(), tip.into())],
             ..Overrides::default()
         };
         validate_text(

@@ -45,8 +45,7 @@ fn planar_arm(l1: f64, l2: f64, h: f64, base_mass: f64, tip_mass: f64) -> String
 
 fn declared_arm(root: &str, tip: &str) -> Overrides {
     Overrides {
-        arm_root: Some(root.to_string()),
-        arm_tip: Some(tip.to_string()),
+        arms: vec![(root.to_string(), tip.to_string())],
         ..Overrides::default()
     }
 }
