@@ -142,6 +142,19 @@ fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
     assert!(floor.reason.unwrap().contains("pick_from_ground"));
     let high = run(Task::Custom(1.9));
     assert_eq!(high.task_height_reachable, Some(false));
+    assert!(!high.reason.as_deref().unwrap().contains("sampling error"));
+    // 1.81 m is 10 mm above the true envelope: the reason says how close the samples came.
+    let barely = run(Task::Custom(1.81));
+    assert_eq!(barely.task_height_reachable, Some(false));
+    assert!(
+        barely
+            .reason
+            .as_deref()
+            .unwrap()
+            .contains("within sampling error"),
+        "{:?}",
+        barely.reason
+    );
     // No sample at that height: the orientation is not assessed (not "met by 0%").
     let high_side = workspace_of(
         &urdf,

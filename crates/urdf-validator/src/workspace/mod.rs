@@ -32,6 +32,9 @@ use target::{Orientation, OrientationMatcher, Task};
 const CHUNK: usize = 1024;
 /// Half-width of the height band around a task height, metres.
 pub const TASK_BAND: f64 = 0.05;
+/// A task height this close to the sampled tip envelope (as a fraction of the arm's reach) may be reachable
+/// by a pose no sample drew: the FAIL reason says so.
+const NEAR_ENVELOPE: f64 = 0.02;
 /// The most poses within the task band, per arm, whose centre of mass is checked (the first feasible ones
 /// sampled).
 const MAX_BAND_POSES: usize = 4096;
@@ -572,15 +575,35 @@ fn summarize(
         if !reachable {
             status = status.worst(Status::Fail);
             let held = crate::report::body_joints_held(&arms);
+            // Sampled extremes approach the true ones from inside: a target just beyond them may be
+            // reachable by a pose no sample drew.
+            let gap = per_arm
+                .iter()
+                .filter_map(|stats| stats.feasible_heights)
+                .map(|(lo, hi)| {
+                    let h = task.height();
+                    if h > hi {
+                        h - hi
+                    } else {
+                        lo - h
+                    }
+                })
+                .reduce(f64::min);
+            let reach = arms.iter().map(|a| a.max_reach).fold(0.0, f64::max);
+            let near = gap.filter(|&gap| gap < NEAR_ENVELOPE * reach);
             reasons.push(format!(
-                "no arm reaches the {} height ({:.2} m above the ground){}",
+                "no arm reaches the {} height ({:.2} m above the ground){}{}",
                 task.name(),
                 task.height(),
                 if held.is_empty() {
                     String::new()
                 } else {
                     format!(" with the body held at {}", held.join(", "))
-                }
+                },
+                near.map_or(String::new(), |gap| format!(
+                    " (the nearest sampled tip is {:.0} mm away, within sampling error: more --samples may reach it)",
+                    gap * 1000.0
+                ))
             ));
         }
         let best = jobs
