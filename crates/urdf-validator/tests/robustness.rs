@@ -26,23 +26,33 @@ fn codes(report: &Report, code: &str) -> usize {
 
 /// A chain of `n` revolute joints, each (but the first) mimicking the one before it.
 fn mimic_chain(n: usize) -> String {
+    chain(
+        n,
+        "<inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>",
+        |i| {
+            let mimic = if i > 0 {
+                format!("<mimic joint=\"j{}\"/>", i - 1)
+            } else {
+                String::new()
+            };
+            format!("<axis xyz=\"0 0 1\"/>{mimic}")
+        },
+    )
+}
+
+/// A chain of `n` revolute joints `j{i}` (limits ±1) from `l{i}` to `l{i+1}`: each link holds `link`,
+/// joint `i` also holds `joint(i)`.
+fn chain(n: usize, link: &str, joint: impl Fn(usize) -> String) -> String {
     let mut s = String::from("<robot name=\"r\">\n");
     for i in 0..=n {
-        s += &format!(
-            "<link name=\"l{i}\"><inertial><mass value=\"1\"/>\
-             <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
-        );
+        s += &format!("<link name=\"l{i}\">{link}</link>\n");
     }
     for i in 0..n {
-        let mimic = if i > 0 {
-            format!("<mimic joint=\"j{}\"/>", i - 1)
-        } else {
-            String::new()
-        };
         s += &format!(
             "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
-             <axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/>{mimic}</joint>\n",
-            i + 1
+             {}<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/></joint>\n",
+            i + 1,
+            joint(i)
         );
     }
     s + "</robot>\n"
@@ -216,23 +226,13 @@ fn a_bad_number_from_an_entity_in_collada_is_located_at_its_element() {
 
 /// A chain of `n` revolute links, each with a small box to collide with.
 fn box_chain(n: usize) -> String {
-    let mut s = String::from("<robot name=\"r\">\n");
-    for i in 0..=n {
-        s += &format!(
-            "<link name=\"l{i}\"><inertial><mass value=\"0.1\"/>\
-             <inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial>\
-             <collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision></link>\n"
-        );
-    }
-    for i in 0..n {
-        s += &format!(
-            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
-             <origin xyz=\"0 0 0.02\"/><axis xyz=\"0 1 0\"/>\
-             <limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/></joint>\n",
-            i + 1
-        );
-    }
-    s + "</robot>\n"
+    chain(
+        n,
+        "<inertial><mass value=\"0.1\"/>\
+         <inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial>\
+         <collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision>",
+        |_| "<origin xyz=\"0 0 0.02\"/><axis xyz=\"0 1 0\"/>".to_string(),
+    )
 }
 
 /// Arm detection, leg search, the arm's chain and the payload capacity walk a 20,000-link chain once (each
