@@ -120,6 +120,30 @@ fn subtree_joints(model: &Model, joint: JointId) -> Vec<JointId> {
     out
 }
 
+/// `seeds`, then every link welded below them through fixed joints (breadth first), each once, with the
+/// fixed joint into it and the index of its parent in the list (`None` for the seeds).
+fn welded_below(model: &Model, seeds: &[LinkId]) -> Vec<(LinkId, Option<(JointId, usize)>)> {
+    let mut welded: Vec<(LinkId, Option<(JointId, usize)>)> =
+        seeds.iter().map(|&link| (link, None)).collect();
+    let mut seen = vec![false; model.parent_joint.len()];
+    for &link in seeds {
+        seen[link.0] = true;
+    }
+    let mut i = 0;
+    while i < welded.len() {
+        for &j in &model.child_joints[welded[i].0 .0] {
+            if let (JointKind::Fixed, Some(c)) = (model.joint_data[j.0].kind, child(model, j)) {
+                if !seen[c.0] {
+                    seen[c.0] = true;
+                    welded.push((c, Some((j, i))));
+                }
+            }
+        }
+        i += 1;
+    }
+    welded
+}
+
 /// Every link in the subtree below `link` (itself included).
 pub fn subtree_links(model: &Model, link: LinkId) -> Vec<LinkId> {
     let mut out = vec![link];
@@ -320,19 +344,7 @@ impl Detector<'_> {
         let model = self.model;
         // Links welded to the wrist, each with the fixed joint into it and the index of its parent here
         // (paths are rebuilt on demand: copying them per link is quadratic on long welded chains).
-        let mut welded: Vec<(LinkId, Option<(JointId, usize)>)> = vec![(wrist, None)];
-        let mut i = 0;
-        while i < welded.len() && welded.len() <= model.parent_joint.len() {
-            let link = welded[i].0;
-            for &j in &model.child_joints[link.0] {
-                if model.joint_data[j.0].kind == JointKind::Fixed {
-                    if let Some(c) = child(model, j) {
-                        welded.push((c, Some((j, i))));
-                    }
-                }
-            }
-            i += 1;
-        }
+        let welded = welded_below(model, &[wrist]);
         let depth: Vec<usize> = {
             let mut depth = vec![0; welded.len()];
             for (index, (_, from)) in welded.iter().enumerate() {
@@ -496,36 +508,24 @@ pub fn declared(robot: &Robot, model: &Model, root: LinkId, tip: LinkId) -> Opti
     };
     // The hand: the tip, or the nearest link welded to it (a tool frame hangs from the palm) that fingers
     // attach to.
-    let mut welded = vec![tip];
-    let mut seen = vec![false; model.parent_joint.len()];
-    seen[tip.0] = true;
+    let mut welded_above = vec![tip];
     let mut up = tip;
-    while up != root && welded.len() <= model.parent_joint.len() {
+    while up != root && welded_above.len() <= model.parent_joint.len() {
         let Some(joint) = model.parent_joint[up.0] else {
             break;
         };
         match model.joint_links[joint.0] {
             Some((parent, _)) if model.joint_data[joint.0].kind == JointKind::Fixed => {
-                welded.push(parent);
-                seen[parent.0] = true;
+                welded_above.push(parent);
                 up = parent;
             }
             _ => break,
         }
     }
-    let mut i = 0;
-    while i < welded.len() && welded.len() <= model.parent_joint.len() {
-        for &j in &model.child_joints[welded[i].0] {
-            if let (JointKind::Fixed, Some(c)) = (model.joint_data[j.0].kind, child(model, j)) {
-                if !seen[c.0] {
-                    seen[c.0] = true;
-                    welded.push(c);
-                }
-            }
-        }
-        i += 1;
-    }
-    let hand = welded.into_iter().find(|&l| !fingers_at(l).is_empty());
+    let hand = welded_below(model, &welded_above)
+        .into_iter()
+        .map(|(link, _)| link)
+        .find(|&l| !fingers_at(l).is_empty());
     Some(Arm {
         base: root,
         tip,
