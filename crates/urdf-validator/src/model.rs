@@ -82,6 +82,21 @@ impl Model {
         (model, findings)
     }
 
+    /// The joints from `link` up to the root, the link's own parent joint first.
+    pub fn joints_to_root(&self, link: LinkId) -> Vec<JointId> {
+        let mut joints = Vec::new();
+        let mut at = link;
+        while let Some(joint) = self.parent_joint[at.0] {
+            joints.push(joint);
+            match self.joint_links[joint.0] {
+                // At most one step per joint: the tree has no cycles, but never loop on a broken one.
+                Some((parent, _)) if joints.len() <= self.joint_data.len() => at = parent,
+                _ => break,
+            }
+        }
+        joints
+    }
+
     /// The link named `name` (first definition).
     pub fn link(&self, name: &str) -> Option<LinkId> {
         self.link_index.get(name).copied()

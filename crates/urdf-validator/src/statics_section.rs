@@ -335,14 +335,9 @@ fn capacity(
 
 /// Independent actuated joints between the root and `link` (followers are represented by their leaders).
 fn path_joints(model: &Model, link: LinkId) -> Vec<JointId> {
-    let mut joints = Vec::new();
-    let mut current = link;
-    while let Some(joint) = model.parent_joint[current.0] {
-        joints.push(statics::independent_leader(model, joint).0);
-        match model.joint_links[joint.0] {
-            Some((parent, _)) if joints.len() <= model.parent_joint.len() => current = parent,
-            _ => break,
-        }
-    }
-    joints
+    model
+        .joints_to_root(link)
+        .into_iter()
+        .map(|joint| statics::independent_leader(model, joint).0)
+        .collect()
 }

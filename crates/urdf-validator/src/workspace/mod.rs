@@ -757,21 +757,11 @@ fn summarize(
 
 /// The independent actuated joints from the robot's root down to `link`, root first.
 fn body_joints(model: &Model, link: LinkId) -> Vec<JointId> {
-    let mut joints = Vec::new();
-    let mut at = link;
-    // At most one step per link: the tree has no cycles, but never loop on a broken one.
-    for _ in 0..model.parent_joint.len() {
-        let Some(joint) = model.parent_joint[at.0] else {
-            break;
-        };
-        if model.joint_data[joint.0].is_actuated() && model.mimic[joint.0].is_none() {
-            joints.push(joint);
-        }
-        let Some((parent, _)) = model.joint_links[joint.0] else {
-            break;
-        };
-        at = parent;
-    }
+    let mut joints: Vec<JointId> = model
+        .joints_to_root(link)
+        .into_iter()
+        .filter(|j| model.joint_data[j.0].is_actuated() && model.mimic[j.0].is_none())
+        .collect();
     joints.reverse();
     joints
 }
