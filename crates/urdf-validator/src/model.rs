@@ -258,6 +258,7 @@ fn find_roots(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {
         .map(|&r| (r, descendants(model, r, &mut seen)))
         .collect();
     // Links never reached from a root sit on (or below) a cycle of parent joints.
+    let in_a_tree = seen.clone();
     for i in 0..n {
         if seen[i] || !is_first_definition(i) {
             continue;
@@ -286,6 +287,7 @@ fn find_roots(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {
             ));
         }
     }
+    detach_unrooted(model, &in_a_tree);
     trees.sort_by_key(|(root, members)| (std::cmp::Reverse(members.len()), root.0));
     if trees.len() > 1 {
         for (root, members) in &trees[1..] {
@@ -312,6 +314,21 @@ fn find_roots(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {
         .next()
         .map(|(_, members)| members)
         .unwrap_or_default();
+}
+
+/// Cut the joints that hang links no root reaches (links on or below a cycle of parent joints) out of
+/// the tree, so the Model is a forest by construction: every walk up parents or down children ends.
+fn detach_unrooted(model: &mut Model, in_a_tree: &[bool]) {
+    for (link, reached) in in_a_tree.iter().enumerate() {
+        if *reached {
+            continue;
+        }
+        if let Some(joint) = model.parent_joint[link].take() {
+            if let Some((parent, _)) = model.joint_links[joint.0].take() {
+                model.child_joints[parent.0].retain(|&j| j != joint);
+            }
+        }
+    }
 }
 
 fn resolve_mimics(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) {

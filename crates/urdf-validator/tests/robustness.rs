@@ -311,3 +311,51 @@ fn a_huge_repetitive_srdf_is_applied_in_linear_time() {
         started.elapsed()
     );
 }
+
+/// Found by the `urdf` fuzz target (3 timeouts, each a hang): in the example robot, `wrist_1_joint` names a
+/// child that does not exist and `wrist_3_joint`'s child is `wrist_1_link`, so wrist_1 → wrist_2 → wrist_1
+/// is a loop of parent joints no root reaches. Walks up the parents (self-collision's path test) never
+/// ended. The loop is reported and left out of the Model; the rest of the robot is still analysed.
+#[test]
+fn a_loop_cut_off_from_the_root_is_reported_and_does_not_hang() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/robots/mobile_manipulator.urdf");
+    let text = std::fs::read_to_string(&path).expect("the example robot ships with the repo");
+    let wrist_1 = "<joint name=\"wrist_1_joint\" type=\"revolute\">\n    <parent link=\"forearm_link\"/>\n    <child link=\"wrist_1_link\"/>";
+    let wrist_3 = "<joint name=\"wrist_3_joint\" type=\"revolute\">\n    <parent link=\"wrist_2_link\"/>\n    <child link=\"wrist_3_link\"/>";
+    assert!(
+        text.contains(wrist_1) && text.contains(wrist_3),
+        "the example robot changed"
+    );
+    let edited = text
+        .replace(
+            wrist_1,
+            &wrist_1.replace("\"wrist_1_link\"", "\"nonexistent_link\""),
+        )
+        .replace(
+            wrist_3,
+            &wrist_3.replace("\"wrist_3_link\"", "\"wrist_1_link\""),
+        );
+    let (done, result) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done.send(run(&edited));
+    });
+    let report = result
+        .recv_timeout(Duration::from_secs(60))
+        .expect("validation did not finish within 60 s (the loop hangs a walk)");
+    let loops: Vec<_> = report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U103")
+        .collect();
+    assert!(
+        loops
+            .iter()
+            .any(|f| f.message.contains("wrist_1_link") && f.message.contains("wrist_2_link")),
+        "the loop is named: {loops:#?}"
+    );
+    assert!(
+        report.statics.is_some(),
+        "the rest of the robot is still analysed"
+    );
+}
