@@ -171,9 +171,9 @@ pub enum PoseArg {
     Worst,
 }
 
-impl From<PoseArg> for urdf_validator::pose::PoseKind {
+impl From<PoseArg> for urdf_validator::analysis::pose::PoseKind {
     fn from(pose: PoseArg) -> Self {
-        use urdf_validator::pose::PoseKind;
+        use urdf_validator::analysis::pose::PoseKind;
         match pose {
             PoseArg::Zero => PoseKind::Zero,
             PoseArg::Limits => PoseKind::Limits,
@@ -206,9 +206,9 @@ pub enum RobotTypeArg {
     Unknown,
 }
 
-impl From<RobotTypeArg> for urdf_validator::classify::RobotType {
+impl From<RobotTypeArg> for urdf_validator::analysis::classify::RobotType {
     fn from(value: RobotTypeArg) -> Self {
-        use urdf_validator::classify::RobotType;
+        use urdf_validator::analysis::classify::RobotType;
         match value {
             RobotTypeArg::Wheeled => RobotType::Wheeled,
             RobotTypeArg::GroundVehicle => RobotType::GroundVehicle,

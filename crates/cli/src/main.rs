@@ -9,14 +9,15 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use rayon::prelude::*;
-use urdf_validator::physics::Overrides;
-use urdf_validator::pose::PoseOptions;
+use urdf_validator::analysis::pose::PoseOptions;
+use urdf_validator::analysis::statics::StaticsOptions;
+use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task};
+use urdf_validator::analysis::workspace::WorkspaceOptions;
+use urdf_validator::analysis::Overrides;
+use urdf_validator::diagnostics::rules;
+use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::render::{render_text, TextOptions};
-use urdf_validator::resolve::PackageResolver;
-use urdf_validator::statics_section::StaticsOptions;
-use urdf_validator::workspace::target::{parse_axis, Orientation, Task};
-use urdf_validator::workspace::WorkspaceOptions;
-use urdf_validator::{rules, Options};
+use urdf_validator::Options;
 
 use args::{Args, ColorChoice, Format};
 use outputs::Outcome;
@@ -52,7 +53,10 @@ fn run(args: Args) -> u8 {
         return 0;
     }
     if args.json_schema_markdown {
-        print!("{}", urdf_validator::schema_doc::json_schema_markdown());
+        print!(
+            "{}",
+            urdf_validator::report::schema_doc::json_schema_markdown()
+        );
         return 0;
     }
     if args.json_schema {
@@ -173,7 +177,7 @@ fn explain(code: &str) -> u8 {
             let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
             eprintln!(
                 "error: no rule '{code}' ({}); `urdf_validate --list-rules` lists them all",
-                urdf_validator::suggest::did_you_mean(code, names)
+                urdf_validator::diagnostics::suggest::did_you_mean(code, names)
             );
             2
         }
@@ -279,7 +283,7 @@ fn expand_only(
     let mut status = u8::from(!input_errors.is_empty()) * 2;
     let mut stdout = std::io::stdout().lock();
     for file in files {
-        if !urdf_validator::xacro_input::is_xacro(file) {
+        if !urdf_validator::input::xacro::is_xacro(file) {
             eprintln!(
                 "error: {}: --expand-only expects a .xacro file",
                 file.display()
@@ -287,7 +291,7 @@ fn expand_only(
             status = 2;
             continue;
         }
-        match urdf_validator::xacro_input::expand(file, xacro_args, resolver, true) {
+        match urdf_validator::input::xacro::expand(file, xacro_args, resolver, true) {
             Ok(expanded) => {
                 for (message, location) in expanded.warnings() {
                     match location {

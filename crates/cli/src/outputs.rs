@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use urdf_validator::parse::LoadError;
+use urdf_validator::input::LoadError;
 use urdf_validator::report::Status;
 use urdf_validator::{validate, Options, Validation};
 

@@ -8,12 +8,12 @@
 use std::path::{Path, PathBuf};
 
 use nalgebra::Isometry3;
+use urdf_validator::analysis::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
 use urdf_validator::checks::CheckContext;
-use urdf_validator::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
-use urdf_validator::kinematics::{forward_kinematics, Configuration, Data};
-use urdf_validator::mesh::MeshCache;
+use urdf_validator::input::mesh::MeshCache;
+use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::model::kinematics::{forward_kinematics, Configuration, Data};
 use urdf_validator::model::{JointId, Model};
-use urdf_validator::resolve::PackageResolver;
 use urdf_validator::rng::SplitMix64;
 
 fn main() {
@@ -48,7 +48,7 @@ fn arm(side: &str) -> Option<Arm> {
         return None;
     };
     let text = std::fs::read_to_string(&path).ok()?;
-    let (robot, _) = urdf_validator::parse::parse_urdf(&text, &path).ok()?;
+    let (robot, _) = urdf_validator::urdf::parse::parse_urdf(&text, &path).ok()?;
     let (model, _) = Model::build(&robot);
     let meshes = MeshCache::new();
     let resolver = PackageResolver::default();
@@ -185,7 +185,7 @@ fn fk_and_check_pr2_arm(bencher: divan::Bencher) {
 fn build_pr2(bencher: divan::Bencher) {
     let Some(path) = pr2_path() else { return };
     let text = std::fs::read_to_string(&path).unwrap_or_default();
-    let Ok((robot, _)) = urdf_validator::parse::parse_urdf(&text, &path) else {
+    let Ok((robot, _)) = urdf_validator::urdf::parse::parse_urdf(&text, &path) else {
         return;
     };
     let (model, _) = Model::build(&robot);

@@ -5,11 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use urdf_validator::kinematics::{forward_kinematics, Data};
+use urdf_validator::analysis::workspace::chain::ArmChain;
+use urdf_validator::analysis::workspace::{CollisionSetup, Scene, WorkspaceOptions};
+use urdf_validator::model::kinematics::{forward_kinematics, Data};
 use urdf_validator::model::Model;
-use urdf_validator::parse::parse_urdf;
-use urdf_validator::workspace::chain::ArmChain;
-use urdf_validator::workspace::{CollisionSetup, Scene, WorkspaceOptions};
+use urdf_validator::urdf::parse::parse_urdf;
 use urdf_validator::{validate_text, Options};
 
 fn main() {
@@ -76,15 +76,19 @@ fn seven_dof_arm() -> String {
 
 fn bench_gravity(bencher: divan::Bencher, text: &str) {
     let (robot, _) =
-        urdf_validator::parse::parse_urdf(text, Path::new("bench.urdf")).expect("parses");
+        urdf_validator::urdf::parse::parse_urdf(text, Path::new("bench.urdf")).expect("parses");
     let (model, _) = urdf_validator::model::Model::build(&robot);
-    let mut data = urdf_validator::statics::StaticsData::new(&model);
+    let mut data = urdf_validator::analysis::statics::gravity::StaticsData::new(&model);
     let mut q = model.zero_configuration();
     q.iter_mut()
         .enumerate()
         .for_each(|(i, v)| *v = 0.1 * i as f64);
     bencher.bench_local(|| {
-        urdf_validator::statics::evaluate(&model, divan::black_box(&q), &mut data);
+        urdf_validator::analysis::statics::gravity::evaluate(
+            &model,
+            divan::black_box(&q),
+            &mut data,
+        );
         data.torque[0]
     });
 }
@@ -138,7 +142,7 @@ fn tip_kinematics_7dof(bencher: divan::Bencher, with_approach: bool) {
     let mut data = Data::new(&model);
     forward_kinematics(&model, &q, &mut data);
     let (base, tip) = (model.link("base").unwrap(), model.link("l7").unwrap());
-    let arm = urdf_validator::arms::declared(&robot, &model, base, tip).expect("an arm");
+    let arm = urdf_validator::analysis::arms::declared(&robot, &model, base, tip).expect("an arm");
     let chain = ArmChain::new(&model, &arm, &data, &q);
     let samples = chain_samples(&chain, 1000);
     let approach = nalgebra::Vector3::z();
@@ -175,12 +179,13 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
     let supports: Vec<_> = robot
         .links
         .iter()
-        .map(|l| urdf_validator::geometry::link_supports(l, &mesh_points))
+        .map(|l| urdf_validator::assets::supports::link_supports(l, &mesh_points))
         .collect();
     let q = model.zero_configuration();
     let mut data = Data::new(&model);
     forward_kinematics(&model, &q, &mut data);
-    let classification = urdf_validator::classify::classify(&robot, &model, &data, &supports);
+    let classification =
+        urdf_validator::analysis::classify::classify(&robot, &model, &data, &supports);
     let collision = CollisionSetup::new(&robot, &model, &data, &mesh_points, &Default::default());
     let scene = Scene {
         robot: &robot,
@@ -194,7 +199,7 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
     };
     let workspace = WorkspaceOptions::default();
     bencher.bench_local(|| {
-        urdf_validator::workspace::analyse(
+        urdf_validator::analysis::workspace::analyse(
             &scene,
             &classification.arms,
             self_collision.then_some(&collision),

@@ -3,17 +3,19 @@
 
 use std::path::Path;
 
-use urdf_validator::kinematics::{forward_kinematics, Data};
-use urdf_validator::{checks, classify, geometry, model::Model, parse, Options};
+use urdf_validator::analysis::classify;
+use urdf_validator::assets::supports as geometry;
+use urdf_validator::model::kinematics::{forward_kinematics, Data};
+use urdf_validator::{checks, input, model::Model, urdf::parse, Options};
 
 fn main() {
     let options = Options {
-        resolver: urdf_validator::resolve::PackageResolver::from_env(Vec::new()),
+        resolver: urdf_validator::input::resolve::PackageResolver::from_env(Vec::new()),
         ..Options::default()
     };
     for arg in std::env::args().skip(1) {
         let path = Path::new(&arg);
-        let text = match parse::read_text(path) {
+        let text = match input::read_text(path) {
             Ok(text) => text,
             Err(e) => {
                 eprintln!("{e}");

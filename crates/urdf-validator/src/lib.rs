@@ -8,48 +8,29 @@
 //! let options = urdf_validator::Options::default();
 //! let validation = urdf_validator::validate(std::path::Path::new("robot.urdf"), &options)?;
 //! println!("{}", validation.report.overall_status.label());
-//! # Ok::<(), urdf_validator::parse::LoadError>(())
+//! # Ok::<(), urdf_validator::input::LoadError>(())
 //! ```
 
-pub mod arms;
+pub mod analysis;
+pub mod assets;
 pub mod checks;
-pub mod classify;
-pub mod collision;
-pub mod finding;
-pub mod geometry;
-pub mod kinematics;
-pub mod link_physics;
-pub mod mesh;
+pub mod diagnostics;
+pub mod input;
 pub mod model;
-pub mod parse;
-pub mod physics;
-pub mod pose;
 pub mod render;
 pub mod report;
-pub mod resolve;
 pub mod rng;
-pub mod robot;
-pub mod rules;
-pub mod schema_doc;
-pub mod source;
-pub mod stability_section;
-pub mod statics;
-pub mod statics_section;
-pub mod suggest;
-pub mod support_polygon;
-pub mod timestamp;
-pub mod workspace;
-pub mod xacro_input;
+pub mod urdf;
 
 use std::path::Path;
 
-use finding::{Finding, Severity};
+use analysis::{mass, Physics};
+use diagnostics::{rules, Finding, Severity};
+use input::LoadError;
+use input::{resolve::PackageResolver, source::SourceText, xacro as xacro_input};
 use model::Model;
-use parse::LoadError;
 use report::{FindingReport, Report, SchemaSection, Status};
-use resolve::PackageResolver;
-use robot::Robot;
-use source::SourceText;
+use urdf::Robot;
 
 /// This library's version, written into every report.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -60,13 +41,13 @@ pub struct Options {
     /// Where `package://` URIs are looked up.
     pub resolver: PackageResolver,
     /// Pose and payload for statics.
-    pub statics: statics_section::StaticsOptions,
+    pub statics: analysis::statics::StaticsOptions,
     /// Samples, task and orientation for the workspace.
-    pub workspace: workspace::WorkspaceOptions,
+    pub workspace: analysis::workspace::WorkspaceOptions,
     /// What the user declares instead of heuristics.
-    pub overrides: physics::Overrides,
+    pub overrides: analysis::Overrides,
     /// Meshes loaded so far (shared by every file of a run).
-    pub meshes: mesh::MeshCache,
+    pub meshes: input::mesh::MeshCache,
     /// Arguments for `.xacro` inputs (`name:=value`).
     pub xacro_args: Vec<(String, String)>,
 }
@@ -97,7 +78,7 @@ pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError>
         let text = expanded.xml().to_string();
         return validate_source(text, path, options, Locator::Xacro(expanded));
     }
-    let text = parse::read_text(path)?;
+    let text = input::read_text(path)?;
     validate_text(text, path, options)
 }
 
@@ -124,7 +105,7 @@ fn validate_source(
     options: &Options,
     locator: Locator,
 ) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = parse::parse_urdf(&text, path)?;
+    let (robot, mut findings) = urdf::parse_urdf(&text, path)?;
     // Expander warnings are located in the sources already (not in the expanded text).
     let xacro_warnings = match &locator {
         Locator::Urdf => Vec::new(),
@@ -144,13 +125,13 @@ fn validate_source(
             meshes: &options.meshes,
         };
         findings.extend(checks::run(&robot, &model, &ctx));
-        let supports: Vec<geometry::LinkSupports> = robot
+        let supports: Vec<assets::supports::LinkSupports> = robot
             .links
             .iter()
-            .map(|link| geometry::link_supports(link, &|uri| ctx.mesh_points(uri)))
+            .map(|link| assets::supports::link_supports(link, &|uri| ctx.mesh_points(uri)))
             .collect();
         let mesh_points = |uri: &str| ctx.mesh_points(uri);
-        let inputs = physics::Inputs {
+        let inputs = analysis::Inputs {
             urdf_path: path,
             supports: &supports,
             mesh_points: &mesh_points,
@@ -159,7 +140,7 @@ fn validate_source(
             overrides: &options.overrides,
         };
         let physics =
-            physics::analyse(&robot, &model, &inputs).map_err(|message| LoadError::Usage {
+            analysis::analyse(&robot, &model, &inputs).map_err(|message| LoadError::Usage {
                 path: path.to_path_buf(),
                 message,
             })?;
@@ -174,7 +155,7 @@ fn validate_source(
         .map(|f| finding_report(f, &source, &locator))
         .collect();
     for (message, location) in xacro_warnings {
-        let finding = finding::Finding::new(&rules::XACRO_WARNING, None, message);
+        let finding = Finding::new(&rules::XACRO_WARNING, None, message);
         let mut report = finding_report(&finding, &source, &locator);
         if let Some(at) = location {
             report.file = Some(at.file);
@@ -196,7 +177,7 @@ fn validate_source(
 }
 
 /// What could not be assessed, one line per section.
-fn unknowns(analyses: &physics::Physics) -> Vec<String> {
+fn unknowns(analyses: &Physics) -> Vec<String> {
     let mut lines = Vec::new();
     if analyses.statics.status == Status::Unknown {
         lines.push(format!(
@@ -237,7 +218,7 @@ fn build_report(
     model: &Model,
     findings: &[Finding],
     finding_reports: Vec<FindingReport>,
-    analyses: Option<physics::Physics>,
+    analyses: Option<Physics>,
 ) -> Report {
     let critical_issues = messages(findings, Severity::Critical);
     let warnings = messages(findings, Severity::Warn);
@@ -248,8 +229,8 @@ fn build_report(
     } else {
         Status::Pass
     };
-    let links = link_physics::link_reports(robot, model);
-    let summary = link_physics::summarize(&links);
+    let links = mass::link_reports(robot, model);
+    let summary = mass::summarize(&links);
     let overall_status = analyses.as_ref().map_or(schema_status, |a| {
         schema_status
             .worst(a.statics.status)
@@ -263,14 +244,14 @@ fn build_report(
             .as_ref()
             .map(|n| n.value.clone())
             .unwrap_or_default(),
-        timestamp: timestamp::now(),
+        timestamp: report::timestamp::now(),
         validator_version: VERSION.to_string(),
         overall_status,
         robot_type: analyses.as_ref().map(|a| a.robot_type),
         robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
         robot_type_detected: analyses.as_ref().map(|a| a.detected),
         robot_type_evidence: analyses.as_ref().map(|a| a.evidence.clone()),
-        confidence_level: link_physics::confidence_level(&summary),
+        confidence_level: mass::confidence_level(&summary),
         critical_issues: critical_issues.clone(),
         warnings: warnings
             .iter()

@@ -2,11 +2,11 @@
 
 mod common;
 
-use urdf_validator::classify::RobotType;
-use urdf_validator::physics::Overrides;
-use urdf_validator::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::classify::RobotType;
+use urdf_validator::analysis::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::statics::StaticsOptions;
+use urdf_validator::analysis::Overrides;
 use urdf_validator::report::{Report, Status};
-use urdf_validator::statics_section::StaticsOptions;
 use urdf_validator::{validate, Options};
 
 /// The expected type of every corpus URDF (path below the corpus's `robots/` folder). Reasons for the

@@ -8,16 +8,17 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use nalgebra::Isometry3;
-use urdf_validator::checks::CheckContext;
-use urdf_validator::collision::{
-    srdf_collisions, Allowed, CheckScratch, CollisionModel, PairSet, PoseCheck,
+use urdf_validator::analysis::collision::{
+    Allowed, CheckScratch, CollisionModel, PairSet, PoseCheck,
 };
-use urdf_validator::kinematics::{forward_kinematics, Data};
-use urdf_validator::mesh::MeshCache;
+use urdf_validator::analysis::pose::ConfigurationSampler;
+use urdf_validator::checks::CheckContext;
+use urdf_validator::input::mesh::MeshCache;
+use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::input::srdf::srdf_collisions;
+use urdf_validator::model::kinematics::{forward_kinematics, Data};
 use urdf_validator::model::{JointId, LinkId, Model};
-use urdf_validator::pose::ConfigurationSampler;
-use urdf_validator::resolve::PackageResolver;
-use urdf_validator::robot::Robot;
+use urdf_validator::urdf::robot::Robot;
 
 /// A parsed robot with its tree and collision model.
 struct Setup {
@@ -30,7 +31,7 @@ impl Setup {
     /// Meshes are loaded from `dir` (relative paths) when given.
     fn new(urdf: &str, dir: Option<&Path>) -> Setup {
         let path = dir.unwrap_or(Path::new(".")).join("robot.urdf");
-        let (robot, _) = urdf_validator::parse::parse_urdf(urdf, &path).expect("parses");
+        let (robot, _) = urdf_validator::urdf::parse::parse_urdf(urdf, &path).expect("parses");
         let (model, findings) = Model::build(&robot);
         assert!(findings.is_empty(), "{findings:?}");
         let resolver = PackageResolver::default();
@@ -680,7 +681,7 @@ fn degenerate_input_is_skipped_without_panicking() {
         joint("j7", "revolute", "missing", "arm", &axis),
     ]);
     let (robot, _) =
-        urdf_validator::parse::parse_urdf(&urdf, &dir.0.join("robot.urdf")).expect("parses");
+        urdf_validator::urdf::parse::parse_urdf(&urdf, &dir.0.join("robot.urdf")).expect("parses");
     let (model, _) = Model::build(&robot);
     let resolver = PackageResolver::default();
     let meshes = MeshCache::new();
@@ -734,7 +735,7 @@ fn pr2() -> Option<Setup> {
     let dir = common::shared_robots()?;
     let path = dir.join("pr2/pr2_description/robots/pr2.urdf");
     let text = fs::read_to_string(&path).expect("pr2.urdf");
-    let (robot, _) = urdf_validator::parse::parse_urdf(&text, &path).expect("parses");
+    let (robot, _) = urdf_validator::urdf::parse::parse_urdf(&text, &path).expect("parses");
     let (model, _) = Model::build(&robot);
     let resolver = PackageResolver::default();
     let meshes = MeshCache::new();

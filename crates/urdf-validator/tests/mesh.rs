@@ -1,4 +1,4 @@
-//! The mesh loader (`urdf_validator::mesh`) on generated files (STL binary/ASCII, OBJ, COLLADA with
+//! The mesh loader (`urdf_validator::input::mesh`) on generated files (STL binary/ASCII, OBJ, COLLADA with
 //! units, up axes and node hierarchies, broken files) and on every mesh of the reference robots.
 
 mod common;
@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use urdf_validator::mesh::{
+use urdf_validator::input::mesh::{
     load_mesh, load_mesh_with, MeshCache, MeshData, MeshOptions, UpAxis, UpAxisPolicy,
 };
 

@@ -5,10 +5,10 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use urdf_validator::mesh::load_mesh;
+use urdf_validator::input::mesh::load_mesh;
 use urdf_validator::model::Model;
-use urdf_validator::parse::parse_urdf;
 use urdf_validator::report::Report;
+use urdf_validator::urdf::parse::parse_urdf;
 use urdf_validator::{validate_text, Options};
 
 /// Validate `urdf` with few workspace samples (the failures are not about the sampler's budget).

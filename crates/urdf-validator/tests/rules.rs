@@ -8,10 +8,11 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use urdf_validator::finding::Severity;
-use urdf_validator::parse::LoadError;
+use urdf_validator::diagnostics::finding::Severity;
+use urdf_validator::diagnostics::rules;
+use urdf_validator::input::LoadError;
 use urdf_validator::report::{ConfidenceLevel, FindingReport, Report, Status};
-use urdf_validator::{rules, validate, validate_text, Options, Validation};
+use urdf_validator::{validate, validate_text, Options, Validation};
 
 // -------------------------------------------------------------------------------------------------
 // Helpers
@@ -2852,7 +2853,7 @@ fn an_explicit_package_path_resolves_package_uris() {
     )
     .unwrap();
     let options = Options {
-        resolver: urdf_validator::resolve::PackageResolver::new(
+        resolver: urdf_validator::input::resolve::PackageResolver::new(
             vec![dir.path().to_path_buf()],
             None,
             None,
@@ -3065,8 +3066,8 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
     assert_eq!(report.workspace.unwrap().self_collision_srdf_disabled, 1);
     // An explicit --srdf that does not exist is a usage error.
     let options = Options {
-        statics: urdf_validator::statics_section::StaticsOptions {
-            pose: urdf_validator::pose::PoseOptions {
+        statics: urdf_validator::analysis::statics::StaticsOptions {
+            pose: urdf_validator::analysis::pose::PoseOptions {
                 srdf: Some(dir.join("missing.srdf")),
                 ..Default::default()
             },

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use urdf_validator::classify::RobotType;
-use urdf_validator::physics::Overrides;
+use urdf_validator::analysis::classify::RobotType;
+use urdf_validator::analysis::Overrides;
 use urdf_validator::report::{Confidence, Report, Status};
 use urdf_validator::{validate_text, Options};
 

@@ -5,9 +5,9 @@ mod common;
 
 use std::path::Path;
 
-use urdf_validator::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::statics::StaticsOptions;
 use urdf_validator::report::{JointStatics, StaticsSection, Status};
-use urdf_validator::statics_section::StaticsOptions;
 use urdf_validator::{validate_text, Options};
 
 const G: f64 = 9.81;
@@ -289,7 +289,7 @@ fn home_pose_reads_the_srdf_found_beside_the_urdf() {
     let section = report.statics.expect("statics");
     assert!(section.notes.is_empty(), "{:?}", section.notes);
     let srdf = std::fs::read_to_string(corpus.join("z1_description/srdf/z1.srdf")).unwrap();
-    let states = urdf_validator::pose::group_states(&srdf).unwrap();
+    let states = urdf_validator::analysis::pose::group_states(&srdf).unwrap();
     let home = states.iter().find(|s| s.name == "home").unwrap();
     for (name, value) in &home.joints {
         assert_eq!(section.configuration[name], *value, "{name}");

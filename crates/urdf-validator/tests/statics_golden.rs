@@ -7,9 +7,9 @@ mod common;
 use std::path::Path;
 
 use serde_json::Value;
+use urdf_validator::analysis::statics::gravity::{evaluate, mass_and_com, StaticsData};
 use urdf_validator::model::Model;
-use urdf_validator::parse::parse_urdf;
-use urdf_validator::statics::{evaluate, mass_and_com, StaticsData};
+use urdf_validator::urdf::parse::parse_urdf;
 
 const TOLERANCE: f64 = 1e-9;
 

@@ -5,14 +5,14 @@ mod common;
 
 use std::path::Path;
 
-use urdf_validator::classify::RobotType;
-use urdf_validator::physics::Overrides;
-use urdf_validator::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::classify::RobotType;
+use urdf_validator::analysis::pose::{PoseKind, PoseOptions};
+use urdf_validator::analysis::statics::StaticsOptions;
+use urdf_validator::analysis::workspace::target::{Orientation, Task};
+use urdf_validator::analysis::workspace::WorkspaceOptions;
+use urdf_validator::analysis::Overrides;
+use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::report::{Confidence, Report, Status, WorkspaceSection};
-use urdf_validator::resolve::PackageResolver;
-use urdf_validator::statics_section::StaticsOptions;
-use urdf_validator::workspace::target::{Orientation, Task};
-use urdf_validator::workspace::WorkspaceOptions;
 use urdf_validator::{validate, validate_text, Options};
 
 fn inertial(mass: f64, xyz: [f64; 3]) -> String {

@@ -5,7 +5,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use urdf_validator::parse::LoadError;
+use urdf_validator::input::LoadError;
 use urdf_validator::{validate, Options};
 
 /// A fresh directory under the target dir for one test's files.
@@ -185,7 +185,7 @@ fn pr2_xacro_validates_like_its_expanded_urdf() {
         return;
     };
     let options = Options {
-        workspace: urdf_validator::workspace::WorkspaceOptions {
+        workspace: urdf_validator::analysis::workspace::WorkspaceOptions {
             samples: 2000,
             ..Default::default()
         },
@@ -280,9 +280,9 @@ fn xacro_warnings_inside_macros_carry_the_call_stack() {
 </robot>"#,
     )
     .unwrap();
-    let resolver = urdf_validator::resolve::PackageResolver::new(Vec::new(), None, None);
+    let resolver = urdf_validator::input::resolve::PackageResolver::new(Vec::new(), None, None);
     let expanded =
-        urdf_validator::xacro_input::expand(&robot, &[], &resolver, false).expect("expands");
+        urdf_validator::input::xacro::expand(&robot, &[], &resolver, false).expect("expands");
     let stacks: Vec<Vec<String>> = expanded
         .warnings()
         .into_iter()
@@ -320,7 +320,11 @@ fn a_missing_package_names_the_package_paths_searched() {
     let pp = dir.join("pp");
     std::fs::create_dir_all(&pp).unwrap();
     let with_path = Options {
-        resolver: urdf_validator::resolve::PackageResolver::new(vec![pp.clone()], None, None),
+        resolver: urdf_validator::input::resolve::PackageResolver::new(
+            vec![pp.clone()],
+            None,
+            None,
+        ),
         ..Options::default()
     };
     let message = validate(&robot, &with_path)
@@ -337,7 +341,7 @@ fn a_missing_package_names_the_package_paths_searched() {
     assert!(message.contains("--package-path DIR"), "{message}");
     // Nothing configured: say so.
     let bare = Options {
-        resolver: urdf_validator::resolve::PackageResolver::new(Vec::new(), None, None),
+        resolver: urdf_validator::input::resolve::PackageResolver::new(Vec::new(), None, None),
         ..Options::default()
     };
     let message = validate(&robot, &bare)

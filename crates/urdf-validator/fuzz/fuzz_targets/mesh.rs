@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use libfuzzer_sys::fuzz_target;
-use urdf_validator::mesh::{load_mesh_with, MeshOptions, UpAxisPolicy};
+use urdf_validator::input::mesh::{load_mesh_with, MeshOptions, UpAxisPolicy};
 
 fn path(ext: &str) -> PathBuf {
     std::env::temp_dir().join(format!("urdf-fuzz-mesh-{}.{ext}", std::process::id()))

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use libfuzzer_sys::fuzz_target;
-use urdf_validator::resolve::PackageResolver;
+use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::{validate_text, Options};
 
 fn sandbox() -> &'static PathBuf {

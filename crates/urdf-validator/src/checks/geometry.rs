@@ -1,11 +1,11 @@
 //! Geometry checks: degenerate shapes, meshes that cannot be found, visuals without collisions.
 
-use crate::finding::Finding;
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
+use crate::input::resolve::Resolution;
+use crate::input::source::Spanned;
 use crate::model::{LinkId, Model};
-use crate::resolve::Resolution;
-use crate::robot::{Geometry, Robot};
-use crate::rules;
-use crate::source::Spanned;
+use crate::urdf::robot::{Geometry, Robot};
 
 use super::CheckContext;
 

@@ -3,10 +3,10 @@
 
 use nalgebra::{Matrix3, SymmetricEigen};
 
-use crate::finding::Finding;
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
 use crate::model::{LinkId, Model};
-use crate::robot::{Inertia, Robot};
-use crate::rules;
+use crate::urdf::robot::{Inertia, Robot};
 
 /// Relative slack on `A + B ≥ C`: values printed with ~6 significant digits round by ~1e-6, and thin plates
 /// sit exactly on the boundary.
@@ -135,7 +135,7 @@ fn short_number(value: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::source::Span;
+    use crate::input::source::Span;
 
     fn tensor(ixx: f64, iyy: f64, izz: f64, ixy: f64) -> Inertia {
         Inertia {

@@ -1,9 +1,9 @@
 //! Joint checks: limits, effort and velocity, axes, joint types that statics cannot move.
 
-use crate::finding::Finding;
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
 use crate::model::{JointId, Model};
-use crate::robot::{Joint, JointKind, Robot};
-use crate::rules;
+use crate::urdf::robot::{Joint, JointKind, Robot};
 
 /// How far an axis length may stray from 1 before it counts as non-unit.
 const AXIS_UNIT_TOLERANCE: f64 = 1e-3;

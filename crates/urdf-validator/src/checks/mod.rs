@@ -9,12 +9,12 @@ mod references;
 
 use std::path::Path;
 
-use crate::finding::Finding;
-use crate::mesh::{MeshCache, MeshData, MeshError};
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
+use crate::input::mesh::{MeshCache, MeshData, MeshError};
+use crate::input::resolve::{PackageResolver, Resolution};
 use crate::model::Model;
-use crate::resolve::{PackageResolver, Resolution};
-use crate::robot::Robot;
-use crate::rules;
+use crate::urdf::robot::Robot;
 
 /// What the checks may need beyond the robot: where the file lives, how to find packages.
 pub struct CheckContext<'a> {

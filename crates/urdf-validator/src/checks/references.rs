@@ -2,11 +2,11 @@
 
 use std::collections::HashSet;
 
-use crate::finding::Finding;
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
+use crate::diagnostics::suggest::did_you_mean;
 use crate::model::Model;
-use crate::robot::Robot;
-use crate::rules;
-use crate::suggest::did_you_mean;
+use crate::urdf::robot::Robot;
 
 pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
     let mut findings = Vec::new();

@@ -1,0 +1,668 @@
+//! Self-collision with real geometry: every link's collision shapes (primitives exactly, meshes as their
+//! convex hulls), an allowed-collision matrix built as MoveIt's setup assistant builds it, and a per-pose
+//! check with a bounding-sphere broad phase and a GJK narrow phase.
+//!
+//! Use from a sampling loop:
+//!
+//! ```no_run
+//! # use urdf_validator::{collision::*, kinematics::*, model::*, robot::Robot};
+//! # fn run(robot: &Robot, model: &Model, arm_joints: &[JointId], samples: &[Vec<f64>],
+//! #        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>) {
+//! let mut collision = CollisionModel::build(robot, model, mesh_points);
+//! // Reference pose: pairs already in contact are reported, then no longer checked.
+//! let mut data = Data::new(model);
+//! forward_kinematics(model, &model.zero_configuration(), &mut data);
+//! let touching = collision.touching_pairs(&data.link_placement);
+//! collision.allow(&touching, Allowed::Touching);
+//! let pairs = collision.pairs_moved_by(arm_joints);
+//! let mut scratch = CheckScratch::new(&collision);
+//! let (mut free, mut clearance) = (0, f64::INFINITY);
+//! for q in samples {
+//!     forward_kinematics(model, q, &mut data);
+//!     let check = collision.check(&pairs, &data.link_placement, clearance, &mut scratch);
+//!     if check.is_free() {
+//!         free += 1;
+//!     }
+//!     if let Some((distance, _pair)) = check.min_clearance {
+//!         clearance = distance;
+//!     }
+//! }
+//! # }
+//! ```
+//!
+//! [`CollisionModel`] is immutable during checks and `Sync`; each thread keeps its own [`CheckScratch`]
+//! (with rayon: `map_init`).
+
+mod shape;
+
+use std::collections::HashSet;
+use std::ops::Range;
+
+use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query::gjk::VoronoiSimplex;
+
+use crate::assets::supports::link_supports;
+use crate::input::srdf::{SrdfCollisions, SrdfPair};
+use crate::model::{JointId, LinkId, Model};
+use crate::urdf::robot::Robot;
+
+pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
+
+/// The most links a self-collision model is built for: the allowed-collision matrix and the pair lists
+/// grow with the square of it (real robots have at most a few hundred links; a generated 6,000-link
+/// chain took minutes and gigabytes).
+pub const MAX_COLLISION_LINKS: usize = 1024;
+
+use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
+
+/// Why a pair of links is never checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Allowed {
+    /// Joined by a joint (possibly through links without collision geometry).
+    Adjacent,
+    /// No actuated joint between them: their relative placement never changes.
+    Rigid,
+    /// Allowed by an SRDF: a `<disable_collisions>` pair, or a `<disable_default_collisions>` link's pair
+    /// that no `<enable_collisions>` names.
+    Disabled,
+    /// In contact at the reference pose (see [`CollisionModel::touching_pairs`]).
+    Touching,
+}
+
+/// The collision geometry of a robot and its allowed-collision matrix.
+#[derive(Clone, Debug)]
+pub struct CollisionModel {
+    shapes: Vec<ConvexShape>,
+    /// Per link: its shapes in `shapes` and a sphere around them (centre in the link frame, radius).
+    bodies: Vec<Body>,
+    /// Links with at least one shape, in index order.
+    geometric: Vec<LinkId>,
+    /// Row-major `links × links`, symmetric.
+    allowed: Vec<Option<Allowed>>,
+    /// Per link: the joint to its parent and the parent.
+    parent: Vec<Option<(JointId, LinkId)>>,
+    /// Per link: joints between it and its root.
+    depth: Vec<usize>,
+    /// Per joint: the joint it mimics.
+    mimic_leader: Vec<Option<JointId>>,
+}
+
+#[derive(Clone, Debug)]
+struct Body {
+    shapes: Range<usize>,
+    centre: Vector3<f64>,
+    radius: f64,
+}
+
+/// Link pairs to check in every pose (none of them allowed to collide).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PairSet {
+    pairs: Vec<(LinkId, LinkId)>,
+    /// Every link of `pairs`, once, sorted: the link of each slot.
+    links: Vec<LinkId>,
+    /// Per pair: the slots of its links and the sum of their bounding radii (the broad phase reads only
+    /// this, from memory laid out in pair order).
+    broad: Vec<(u32, u32, f64)>,
+}
+
+impl PairSet {
+    /// The pairs, each with the lower link index first.
+    pub fn pairs(&self) -> &[(LinkId, LinkId)] {
+        &self.pairs
+    }
+
+    /// Number of pairs.
+    pub fn len(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// True when there is nothing to check.
+    pub fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+}
+
+/// The outcome of checking one pose.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PoseCheck {
+    /// The first pair (in [`PairSet`] order) in contact: overlapping or closer than
+    /// [`CONTACT_DISTANCE`].
+    pub contact: Option<(LinkId, LinkId)>,
+    /// When no pair is in contact: the smallest distance (metres) between the links of a pair and that
+    /// pair, if it is below the `clearance_cutoff` given to [`CollisionModel::check`].
+    pub min_clearance: Option<(f64, (LinkId, LinkId))>,
+    /// Pairs not checked because a link's placement is not finite (or absurdly far away).
+    pub skipped: usize,
+}
+
+impl PoseCheck {
+    /// True when no pair is in contact.
+    pub fn is_free(&self) -> bool {
+        self.contact.is_none()
+    }
+}
+
+/// Per-thread working memory of [`CollisionModel::check`].
+#[derive(Clone, Debug)]
+pub struct CheckScratch {
+    /// Per slot of the pair set: the world centre of its link's bounding sphere; NaN when the link's
+    /// placement is not usable.
+    centre: Vec<Vector3<f64>>,
+    /// Per shape: where it is in the current pose, valid when `stamp` matches.
+    placed: Vec<(u32, Placed)>,
+    stamp: u32,
+    /// Per pair of the last pair set: the last GJK direction (see [`shape::proximity`]).
+    axis: Vec<Vector>,
+    simplex: VoronoiSimplex,
+}
+
+impl CheckScratch {
+    /// Scratch sized for `model`.
+    pub fn new(model: &CollisionModel) -> Self {
+        CheckScratch {
+            centre: Vec::new(),
+            placed: vec![(0, Placed::default()); model.shapes.len()],
+            stamp: 0,
+            axis: Vec::new(),
+            simplex: VoronoiSimplex::new(),
+        }
+    }
+
+    /// Start a new pose: every cached shape placement becomes stale.
+    fn next_pose(&mut self) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.placed.iter_mut().for_each(|p| p.0 = 0);
+            self.stamp = 1;
+        }
+    }
+}
+
+/// A shape in the world.
+#[derive(Clone, Copy, Debug)]
+struct Placed {
+    /// The shape frame, for GJK.
+    pose: Pose,
+    /// The bounding-sphere centre.
+    centre: Vector3<f64>,
+    /// The bounding box: centre and axes.
+    obb: (Vector3<f64>, Matrix3<f64>),
+}
+
+impl Default for Placed {
+    fn default() -> Self {
+        Placed {
+            pose: Pose::IDENTITY,
+            centre: Vector3::zeros(),
+            obb: (Vector3::zeros(), Matrix3::identity()),
+        }
+    }
+}
+
+/// True when a placement can be used: finite and within [`MAX_EXTENT`].
+fn usable(placement: &Isometry3<f64>) -> bool {
+    placement
+        .translation
+        .vector
+        .iter()
+        .all(|v| v.abs() <= MAX_EXTENT)
+        && placement.rotation.coords.iter().all(|v| v.is_finite())
+}
+
+impl CollisionModel {
+    /// The collision shapes of every link (`<collision>` elements only: primitives, and meshes as the
+    /// convex hull of `mesh_points(uri)`, which returns hull points in the mesh frame before the URDF
+    /// scale, `None` when unusable). Markers (≤ 1 mm) and unusable shapes are left out, as in
+    /// [`link_supports`]. The allowed-collision matrix starts with the adjacent and rigidly attached pairs.
+    pub fn build(
+        robot: &Robot,
+        model: &Model,
+        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+    ) -> CollisionModel {
+        let links = robot.links.len();
+        let mut shapes = Vec::new();
+        let mut bodies = Vec::with_capacity(links);
+        for link in &robot.links {
+            let start = shapes.len();
+            if !link.collisions.is_empty() {
+                shapes.extend(
+                    link_supports(link, mesh_points)
+                        .shapes
+                        .iter()
+                        .filter_map(ConvexShape::from_support),
+                );
+            }
+            let spheres: Vec<(Vector3<f64>, f64)> = shapes[start..]
+                .iter()
+                .map(|s| (s.centre, s.bound))
+                .collect();
+            let (centre, radius) = enclosing_sphere(&spheres).unwrap_or((Vector3::zeros(), 0.0));
+            bodies.push(Body {
+                shapes: start..shapes.len(),
+                centre,
+                radius,
+            });
+        }
+        let parent: Vec<Option<(JointId, LinkId)>> = (0..links)
+            .map(|l| {
+                let joint = model.parent_joint.get(l).copied().flatten()?;
+                let (p, _) = model.joint_links.get(joint.0).copied().flatten()?;
+                Some((joint, p))
+            })
+            .collect();
+        let depth = (0..links)
+            .map(|l| {
+                let mut link = l;
+                let mut depth = 0;
+                while let Some((_, p)) = parent[link] {
+                    link = p.0;
+                    depth += 1;
+                    if depth > links {
+                        break; // not a tree; Model::build prevents this
+                    }
+                }
+                depth
+            })
+            .collect();
+        let mut collision = CollisionModel {
+            geometric: (0..links)
+                .filter(|&l| !bodies[l].shapes.is_empty())
+                .map(LinkId)
+                .collect(),
+            shapes,
+            bodies,
+            allowed: vec![None; links * links],
+            parent,
+            depth,
+            mimic_leader: model.mimic.iter().map(|m| m.map(|m| m.leader)).collect(),
+        };
+        collision.allow_structural(model);
+        collision
+    }
+
+    /// Mark adjacent and rigidly attached pairs.
+    fn allow_structural(&mut self, model: &Model) {
+        let adjacent: Vec<(LinkId, LinkId)> = self
+            .geometric
+            .iter()
+            .flat_map(|&link| {
+                self.geometric_neighbours(model, link)
+                    .into_iter()
+                    .map(move |other| (link, other))
+            })
+            .collect();
+        self.allow(&adjacent, Allowed::Adjacent);
+        let actuated: Vec<bool> = model.joint_data.iter().map(|j| j.is_actuated()).collect();
+        let rigid: Vec<(LinkId, LinkId)> = self
+            .geometric_pairs()
+            .filter(|&(a, b)| !self.path_has(a, b, |j| actuated.get(j.0).copied().unwrap_or(false)))
+            .collect();
+        self.allow(&rigid, Allowed::Rigid);
+    }
+
+    /// Links with geometry reached from `link` through tree edges, walking through links without geometry
+    /// (MoveIt's setup assistant merges such links into their neighbours).
+    fn geometric_neighbours(&self, model: &Model, link: LinkId) -> Vec<LinkId> {
+        let tree_neighbours = |l: LinkId| {
+            let parent = self.parent[l.0].map(|(_, p)| p);
+            let children = model.child_joints[l.0]
+                .iter()
+                .filter_map(|j| model.joint_links[j.0].map(|(_, c)| c));
+            parent.into_iter().chain(children)
+        };
+        let mut seen = vec![link];
+        let mut stack: Vec<LinkId> = tree_neighbours(link).collect();
+        let mut found = Vec::new();
+        while let Some(next) = stack.pop() {
+            if seen.contains(&next) {
+                continue;
+            }
+            seen.push(next);
+            if self.bodies[next.0].shapes.is_empty() {
+                stack.extend(tree_neighbours(next));
+            } else {
+                found.push(next);
+            }
+        }
+        found
+    }
+
+    /// Every pair of links with geometry, lower index first.
+    fn geometric_pairs(&self) -> impl Iterator<Item = (LinkId, LinkId)> + '_ {
+        self.geometric
+            .iter()
+            .enumerate()
+            .flat_map(move |(i, &a)| self.geometric[i + 1..].iter().map(move |&b| (a, b)))
+    }
+
+    /// True when a joint on the tree path between `a` and `b` passes `test`.
+    fn path_has(&self, a: LinkId, b: LinkId, test: impl Fn(JointId) -> bool) -> bool {
+        let (mut a, mut b) = (a.0, b.0);
+        while a != b {
+            let link = if self.depth[a] >= self.depth[b] {
+                &mut a
+            } else {
+                &mut b
+            };
+            // Two roots: every joint of both paths has been seen.
+            let Some((joint, parent)) = self.parent[*link] else {
+                return false;
+            };
+            if test(joint) {
+                return true;
+            }
+            *link = parent.0;
+        }
+        false
+    }
+
+    /// A pair set, largest links first: big links (a base, a torso) are the likeliest to be hit, and
+    /// [`check`](Self::check) stops at the first contact.
+    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>) -> PairSet {
+        let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
+        pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
+        let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+        links.sort_unstable();
+        links.dedup();
+        let slot = |link: LinkId| links.binary_search(&link).unwrap_or_default() as u32;
+        let broad = pairs
+            .iter()
+            .map(|&pair| (slot(pair.0), slot(pair.1), size(pair)))
+            .collect();
+        PairSet {
+            pairs,
+            links,
+            broad,
+        }
+    }
+
+    /// Why `a` and `b` are never checked, if they are not.
+    pub fn allowed(&self, a: LinkId, b: LinkId) -> Option<Allowed> {
+        let n = self.bodies.len();
+        self.allowed.get(a.0 * n + b.0).copied().flatten()
+    }
+
+    /// Never check `pairs` again, for `reason` (a pair keeps the first reason it was given). Links out of
+    /// range are ignored.
+    pub fn allow(&mut self, pairs: &[(LinkId, LinkId)], reason: Allowed) {
+        let n = self.bodies.len();
+        for &(a, b) in pairs {
+            if a.0 < n && b.0 < n {
+                for index in [a.0 * n + b.0, b.0 * n + a.0] {
+                    self.allowed[index].get_or_insert(reason);
+                }
+            }
+        }
+    }
+
+    /// Allow what the SRDF allows (see [`SrdfCollisions`]: `disable_collisions` pairs, and every pair of a
+    /// `disable_default_collisions` link but those an `enable_collisions` names); returns one message
+    /// per link name the robot does not have (`line:col: ...`), whose entry is otherwise ignored.
+    pub fn allow_srdf(&mut self, model: &Model, srdf: &SrdfCollisions) -> Vec<String> {
+        let problems = srdf
+            .named_links()
+            .into_iter()
+            .filter(|(_, link, ..)| model.link(link).is_none())
+            .map(|(tag, link, line, column)| {
+                format!("{line}:{column}: <{tag}> names unknown link '{link}'")
+            })
+            .collect();
+        let known = |pairs: &[SrdfPair]| -> Vec<(LinkId, LinkId)> {
+            pairs
+                .iter()
+                .filter_map(|pair| Some((model.link(&pair.link1)?, model.link(&pair.link2)?)))
+                .collect()
+        };
+        self.allow(&known(&srdf.disabled), Allowed::Disabled);
+        // Sets, each entry once: an SRDF is untrusted input and may repeat entries by the thousand.
+        let enabled: HashSet<(LinkId, LinkId)> = known(&srdf.enabled)
+            .into_iter()
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .collect();
+        let mut by_default_links: Vec<LinkId> = srdf
+            .disabled_by_default
+            .iter()
+            .filter_map(|entry| model.link(&entry.link))
+            .collect();
+        by_default_links.sort_unstable();
+        by_default_links.dedup();
+        let by_default: Vec<(LinkId, LinkId)> = by_default_links
+            .into_iter()
+            .flat_map(|link| self.geometric.iter().map(move |&other| (link, other)))
+            .filter(|&(link, other)| {
+                link != other && !enabled.contains(&(link.min(other), link.max(other)))
+            })
+            .collect();
+        self.allow(&by_default, Allowed::Disabled);
+        problems
+    }
+
+    /// True when `link` has at least one usable collision shape.
+    pub fn has_geometry(&self, link: LinkId) -> bool {
+        self.bodies
+            .get(link.0)
+            .is_some_and(|b| !b.shapes.is_empty())
+    }
+
+    /// Every pair of links with geometry that is not allowed to collide.
+    pub fn all_pairs(&self) -> PairSet {
+        self.pair_set(
+            self.geometric_pairs()
+                .filter(|&(a, b)| self.allowed(a, b).is_none())
+                .collect(),
+        )
+    }
+
+    /// The pairs whose distance changes when `joints` move (and the mimic joints that follow them): a
+    /// joint among them lies on the tree path between the two links. Allowed pairs are left out. Pairs of
+    /// links that both move rigidly together are left out, as their distance does not change.
+    pub fn pairs_moved_by(&self, joints: &[JointId]) -> PairSet {
+        let mut varies = vec![false; self.mimic_leader.len()];
+        for joint in joints {
+            if let Some(v) = varies.get_mut(joint.0) {
+                *v = true;
+            }
+        }
+        // Followers of varying joints vary (chains: repeat until nothing changes).
+        for _ in 0..varies.len() {
+            let mut changed = false;
+            for (joint, leader) in self.mimic_leader.iter().enumerate() {
+                if let Some(leader) = leader {
+                    if varies[leader.0] && !varies[joint] {
+                        varies[joint] = true;
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        self.pair_set(
+            self.geometric_pairs()
+                .filter(|&(a, b)| {
+                    self.allowed(a, b).is_none() && self.path_has(a, b, |j| varies[j.0])
+                })
+                .collect(),
+        )
+    }
+
+    /// Pairs (not yet allowed) in contact with every link at `placements` (world placements indexed by
+    /// link, as [`crate::model::kinematics::Data::link_placement`]). At the reference pose these usually mean
+    /// broken collision geometry: report them, then [`allow`](Self::allow) them as
+    /// [`Allowed::Touching`].
+    pub fn touching_pairs(&self, placements: &[Isometry3<f64>]) -> Vec<(LinkId, LinkId)> {
+        let mut touching = Vec::new();
+        self.check_pairs(
+            &self.all_pairs(),
+            placements,
+            0.0,
+            &mut CheckScratch::new(self),
+            &mut |pair| {
+                touching.push(pair);
+                true
+            },
+        );
+        touching
+    }
+
+    /// Check the pairs of `pairs` with the links at `placements` (world placements indexed by link, as
+    /// [`crate::model::kinematics::Data::link_placement`]), stopping at the first pair in contact.
+    ///
+    /// Bounding spheres first, then bounding boxes, then GJK on the shapes, each stage only for pairs
+    /// that may be closer than the current margin: the smallest distance found so far in this pose,
+    /// starting at `clearance_cutoff`. Pass the smallest clearance seen over earlier poses as
+    /// `clearance_cutoff` (`f64::INFINITY` at first; 0 when clearance does not matter): distances are then
+    /// only computed for pairs that can beat it, and [`PoseCheck::min_clearance`] is `Some` only when one
+    /// does. Pairs with a link whose placement is not usable are skipped and counted.
+    pub fn check(
+        &self,
+        pairs: &PairSet,
+        placements: &[Isometry3<f64>],
+        clearance_cutoff: f64,
+        scratch: &mut CheckScratch,
+    ) -> PoseCheck {
+        let mut contact = None;
+        let mut result =
+            self.check_pairs(pairs, placements, clearance_cutoff, scratch, &mut |pair| {
+                contact = Some(pair);
+                false
+            });
+        result.contact = contact;
+        result
+    }
+
+    /// [`check`](Self::check), calling `on_contact` for each pair in contact and going on while it
+    /// returns true (`contact` of the result is left empty).
+    fn check_pairs(
+        &self,
+        pairs: &PairSet,
+        placements: &[Isometry3<f64>],
+        clearance_cutoff: f64,
+        scratch: &mut CheckScratch,
+        on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
+    ) -> PoseCheck {
+        scratch.next_pose();
+        let mut result = PoseCheck::default();
+        let mut all_usable = true;
+        scratch.centre.clear();
+        scratch.centre.extend(pairs.links.iter().map(|link| {
+            let placement = placements.get(link.0).filter(|p| usable(p));
+            all_usable &= placement.is_some();
+            placement.map_or(Vector3::repeat(f64::NAN), |p| {
+                p.transform_point(&Point3::from(self.bodies[link.0].centre))
+                    .coords
+            })
+        }));
+        let centre = &scratch.centre;
+        if !all_usable {
+            result.skipped = pairs
+                .broad
+                .iter()
+                .filter(|(a, b, _)| {
+                    centre[*a as usize].x.is_nan() || centre[*b as usize].x.is_nan()
+                })
+                .count();
+        }
+        if scratch.axis.len() < pairs.len() {
+            scratch.axis.resize(pairs.len(), Vector::ZERO);
+        }
+        let mut margin = clearance_cutoff.max(CONTACT_DISTANCE);
+        let mut nearest = None;
+        let mut in_contact = false;
+        for (index, &(slot_a, slot_b, radii)) in pairs.broad.iter().enumerate() {
+            // Squared, so no root; NaN centres are unusable placements.
+            let reach = radii + margin;
+            let squared =
+                (scratch.centre[slot_a as usize] - scratch.centre[slot_b as usize]).norm_squared();
+            if squared >= reach * reach || squared.is_nan() {
+                continue;
+            }
+            let (a, b) = pairs.pairs[index];
+            match self.link_proximity(a, b, index, placements, margin, scratch) {
+                Proximity::Contact => {
+                    in_contact = true;
+                    margin = CONTACT_DISTANCE;
+                    if !on_contact((a, b)) {
+                        break;
+                    }
+                }
+                Proximity::Apart(d) => {
+                    nearest = Some((d, (a, b)));
+                    margin = d;
+                }
+                Proximity::Beyond => {}
+            }
+        }
+        if !in_contact {
+            result.min_clearance = nearest;
+        }
+        result
+    }
+
+    /// The proximity of two links (both placements usable): the closest of their shape pairs.
+    fn link_proximity(
+        &self,
+        a: LinkId,
+        b: LinkId,
+        pair_index: usize,
+        placements: &[Isometry3<f64>],
+        mut margin: f64,
+        scratch: &mut CheckScratch,
+    ) -> Proximity {
+        let mut best = Proximity::Beyond;
+        for i in self.bodies[a.0].shapes.clone() {
+            let pa = self.placed_shape(i, &placements[a.0], scratch);
+            for j in self.bodies[b.0].shapes.clone() {
+                let pb = self.placed_shape(j, &placements[b.0], scratch);
+                let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
+                let reach = sa.bound + sb.bound + margin;
+                if (pa.centre - pb.centre).norm_squared() >= reach * reach
+                    || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
+                {
+                    continue;
+                }
+                match proximity(
+                    sa,
+                    &pa.pose,
+                    sb,
+                    &pb.pose,
+                    margin,
+                    &mut scratch.axis[pair_index],
+                    &mut scratch.simplex,
+                ) {
+                    Proximity::Contact => {
+                        return Proximity::Contact;
+                    }
+                    Proximity::Apart(d) => {
+                        best = Proximity::Apart(d);
+                        margin = d;
+                    }
+                    Proximity::Beyond => {}
+                }
+            }
+        }
+        best
+    }
+
+    /// Where shape `index` of a link placed at `link` is, cached for the current pose.
+    fn placed_shape(
+        &self,
+        index: usize,
+        link: &Isometry3<f64>,
+        scratch: &mut CheckScratch,
+    ) -> Placed {
+        let (stamp, placed) = &mut scratch.placed[index];
+        if *stamp != scratch.stamp {
+            let shape = &self.shapes[index];
+            *stamp = scratch.stamp;
+            *placed = Placed {
+                pose: to_pose(&(link * shape.frame)),
+                centre: link.transform_point(&Point3::from(shape.centre)).coords,
+                obb: shape.obb.placed(link),
+            };
+        }
+        *placed
+    }
+}

@@ -1,0 +1,775 @@
+//! Convex collision shapes and the narrow phase.
+//!
+//! Every shape is a convex *core* (a point, a segment, a cylinder or a point cloud standing for its convex
+//! hull) grown by a radius: a sphere is a point grown by its radius, a capsule a segment. GJK runs on the
+//! cores (parry's implementation, statically dispatched over [`Core`]) and the radii are subtracted
+//! afterwards, which is exact for rounded shapes and converges faster than GJK on curved support maps.
+
+use std::cell::Cell;
+
+use nalgebra::{Isometry3, Matrix3, Point3, SymmetricEigen, Translation3, UnitQuaternion, Vector3};
+use parry3d_f64::math::{Pose, Rotation, Vector};
+use parry3d_f64::query::details::closest_points_support_map_support_map_with_params;
+use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
+use parry3d_f64::shape::SupportMap;
+
+use crate::assets::supports::Support;
+
+/// Two shapes closer than this (metres) are in contact: touching counts as colliding.
+pub const CONTACT_DISTANCE: f64 = 1e-6;
+
+/// Shapes or placements farther than this from the link origin (metres) are treated as unusable: no robot
+/// is ten kilometres wide, and bounded coordinates keep every GJK quantity finite.
+pub const MAX_EXTENT: f64 = 1e4;
+
+/// The convex part of a shape, in the shape frame.
+#[derive(Clone, Debug)]
+pub enum Core {
+    /// The origin (sphere core).
+    Point,
+    /// The segment from `-half` to `+half` along z (capsule core).
+    Segment {
+        /// Half length.
+        half: f64,
+    },
+    /// A solid cylinder along z.
+    Cylinder {
+        /// Radius.
+        radius: f64,
+        /// Half length.
+        half: f64,
+    },
+    /// A convex hull.
+    Hull(Hull),
+}
+
+/// A convex hull as its vertices, with the edges between them when a closed convex triangulation could be
+/// built: support queries then climb along edges from a starting vertex instead of scanning every vertex.
+#[derive(Clone, Debug)]
+pub struct Hull {
+    points: Vec<Vector>,
+    /// `neighbours[offsets[v]..offsets[v + 1]]` are joined to vertex `v` by an edge; empty: scan.
+    offsets: Vec<usize>,
+    neighbours: Vec<u32>,
+    /// Per octant of directions (bit k set when component k is positive): the vertex furthest along the
+    /// octant's diagonal, where climbs start.
+    starts: [usize; 8],
+}
+
+/// The octant of `dir`, as indexed by [`Hull::starts`].
+fn octant(dir: Vector) -> usize {
+    usize::from(dir.x > 0.0) | usize::from(dir.y > 0.0) << 1 | usize::from(dir.z > 0.0) << 2
+}
+
+/// Below this many vertices a scan is as fast as a climb.
+const CLIMB_FROM: usize = 16;
+
+impl Hull {
+    /// The hull of `points` (its vertices or more; the support map is the same).
+    pub fn new(points: Vec<Vector>) -> Hull {
+        if points.len() >= CLIMB_FROM {
+            if let Some(hull) = Self::triangulated(&points) {
+                return hull;
+            }
+        }
+        Hull {
+            points,
+            offsets: Vec::new(),
+            neighbours: Vec::new(),
+            starts: [0; 8],
+        }
+    }
+
+    /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
+    /// convex and contains every point to within a nanometre (quickhull can fail on coplanar points).
+    fn triangulated(points: &[Vector]) -> Option<Hull> {
+        let result =
+            std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
+        let (vertices, triangles) = result.ok()?.ok()?;
+        let n = vertices.len();
+        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 3);
+        for t in &triangles {
+            if t.iter().any(|&v| v as usize >= n) {
+                return None;
+            }
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.push((a.min(b), a.max(b)));
+            }
+        }
+        edges.sort_unstable();
+        // Closed: every edge is shared by exactly two triangles.
+        let closed = edges
+            .chunks(2)
+            .all(|pair| pair.len() == 2 && pair[0] == pair[1])
+            && edges.windows(3).all(|w| w[0] != w[2]);
+        if !closed || n < 4 {
+            return None;
+        }
+        let centroid = vertices.iter().copied().sum::<Vector>() / n as f64;
+        let planes: Vec<Option<(Vector, Vector)>> = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| vertices[v as usize]);
+                let mut normal = (b - a).cross(c - a);
+                if normal.dot(centroid - a) > 0.0 {
+                    normal = -normal;
+                }
+                normal.try_normalize().map(|normal| (normal, a))
+            })
+            .collect();
+        let outside = |plane: &Option<(Vector, Vector)>, p: Vector| {
+            plane.is_some_and(|(normal, a)| normal.dot(p - a) > 1e-9)
+        };
+        if vertices.len() == points.len() && planes.iter().all(Option::is_some) {
+            // Every point is a vertex of the surface (the usual case: hull vertices in), so it is the hull
+            // when it is convex: closed, and convex across every edge, checked in O(faces). A degenerate
+            // (zero-area) face could hide a fold from its neighbours: then every point is checked.
+            let mut sides: Vec<((u32, u32), usize)> = Vec::with_capacity(triangles.len() * 3);
+            for (index, t) in triangles.iter().enumerate() {
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    sides.push(((a.min(b), a.max(b)), index));
+                }
+            }
+            sides.sort_unstable();
+            for pair in sides.chunks(2) {
+                let [(edge, first), (_, second)] = [pair[0], pair[1]];
+                let opposite = |t: usize| {
+                    let v = triangles[t]
+                        .into_iter()
+                        .find(|&v| v != edge.0 && v != edge.1);
+                    vertices[v.unwrap_or(edge.0) as usize]
+                };
+                if outside(&planes[first], opposite(second))
+                    || outside(&planes[second], opposite(first))
+                {
+                    return None;
+                }
+            }
+        } else if planes
+            .iter()
+            .any(|plane| points.iter().any(|&p| outside(plane, p)))
+        {
+            return None;
+        }
+        edges.dedup();
+        let mut adjacency = vec![Vec::new(); n];
+        for (a, b) in edges {
+            adjacency[a as usize].push(b);
+            adjacency[b as usize].push(a);
+        }
+        let mut offsets = vec![0];
+        let mut neighbours = Vec::new();
+        for list in adjacency {
+            neighbours.extend(list);
+            offsets.push(neighbours.len());
+        }
+        let mut hull = Hull {
+            points: vertices,
+            offsets,
+            neighbours,
+            starts: [0; 8],
+        };
+        hull.starts = std::array::from_fn(|index| {
+            let sign = |bit: usize| if index & bit == 0 { -1.0 } else { 1.0 };
+            hull.support_index(Vector::new(sign(1), sign(2), sign(4)), 0)
+        });
+        Some(hull)
+    }
+
+    /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known
+    /// (from the start of `dir`'s octant when `start` is out of range).
+    fn support_index(&self, dir: Vector, start: usize) -> usize {
+        if self.offsets.is_empty() {
+            let mut best = 0;
+            let mut best_dot = f64::NEG_INFINITY;
+            for (i, p) in self.points.iter().enumerate() {
+                let d = p.dot(dir);
+                if d > best_dot {
+                    best_dot = d;
+                    best = i;
+                }
+            }
+            return best;
+        }
+        let mut vertex = if start < self.points.len() {
+            start
+        } else {
+            self.starts[octant(dir)]
+        };
+        let mut best_dot = self.points[vertex].dot(dir);
+        loop {
+            let from = vertex;
+            for &next in &self.neighbours[self.offsets[from]..self.offsets[from + 1]] {
+                let d = self.points[next as usize].dot(dir);
+                if d > best_dot {
+                    best_dot = d;
+                    vertex = next as usize;
+                }
+            }
+            if vertex == from {
+                return vertex;
+            }
+        }
+    }
+}
+
+/// A core whose hull support queries start from the vertex the previous query ended at (successive GJK
+/// directions are close, so the climb is short).
+struct Warm<'a> {
+    core: &'a Core,
+    vertex: Cell<usize>,
+}
+
+impl SupportMap for Warm<'_> {
+    #[inline]
+    fn local_support_point(&self, dir: Vector) -> Vector {
+        match self.core {
+            Core::Hull(hull) => {
+                let vertex = hull.support_index(dir, self.vertex.get());
+                self.vertex.set(vertex);
+                hull.points[vertex]
+            }
+            core => core.local_support_point(dir),
+        }
+    }
+}
+
+impl SupportMap for Core {
+    #[inline]
+    fn local_support_point(&self, dir: Vector) -> Vector {
+        match self {
+            Core::Point => Vector::ZERO,
+            Core::Segment { half } => Vector::new(0.0, 0.0, half.copysign(dir.z)),
+            Core::Cylinder { radius, half } => {
+                let planar = (dir.x * dir.x + dir.y * dir.y).sqrt();
+                let (x, y) = if planar > 0.0 {
+                    (dir.x * radius / planar, dir.y * radius / planar)
+                } else {
+                    (0.0, 0.0)
+                };
+                Vector::new(x, y, half.copysign(dir.z))
+            }
+            Core::Hull(hull) if hull.points.is_empty() => Vector::ZERO,
+            Core::Hull(hull) => hull.points[hull.support_index(dir, usize::MAX)],
+        }
+    }
+}
+
+/// One collision shape of a link: a core grown by `radius`, placed at `frame` in the link frame, inside the
+/// sphere (`centre`, `bound`) of the link frame.
+#[derive(Clone, Debug)]
+pub struct ConvexShape {
+    /// The convex core.
+    pub core: Core,
+    /// How much the core is grown (sphere and capsule radius; 0 otherwise).
+    pub radius: f64,
+    /// Shape frame in the link frame.
+    pub frame: Isometry3<f64>,
+    /// Centre of a bounding sphere, in the link frame.
+    pub centre: Vector3<f64>,
+    /// Radius of that bounding sphere.
+    pub bound: f64,
+    /// A box around the grown core, in the link frame.
+    pub obb: Obb,
+}
+
+/// An oriented box: `frame` places its centre and axes, `half` its half extents along them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Obb {
+    /// Centre and axes.
+    pub frame: Isometry3<f64>,
+    /// Half extents.
+    pub half: Vector3<f64>,
+}
+
+impl Obb {
+    /// The box placed by `placement`, as (centre, axes as columns).
+    pub fn placed(&self, placement: &Isometry3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+        let frame = placement * self.frame;
+        (
+            frame.translation.vector,
+            *frame.rotation.to_rotation_matrix().matrix(),
+        )
+    }
+
+    /// The volume, for choosing the tighter of two boxes.
+    fn volume(&self) -> f64 {
+        self.half.x * self.half.y * self.half.z
+    }
+}
+
+/// The tighter of the axis-aligned and the principal-axes box of points of the link frame.
+fn fitted_box(points: &[Vector3<f64>]) -> Option<Obb> {
+    let aligned = box_along(points, UnitQuaternion::identity())?;
+    let n = points.len() as f64;
+    let mean = points.iter().sum::<Vector3<f64>>() / n;
+    let covariance = points
+        .iter()
+        .map(|p| (p - mean) * (p - mean).transpose())
+        .sum::<Matrix3<f64>>()
+        / n;
+    let eigen = SymmetricEigen::new(covariance);
+    let mut axes = eigen.eigenvectors;
+    if axes.determinant() < 0.0 {
+        axes.column_mut(2).neg_mut();
+    }
+    let principal =
+        nalgebra::Rotation3::from_matrix_eps(&axes, 1e-12, 100, nalgebra::Rotation3::identity());
+    let principal = box_along(points, UnitQuaternion::from_rotation_matrix(&principal));
+    Some(match principal {
+        Some(p) if p.volume() < aligned.volume() => p,
+        _ => aligned,
+    })
+}
+
+/// The smallest box with axes `rotation` around `points`.
+fn box_along(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> Option<Obb> {
+    let local: Vec<Vector3<f64>> = points
+        .iter()
+        .map(|p| rotation.inverse_transform_vector(p))
+        .collect();
+    let first = local.first()?;
+    let (lo, hi) = local
+        .iter()
+        .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let centre = rotation * ((lo + hi) / 2.0);
+    let obb = Obb {
+        frame: Isometry3::from_parts(Translation3::from(centre), rotation),
+        half: (hi - lo) / 2.0,
+    };
+    obb.half.iter().all(|v| v.is_finite()).then_some(obb)
+}
+
+/// True when a separating axis of the two boxes (centre, axes as columns, half extents) shows them at
+/// least `margin` apart (the separating-axis test of Gottschalk et al. with a gap).
+pub fn boxes_apart(
+    a: &(Vector3<f64>, Matrix3<f64>),
+    half_a: &Vector3<f64>,
+    b: &(Vector3<f64>, Matrix3<f64>),
+    half_b: &Vector3<f64>,
+    margin: f64,
+) -> bool {
+    // Everything in A's frame; the epsilon keeps near-parallel edges conservative.
+    let r = a.1.transpose() * b.1;
+    let abs = r.abs().add_scalar(1e-12);
+    let t = a.1.transpose() * (b.0 - a.0);
+    for i in 0..3 {
+        let reach = half_a[i] + half_b.dot(&abs.row(i).transpose());
+        if t[i].abs() - reach >= margin {
+            return true;
+        }
+    }
+    for j in 0..3 {
+        let reach = half_a.dot(&abs.column(j)) + half_b[j];
+        if t.dot(&r.column(j)).abs() - reach >= margin {
+            return true;
+        }
+    }
+    for i in 0..3 {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        for j in 0..3 {
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            // |A_i × B_j| = sin of their angle; parallel edges are covered by the face axes.
+            let length = (1.0 - r[(i, j)] * r[(i, j)]).max(0.0).sqrt();
+            if length < 1e-6 {
+                continue;
+            }
+            let reach = half_a[i1] * abs[(i2, j)]
+                + half_a[i2] * abs[(i1, j)]
+                + half_b[j1] * abs[(i, j2)]
+                + half_b[j2] * abs[(i, j1)];
+            let distance = (t[i2] * r[(i1, j)] - t[i1] * r[(i2, j)]).abs();
+            if distance - reach >= margin * length {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+impl ConvexShape {
+    /// The collision shape of one [`Support`]; `None` when its numbers are unusable.
+    pub fn from_support(support: &Support) -> Option<ConvexShape> {
+        let (core, radius, frame) = match support {
+            Support::Points(points) => {
+                let points: Vec<Vector> =
+                    points.iter().map(|p| Vector::new(p.x, p.y, p.z)).collect();
+                (Core::Hull(Hull::new(points)), 0.0, Isometry3::identity())
+            }
+            Support::Rounded {
+                frame,
+                radius,
+                length,
+            } => {
+                let core = if *length > 0.0 {
+                    Core::Segment { half: length / 2.0 }
+                } else {
+                    Core::Point
+                };
+                (core, *radius, *frame)
+            }
+            Support::Cylinder {
+                frame,
+                radius,
+                length,
+            } => (
+                Core::Cylinder {
+                    radius: *radius,
+                    half: length / 2.0,
+                },
+                0.0,
+                *frame,
+            ),
+        };
+        let (centre, bound) = bounding_sphere(&core, radius, &frame)?;
+        let obb = match &core {
+            Core::Hull(hull) => {
+                let placed: Vec<Vector3<f64>> = hull
+                    .points
+                    .iter()
+                    .map(|p| frame.transform_point(&Point3::new(p.x, p.y, p.z)).coords)
+                    .collect();
+                fitted_box(&placed)?
+            }
+            Core::Point => Obb {
+                frame,
+                half: Vector3::repeat(radius),
+            },
+            Core::Segment { half } => Obb {
+                frame,
+                half: Vector3::new(radius, radius, half + radius),
+            },
+            Core::Cylinder { radius, half } => Obb {
+                frame,
+                half: Vector3::new(*radius, *radius, *half),
+            },
+        };
+        Some(ConvexShape {
+            core,
+            radius,
+            frame,
+            centre,
+            bound,
+            obb,
+        })
+    }
+}
+
+/// A sphere around the grown core, in the link frame; `None` for empty or unbounded shapes.
+fn bounding_sphere(
+    core: &Core,
+    radius: f64,
+    frame: &Isometry3<f64>,
+) -> Option<(Vector3<f64>, f64)> {
+    let (centre, core_radius) = match core {
+        Core::Point => (frame.translation.vector, 0.0),
+        Core::Segment { half } => (frame.translation.vector, *half),
+        Core::Cylinder { radius, half } => (frame.translation.vector, radius.hypot(*half)),
+        Core::Hull(hull) => {
+            let placed: Vec<Vector3<f64>> = hull
+                .points
+                .iter()
+                .map(|p| frame.transform_point(&Point3::new(p.x, p.y, p.z)).coords)
+                .collect();
+            let first = placed.first()?;
+            let (lo, hi) = placed
+                .iter()
+                .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+            let centre = (lo + hi) / 2.0;
+            let reach = placed
+                .iter()
+                .map(|p| (p - centre).norm())
+                .fold(0.0, f64::max);
+            (centre, reach)
+        }
+    };
+    let bound = core_radius + radius;
+    let usable =
+        centre.iter().all(|v| v.abs() <= MAX_EXTENT) && bound.is_finite() && bound <= MAX_EXTENT;
+    usable.then_some((centre, bound))
+}
+
+/// The smallest-effort sphere around several spheres: centred on their bounding box.
+pub fn enclosing_sphere(spheres: &[(Vector3<f64>, f64)]) -> Option<(Vector3<f64>, f64)> {
+    let lo = spheres
+        .iter()
+        .map(|(c, r)| c.add_scalar(-r))
+        .reduce(|a, b| a.inf(&b))?;
+    let hi = spheres
+        .iter()
+        .map(|(c, r)| c.add_scalar(*r))
+        .reduce(|a, b| a.sup(&b))?;
+    let centre = (lo + hi) / 2.0;
+    let radius = spheres
+        .iter()
+        .map(|(c, r)| (c - centre).norm() + r)
+        .fold(0.0, f64::max);
+    Some((centre, radius))
+}
+
+/// A placement in parry's types.
+pub fn to_pose(iso: &Isometry3<f64>) -> Pose {
+    let t = iso.translation.vector;
+    let q = iso.rotation.quaternion().coords;
+    Pose::from_parts(
+        Vector::new(t.x, t.y, t.z),
+        Rotation::from_xyzw(q.x, q.y, q.z, q.w),
+    )
+}
+
+/// How close two placed shapes are, as far as a query with a margin can tell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Proximity {
+    /// Overlapping or touching (closer than [`CONTACT_DISTANCE`]).
+    Contact,
+    /// Apart by this distance, which is below the margin asked for.
+    Apart(f64),
+    /// Farther apart than the margin.
+    Beyond,
+}
+
+/// The proximity of `a` placed at `pose_a` and `b` at `pose_b` (world placements of the shape frames),
+/// exact up to `margin` (distances at or above `margin` are [`Proximity::Beyond`]).
+///
+/// `axis` is the unit direction from `a` to `b` (in `a`'s frame) that GJK ended with on this pair last
+/// time, zero at first. It is tried first as a separating axis (two support points), then GJK starts
+/// from it; GJK updates it. Pairs tend to be separated along similar directions from pose to pose, so
+/// many are settled without GJK.
+pub fn proximity(
+    a: &ConvexShape,
+    pose_a: &Pose,
+    b: &ConvexShape,
+    pose_b: &Pose,
+    margin: f64,
+    axis: &mut Vector,
+    simplex: &mut VoronoiSimplex,
+) -> Proximity {
+    let rounding = a.radius + b.radius;
+    let core_distance = if let (Core::Point, Core::Point) = (&a.core, &b.core) {
+        Some(pose_a.translation.distance(pose_b.translation))
+    } else {
+        let pos12 = pose_a.inv_mul(pose_b);
+        if *axis != Vector::ZERO {
+            // The last separating direction, tried first: two support points settle most pairs.
+            let near_a = a.core.local_support_point(*axis);
+            let near_b = b.core.support_point(&pos12, -*axis);
+            if axis.dot(near_b - near_a) - rounding >= margin {
+                return Proximity::Beyond;
+            }
+        }
+        match closest_points_support_map_support_map_with_params(
+            &pos12,
+            &Warm {
+                core: &a.core,
+                vertex: Cell::new(usize::MAX),
+            },
+            &Warm {
+                core: &b.core,
+                vertex: Cell::new(usize::MAX),
+            },
+            margin + rounding,
+            simplex,
+            (*axis != Vector::ZERO).then_some(-*axis),
+        ) {
+            GJKResult::ClosestPoints(p1, p2, dir) => {
+                *axis = dir;
+                Some(p1.distance(p2))
+            }
+            GJKResult::Intersection => None,
+            GJKResult::NoIntersection(dir) | GJKResult::Proximity(dir) => {
+                *axis = dir;
+                return Proximity::Beyond;
+            }
+        }
+    };
+    match core_distance.map(|d| d - rounding) {
+        None => Proximity::Contact,
+        Some(d) if d <= CONTACT_DISTANCE => Proximity::Contact,
+        Some(d) if d < margin => Proximity::Apart(d),
+        Some(_) => Proximity::Beyond,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Translation3, UnitQuaternion};
+
+    fn shape(support: Support) -> ConvexShape {
+        ConvexShape::from_support(&support).expect("usable")
+    }
+
+    fn ball(radius: f64) -> ConvexShape {
+        shape(Support::Rounded {
+            frame: Isometry3::identity(),
+            radius,
+            length: 0.0,
+        })
+    }
+
+    fn cube(half: f64) -> ConvexShape {
+        let corners = (0..8)
+            .map(|i| {
+                let s = |bit: i32| if i & bit == 0 { -half } else { half };
+                Vector3::new(s(1), s(2), s(4))
+            })
+            .collect();
+        shape(Support::Points(corners))
+    }
+
+    fn at(x: f64, y: f64, z: f64) -> Pose {
+        to_pose(&Isometry3::translation(x, y, z))
+    }
+
+    fn query(a: &ConvexShape, pa: &Pose, b: &ConvexShape, pb: &Pose) -> Proximity {
+        proximity(
+            a,
+            pa,
+            b,
+            pb,
+            f64::INFINITY,
+            &mut Vector::default(),
+            &mut VoronoiSimplex::new(),
+        )
+    }
+
+    fn apart(p: Proximity) -> f64 {
+        match p {
+            Proximity::Apart(d) => d,
+            other => panic!("expected a distance, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn balls_and_cubes_have_exact_distances() {
+        let d = apart(query(
+            &ball(0.1),
+            &at(0.0, 0.0, 0.0),
+            &ball(0.2),
+            &at(1.0, 0.0, 0.0),
+        ));
+        assert!((d - 0.7).abs() < 1e-12, "{d}");
+        let d = apart(query(
+            &cube(0.5),
+            &at(0.0, 0.0, 0.0),
+            &ball(0.25),
+            &at(0.0, 2.0, 0.0),
+        ));
+        assert!((d - 1.25).abs() < 1e-9, "{d}");
+        // Cube corner towards a ball along the diagonal.
+        let d = apart(query(
+            &cube(0.5),
+            &at(0.0, 0.0, 0.0),
+            &ball(0.1),
+            &at(1.0, 1.0, 1.0),
+        ));
+        assert!((d - (0.5 * 3f64.sqrt() - 0.1)).abs() < 1e-7, "{d}");
+        assert_eq!(
+            query(
+                &cube(0.5),
+                &at(0.0, 0.0, 0.0),
+                &cube(0.5),
+                &at(0.9, 0.0, 0.0)
+            ),
+            Proximity::Contact
+        );
+        assert_eq!(
+            query(
+                &cube(0.5),
+                &at(0.0, 0.0, 0.0),
+                &cube(0.5),
+                &at(1.0, 0.0, 0.0)
+            ),
+            Proximity::Contact,
+            "touching faces are in contact"
+        );
+    }
+
+    #[test]
+    fn a_margin_cuts_the_query_short() {
+        let mut simplex = VoronoiSimplex::new();
+        let far = proximity(
+            &cube(0.5),
+            &at(0.0, 0.0, 0.0),
+            &cube(0.5),
+            &at(3.0, 0.0, 0.0),
+            1.0,
+            &mut Vector::default(),
+            &mut simplex,
+        );
+        assert_eq!(far, Proximity::Beyond);
+        let near = proximity(
+            &cube(0.5),
+            &at(0.0, 0.0, 0.0),
+            &cube(0.5),
+            &at(1.5, 0.0, 0.0),
+            1.0,
+            &mut Vector::default(),
+            &mut simplex,
+        );
+        assert!((apart(near) - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn cylinders_are_along_z_and_capsules_are_rounded() {
+        let cylinder = shape(Support::Cylinder {
+            frame: Isometry3::identity(),
+            radius: 0.1,
+            length: 1.0,
+        });
+        // Beside the side wall, and above the cap.
+        let d = apart(query(
+            &cylinder,
+            &at(0.0, 0.0, 0.0),
+            &ball(0.05),
+            &at(0.5, 0.0, 0.0),
+        ));
+        assert!((d - 0.35).abs() < 1e-7, "{d}");
+        let d = apart(query(
+            &cylinder,
+            &at(0.0, 0.0, 0.0),
+            &ball(0.05),
+            &at(0.0, 0.0, 1.0),
+        ));
+        assert!((d - 0.45).abs() < 1e-7, "{d}");
+        // A capsule lying along x (its z axis rotated by 90° about y) above a ball.
+        let frame = Isometry3::from_parts(
+            Translation3::identity(),
+            UnitQuaternion::from_euler_angles(0.0, std::f64::consts::FRAC_PI_2, 0.0),
+        );
+        let capsule = shape(Support::Rounded {
+            frame,
+            radius: 0.05,
+            length: 1.0,
+        });
+        let world = to_pose(&frame);
+        let d = apart(query(&capsule, &world, &ball(0.1), &at(0.4, 0.0, 0.3)));
+        assert!((d - 0.15).abs() < 1e-9, "{d}");
+        let d = apart(query(&capsule, &world, &ball(0.1), &at(0.9, 0.0, 0.0)));
+        assert!((d - 0.25).abs() < 1e-9, "{d}");
+        assert!((capsule.bound - 0.55).abs() < 1e-12);
+    }
+
+    #[test]
+    fn degenerate_hulls_do_not_panic() {
+        let point = shape(Support::Points(vec![Vector3::new(0.0, 0.0, 0.0)]));
+        let flat = shape(Support::Points(vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+        ]));
+        let d = apart(query(&point, &at(0.0, 0.0, 1.0), &flat, &at(0.0, 0.0, 0.0)));
+        assert!((d - 1.0).abs() < 1e-9);
+        assert_eq!(
+            query(&point, &at(0.2, 0.2, 0.0), &flat, &at(0.0, 0.0, 0.0)),
+            Proximity::Contact
+        );
+        assert!(ConvexShape::from_support(&Support::Points(Vec::new())).is_none());
+        assert!(
+            ConvexShape::from_support(&Support::Points(vec![Vector3::new(1e9, 0.0, 0.0)]))
+                .is_none()
+        );
+    }
+}

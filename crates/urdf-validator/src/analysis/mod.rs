@@ -1,0 +1,349 @@
+//! Runs the physics analyses in order — statics at the chosen pose, classification at the reference pose,
+//! stability at the chosen pose, then the workspace of every arm around the chosen pose — and applies the
+//! user's declarations (`--robot-type`, `--contact-links`, `--arm-root`/`--arm-tip`), keeping the
+//! heuristics as a cross-check.
+
+pub mod arms;
+pub mod classify;
+pub mod collision;
+pub mod mass;
+pub mod pose;
+pub mod stability;
+pub mod statics;
+pub mod workspace;
+
+use std::path::Path;
+
+use nalgebra::Vector3;
+
+use crate::analysis::classify::{classify, RobotType};
+use crate::analysis::collision::MAX_COLLISION_LINKS;
+use crate::analysis::stability::StabilitySection;
+use crate::analysis::statics::StaticsSection;
+use crate::analysis::workspace::WorkspaceSection;
+use crate::assets::supports::LinkSupports;
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules;
+use crate::diagnostics::suggest::did_you_mean;
+use crate::diagnostics::Confidence;
+use crate::input::srdf::{srdf_collisions, SrdfCollisions};
+use crate::model::kinematics::{forward_kinematics, Data};
+use crate::model::{LinkId, Model};
+use crate::urdf::robot::Robot;
+use arms::Arm;
+use pose::PoseOptions;
+use stability::PlacedRobot;
+use statics::StaticsOptions;
+use workspace::{CollisionSetup, Scene, WorkspaceOptions};
+
+/// What the user declares instead of letting heuristics guess.
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    /// `--robot-type`.
+    pub robot_type: Option<RobotType>,
+    /// `--contact-links`.
+    pub contact_links: Option<Vec<String>>,
+    /// `--arm-root` / `--arm-tip` pairs, in order: the arms to analyse instead of the detected ones.
+    pub arms: Vec<(String, String)>,
+}
+
+/// The physics sections of a report.
+#[derive(Clone, Debug)]
+pub struct Physics {
+    /// Statics at the chosen pose.
+    pub statics: StaticsSection,
+    /// Stability at the chosen pose.
+    pub stability: StabilitySection,
+    /// Reach, task, orientation and self-collision around the chosen pose.
+    pub workspace: WorkspaceSection,
+    /// The type the capability profile uses.
+    pub robot_type: RobotType,
+    /// `exact` when declared.
+    pub robot_type_confidence: Confidence,
+    /// What the structure shows.
+    pub detected: RobotType,
+    /// Why.
+    pub evidence: String,
+    /// Disagreements between declarations and heuristics.
+    pub warnings: Vec<String>,
+    /// Findings of the analyses (link pairs in contact at the reference pose).
+    pub findings: Vec<Finding>,
+}
+
+fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
+    model.link(name).ok_or_else(|| {
+        format!(
+            "{flag}: unknown link '{name}' ({})",
+            did_you_mean(name, model.link_names())
+        )
+    })
+}
+
+/// One arm declared with `--arm-root`/`--arm-tip`: existing links, the tip below the root, an actuated
+/// joint between them.
+fn declared_arm(robot: &Robot, model: &Model, root: &str, tip: &str) -> Result<Arm, String> {
+    let root_id = link_id(model, "--arm-root", root)?;
+    let tip_id = link_id(model, "--arm-tip", tip)?;
+    if root_id == tip_id {
+        return Err(format!(
+            "--arm-root and --arm-tip both name '{root}' (expected the arm's base and its end effector)"
+        ));
+    }
+    let arm = arms::declared(robot, model, root_id, tip_id).ok_or_else(|| {
+        format!("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")
+    })?;
+    if arm.first_joint(model).is_none() {
+        return Err(format!(
+            "no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)"
+        ));
+    }
+    Ok(arm)
+}
+
+/// What the analyses need besides the robot.
+pub struct Inputs<'a> {
+    /// The file (for SRDF lookup and messages).
+    pub urdf_path: &'a Path,
+    /// Ground-contact shapes per link.
+    pub supports: &'a [LinkSupports],
+    /// Hull points of a mesh URI (mesh frame, before scale), `None` when unusable.
+    pub mesh_points: &'a dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+    /// Pose and payload.
+    pub statics: &'a StaticsOptions,
+    /// Samples, task and orientation.
+    pub workspace: &'a WorkspaceOptions,
+    /// Declarations.
+    pub overrides: &'a Overrides,
+}
+
+/// Run the analyses.
+pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics, String> {
+    let Inputs {
+        urdf_path,
+        supports,
+        statics: statics_options,
+        overrides,
+        ..
+    } = *inputs;
+    // An explicit --srdf must exist, whichever analyses end up reading it.
+    if let Some(path) = statics_options
+        .pose
+        .srdf
+        .as_deref()
+        .filter(|p| !p.is_file())
+    {
+        return Err(format!("--srdf {}: no such file", path.display()));
+    }
+    let declared = overrides
+        .arms
+        .iter()
+        .map(|(root, tip)| declared_arm(robot, model, root, tip))
+        .collect::<Result<Vec<Arm>, String>>()?;
+    let declared_contacts = match &overrides.contact_links {
+        Some(names) => Some(
+            names
+                .iter()
+                .map(|n| link_id(model, "--contact-links", n))
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        None => None,
+    };
+    let (mut statics, q) = statics::analyse(robot, model, urdf_path, statics_options)?;
+
+    let reference = pose::resolve(robot, model, urdf_path, &PoseOptions::default())?;
+    let mut data = Data::new(model);
+    forward_kinematics(model, &reference.q, &mut data);
+    let classification = classify(robot, model, &data, supports);
+    let detected = classification.robot_type;
+    let mut warnings = Vec::new();
+    let (robot_type, confidence) = match overrides.robot_type {
+        Some(declared) => {
+            if declared != detected {
+                warnings.push(format!(
+                    "User declared --robot-type={}, but the structure suggests {} ({})",
+                    declared.as_str(),
+                    detected.as_str(),
+                    classification.evidence
+                ));
+            }
+            (declared, Confidence::Exact)
+        }
+        None => (detected, Confidence::Estimated),
+    };
+
+    // Pairs in contact here are left out of self-collision sampling, as MoveIt's setup assistant leaves
+    // out those in contact at the default pose: at the --pose configuration a contact is a collision.
+    let reference_data = data.clone();
+    forward_kinematics(model, &q, &mut data);
+    let com = statics.full_body_com.map(Vector3::from);
+    let placed = PlacedRobot {
+        robot,
+        model,
+        data: &data,
+        supports,
+    };
+    let stability = stability::analyse(
+        &placed,
+        &classification,
+        robot_type,
+        declared_contacts.as_deref(),
+        com,
+    );
+    if let (Some(ground), Some(com)) = (stability.ground_height, com) {
+        statics.com_height_above_ground = Some(com.z - ground);
+    }
+    let arms = if declared.is_empty() {
+        if robot_type == RobotType::GroundVehicle {
+            Vec::new()
+        } else {
+            classification.arms
+        }
+    } else {
+        for arm in &declared {
+            // A declared arm should be one the structure shows: its tip on a detected arm's path.
+            let link_name = |l: LinkId| robot.links[l.0].name.value.as_str();
+            let matches = |found: &Arm| {
+                found.tip == arm.tip
+                    || found
+                        .path
+                        .iter()
+                        .any(|j| model.joint_links[j.0].is_some_and(|(_, c)| c == arm.tip))
+            };
+            if !classification.arms.is_empty() && !classification.arms.iter().any(matches) {
+                let detected: Vec<String> = classification
+                    .arms
+                    .iter()
+                    .map(|a| format!("{} → {}", link_name(a.base), link_name(a.tip)))
+                    .collect();
+                warnings.push(format!(
+                    "User declared the arm {} → {}, but the structure suggests {}",
+                    link_name(arm.base),
+                    link_name(arm.tip),
+                    detected.join(", ")
+                ));
+            }
+        }
+        declared
+    };
+    let ground = stability
+        .ground_height
+        .or(classification.ground_z)
+        .unwrap_or(0.0);
+    let scene = Scene {
+        robot,
+        model,
+        q: &q,
+        data: &data,
+        ground,
+        support_polygon: if stability.stable.is_some() {
+            &stability.support_polygon
+        } else {
+            &[]
+        },
+        robot_type,
+        payload: statics_options.payload_mass.map(|mass| {
+            let link = statics_options.payload_link.as_deref();
+            (mass, link.and_then(|name| model.link(name)))
+        }),
+    };
+    let (collision, mut findings) = if arms.is_empty() || robot.links.len() > MAX_COLLISION_LINKS {
+        (None, Vec::new())
+    } else {
+        let (setup, findings) = collision_setup(robot, model, &reference_data, inputs)?;
+        (Some(setup), findings)
+    };
+    let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
+    if let Some(c) = &collision {
+        findings.extend(contact_findings(robot, &c.touching));
+    }
+    Ok(Physics {
+        statics,
+        stability,
+        workspace,
+        robot_type,
+        robot_type_confidence: confidence,
+        detected,
+        evidence: classification.evidence,
+        warnings,
+        findings,
+    })
+}
+
+/// The collision model at the chosen pose, with the allowed collisions of the SRDF (`--srdf`, else the one
+/// [`pose::find_srdf`] finds) applied.
+///
+/// (An explicit `--srdf` that does not exist was refused by [`analyse`].) An SRDF that cannot be read, or that names
+/// links the robot does not have, gives U602 findings and the rest runs.
+fn collision_setup(
+    robot: &Robot,
+    model: &Model,
+    data: &Data,
+    inputs: &Inputs,
+) -> Result<(CollisionSetup, Vec<Finding>), String> {
+    let explicit = inputs.statics.pose.srdf.as_deref();
+    let mut findings = Vec::new();
+    let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
+    let path = pose::find_srdf(inputs.urdf_path, pose::robot_name(robot), explicit);
+    let srdf = match &path {
+        Some(path) => {
+            let parsed = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read it: {e}"))
+                .and_then(|text| srdf_collisions(&text));
+            match parsed {
+                Ok(collisions) => collisions,
+                Err(e) => {
+                    findings.push(srdf_problem(format!(
+                        "SRDF {}: {e} — its allowed collisions are not used",
+                        path.display()
+                    )));
+                    SrdfCollisions::default()
+                }
+            }
+        }
+        None => SrdfCollisions::default(),
+    };
+    let setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &srdf);
+    // One finding per SRDF: an SRDF written for a larger model can name hundreds of absent links.
+    if let (Some(path), false) = (&path, setup.unknown_srdf_links.is_empty()) {
+        let mentions = setup.unknown_srdf_links.len();
+        let shown: Vec<&str> = setup
+            .unknown_srdf_links
+            .iter()
+            .take(3)
+            .map(String::as_str)
+            .collect();
+        findings.push(srdf_problem(format!(
+            "SRDF {}: {mentions} mention{} of links the robot does not have ({}{}) — {} ignored",
+            path.display(),
+            if mentions == 1 { "" } else { "s" },
+            shown.join("; "),
+            if mentions > shown.len() { "; …" } else { "" },
+            if mentions == 1 {
+                "that entry is"
+            } else {
+                "those entries are"
+            },
+        )));
+    }
+    Ok((setup, findings))
+}
+
+/// One U601 finding per link pair in contact at the reference (clamped zero) pose, at the second link's
+/// collision.
+fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)]) -> Vec<Finding> {
+    touching
+        .iter()
+        .map(|&(a, b)| {
+            let (a, b) = (&robot.links[a.0], &robot.links[b.0]);
+            let span = b.collisions.first().map_or(b.span, |c| c.span);
+            Finding::new(
+                &rules::CONTACT_AT_REFERENCE,
+                span,
+                format!(
+                    "Links '{}' and '{}' have collision geometry in contact at the zero pose — left out of self-collision sampling",
+                    a.name.value, b.name.value
+                ),
+            )
+        })
+        .collect()
+}

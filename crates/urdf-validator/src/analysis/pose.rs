@@ -1,0 +1,379 @@
+//! Poses: the configuration statics (and later stability and workspace) are evaluated at.
+//!
+//! `zero` (clamped into the limits), `limits` (every limited joint at its upper limit), `custom`
+//! (`--joint-angles`), `home` (a named SRDF `group_state`), and `worst` (handled by the statics sampler).
+
+use std::path::{Path, PathBuf};
+
+use crate::diagnostics::suggest::did_you_mean;
+use crate::model::kinematics::Configuration;
+use crate::model::{JointId, Model};
+use crate::rng::SplitMix64;
+use crate::urdf::robot::Robot;
+
+/// Which configuration to evaluate.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PoseKind {
+    /// Every joint at 0, clamped into its limits.
+    #[default]
+    Zero,
+    /// Every limited joint at its upper limit; continuous joints at 0.
+    Limits,
+    /// The values of `--joint-angles`, others as in `Zero`.
+    Custom,
+    /// A named `group_state` of an SRDF; zero when none is found.
+    Home,
+    /// Per joint, the largest gravity torque over seeded samples within the limits.
+    Worst,
+}
+
+impl PoseKind {
+    /// The flag value.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PoseKind::Zero => "zero",
+            PoseKind::Limits => "limits",
+            PoseKind::Custom => "custom",
+            PoseKind::Home => "home",
+            PoseKind::Worst => "worst",
+        }
+    }
+}
+
+/// Everything that picks the configuration.
+#[derive(Clone, Debug)]
+pub struct PoseOptions {
+    /// Which pose.
+    pub kind: PoseKind,
+    /// `--joint-angles "j1=0.5,j2=30deg"` for `Custom`.
+    pub joint_angles: Option<String>,
+    /// `--srdf FILE` for `Home`; when absent, the one [`find_srdf`] finds.
+    pub srdf: Option<PathBuf>,
+    /// The `group_state` name for `Home`.
+    pub state: String,
+    /// Samples for `Worst`.
+    pub samples: usize,
+    /// Seed for `Worst`.
+    pub seed: u64,
+}
+
+impl Default for PoseOptions {
+    fn default() -> Self {
+        PoseOptions {
+            kind: PoseKind::Zero,
+            joint_angles: None,
+            srdf: None,
+            state: "home".to_string(),
+            samples: 5000,
+            seed: 7,
+        }
+    }
+}
+
+/// A resolved configuration and what the user should know about how it was made.
+#[derive(Clone, Debug)]
+pub struct ResolvedPose {
+    /// One value per joint (mimic relations applied).
+    pub q: Configuration,
+    /// Clamping, fallbacks, values outside limits.
+    pub notes: Vec<String>,
+}
+
+/// The zero pose with each joint clamped into its limits.
+fn clamped_zero(robot: &Robot, model: &Model, notes: &mut Vec<String>) -> Configuration {
+    let mut q = model.zero_configuration();
+    for (i, joint) in model.joint_data.iter().enumerate() {
+        if let Some((lo, hi)) = joint.range() {
+            if !(lo..=hi).contains(&0.0) {
+                let value = if 0.0 < lo { lo } else { hi };
+                q[i] = value;
+                if model.mimic[i].is_none() {
+                    notes.push(format!(
+                        "joint '{}': 0 is outside its limits [{lo}, {hi}]; using {value}",
+                        robot.joints[i].name.value
+                    ));
+                }
+            }
+        }
+    }
+    q
+}
+
+/// Resolve `options` to a configuration (`Worst` resolves to the clamped zero pose, its reference).
+pub fn resolve(
+    robot: &Robot,
+    model: &Model,
+    urdf_path: &Path,
+    options: &PoseOptions,
+) -> Result<ResolvedPose, String> {
+    let mut notes = Vec::new();
+    let mut q = clamped_zero(robot, model, &mut notes);
+    match options.kind {
+        PoseKind::Zero | PoseKind::Worst => {}
+        PoseKind::Limits => {
+            for (i, joint) in model.joint_data.iter().enumerate() {
+                if let Some((_, hi)) = joint.range() {
+                    q[i] = hi;
+                }
+            }
+        }
+        PoseKind::Custom => {
+            let text = options
+                .joint_angles
+                .as_deref()
+                .ok_or("--pose custom needs --joint-angles \"joint=value,...\"")?;
+            for (name, value) in parse_joint_angles(text)? {
+                set_joint(robot, model, &mut q, &name, value, &mut notes)?;
+            }
+        }
+        PoseKind::Home => match find_srdf(urdf_path, robot_name(robot), options.srdf.as_deref()) {
+            Some(srdf) => {
+                let text = std::fs::read_to_string(&srdf)
+                    .map_err(|e| format!("{}: cannot read SRDF: {e}", srdf.display()))?;
+                let states = group_states(&text).map_err(|e| format!("{}: {e}", srdf.display()))?;
+                let wanted: Vec<&GroupState> =
+                    states.iter().filter(|s| s.name == options.state).collect();
+                if wanted.is_empty() {
+                    let mut names: Vec<&str> = states.iter().map(|s| s.name.as_str()).collect();
+                    names.sort_unstable();
+                    names.dedup();
+                    notes.push(format!(
+                        "SRDF {} has no group_state '{}' (it has: {}); using the zero pose",
+                        srdf.display(),
+                        options.state,
+                        if names.is_empty() {
+                            "none".to_string()
+                        } else {
+                            names.join(", ")
+                        }
+                    ));
+                }
+                for state in wanted {
+                    for (name, value) in &state.joints {
+                        if model.joint(name).is_none() {
+                            notes.push(format!(
+                                "SRDF state '{}' names unknown joint '{name}'; ignored",
+                                state.name
+                            ));
+                            continue;
+                        }
+                        set_joint(robot, model, &mut q, name, *value, &mut notes)?;
+                    }
+                }
+            }
+            None if options.srdf.is_some() => {
+                return Err(format!(
+                    "SRDF {} not found",
+                    options.srdf.as_deref().unwrap_or(Path::new("")).display()
+                ))
+            }
+            None => notes.push(
+                "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose"
+                    .to_string(),
+            ),
+        },
+    }
+    model.apply_mimic(&mut q);
+    Ok(ResolvedPose { q, notes })
+}
+
+fn set_joint(
+    robot: &Robot,
+    model: &Model,
+    q: &mut Configuration,
+    name: &str,
+    value: f64,
+    notes: &mut Vec<String>,
+) -> Result<(), String> {
+    let Some(JointId(i)) = model.joint(name) else {
+        return Err(format!(
+            "unknown joint '{name}' ({})",
+            did_you_mean(name, model.joint_names())
+        ));
+    };
+    let joint = &model.joint_data[i];
+    if !joint.is_actuated() {
+        return Err(format!(
+            "joint '{name}' is {} and has no position to set",
+            joint.kind.as_str()
+        ));
+    }
+    if let Some(leader) = model.mimic[i] {
+        notes.push(format!(
+            "joint '{name}' mimics '{}': its value follows the leader, the given value is ignored",
+            robot.joints[leader.leader.0].name.value
+        ));
+        return Ok(());
+    }
+    if let Some((lo, hi)) = joint.range() {
+        if !(lo..=hi).contains(&value) {
+            notes.push(format!(
+                "joint '{name}': {value} is outside its limits [{lo}, {hi}]"
+            ));
+        }
+    }
+    q[i] = value;
+    Ok(())
+}
+
+/// Parse `"j1=0.5, j2=30deg, j3=-1.2rad"`: radians or metres, or degrees with a `deg` / `°` suffix.
+pub fn parse_joint_angles(text: &str) -> Result<Vec<(String, f64)>, String> {
+    text.split(',')
+        .map(str::trim)
+        .filter(|item| !item.is_empty())
+        .map(|item| {
+            let (name, value) = item
+                .split_once('=')
+                .ok_or_else(|| format!("'{item}' in --joint-angles is not joint=value"))?;
+            let (name, value) = (name.trim(), value.trim());
+            let (number, scale) = if let Some(v) = value
+                .strip_suffix("deg")
+                .or_else(|| value.strip_suffix('°'))
+            {
+                (v.trim(), std::f64::consts::PI / 180.0)
+            } else {
+                (value.strip_suffix("rad").unwrap_or(value).trim(), 1.0)
+            };
+            let parsed: f64 = number.parse().map_err(|_| {
+                format!("'{value}' for joint '{name}' is not a number (e.g. 0.5, 30deg)")
+            })?;
+            if !parsed.is_finite() || name.is_empty() {
+                return Err(format!(
+                    "'{item}' in --joint-angles is not joint=finite-number"
+                ));
+            }
+            Ok((name.to_string(), parsed * scale))
+        })
+        .collect()
+}
+
+/// One `<group_state>` of an SRDF.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GroupState {
+    /// `name`.
+    pub name: String,
+    /// `group`.
+    pub group: String,
+    /// `<joint name value>` entries (multi-value joints keep their first value).
+    pub joints: Vec<(String, f64)>,
+}
+
+/// Every `group_state` of an SRDF document.
+pub fn group_states(text: &str) -> Result<Vec<GroupState>, String> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| format!("not well-formed XML: {e}"))?;
+    Ok(doc
+        .root_element()
+        .children()
+        .filter(|n| n.has_tag_name("group_state"))
+        .map(|state| GroupState {
+            name: state.attribute("name").unwrap_or_default().to_string(),
+            group: state.attribute("group").unwrap_or_default().to_string(),
+            joints: state
+                .children()
+                .filter(|n| n.has_tag_name("joint"))
+                .filter_map(|j| {
+                    let value = j
+                        .attribute("value")?
+                        .split_whitespace()
+                        .next()?
+                        .parse::<f64>()
+                        .ok()?;
+                    Some((j.attribute("name")?.to_string(), value))
+                })
+                .collect(),
+        })
+        .collect())
+}
+
+/// The SRDF to use: the explicit one, else `<stem>.srdf`, else `<robot name>.srdf` (the name MoveIt's
+/// setup assistant gives it), each beside the URDF or in a sibling `srdf/` folder.
+pub fn find_srdf(
+    urdf_path: &Path,
+    robot_name: Option<&str>,
+    explicit: Option<&Path>,
+) -> Option<PathBuf> {
+    if let Some(path) = explicit {
+        return path.is_file().then(|| path.to_path_buf());
+    }
+    let file_name = urdf_path.file_name()?.to_str()?;
+    let stem = file_name.strip_suffix(".xacro").unwrap_or(file_name);
+    let stem = stem.strip_suffix(".urdf").unwrap_or(stem);
+    let dir = urdf_path.parent().unwrap_or(Path::new("."));
+    // A robot name is a file name only when it cannot leave the folder.
+    let safe_name = robot_name.filter(|n| !n.is_empty() && !n.contains(['/', '\\']) && *n != "..");
+    [Some(stem), safe_name]
+        .into_iter()
+        .flatten()
+        .flat_map(|name| {
+            let name = format!("{name}.srdf");
+            [dir.join(&name), dir.join("../srdf").join(&name)]
+        })
+        .find(|p| p.is_file())
+}
+
+/// The robot's `name` attribute, when it has one.
+pub fn robot_name(robot: &Robot) -> Option<&str> {
+    robot.name.as_ref().map(|name| name.value.as_str())
+}
+
+/// A seeded uniform sampler over the configuration space (continuous joints over a full turn; joints
+/// without a usable range stay at the reference value).
+pub struct ConfigurationSampler<'a> {
+    model: &'a Model,
+    rng: SplitMix64,
+}
+
+impl<'a> ConfigurationSampler<'a> {
+    /// A sampler seeded with `seed`.
+    pub fn new(model: &'a Model, seed: u64) -> Self {
+        ConfigurationSampler {
+            model,
+            rng: SplitMix64::new(seed),
+        }
+    }
+
+    /// Overwrite `q` with the next sample (mimic relations applied).
+    pub fn sample_into(&mut self, q: &mut Configuration) {
+        for (i, joint) in self.model.joint_data.iter().enumerate() {
+            if self.model.mimic[i].is_some() {
+                continue;
+            }
+            if let Some((lo, hi)) = joint.sampling_interval() {
+                q[i] = self.rng.uniform(lo, hi);
+            }
+        }
+        self.model.apply_mimic(q);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn joint_angles_accept_radians_degrees_and_spaces() {
+        let parsed = parse_joint_angles(" a=0.5, b = 30deg ,c=-1rad,d=90°").unwrap();
+        assert_eq!(parsed[0], ("a".to_string(), 0.5));
+        assert!((parsed[1].1 - std::f64::consts::PI / 6.0).abs() < 1e-15);
+        assert_eq!(parsed[2].1, -1.0);
+        assert!((parsed[3].1 - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        assert!(parse_joint_angles("a=x")
+            .unwrap_err()
+            .contains("not a number"));
+        assert!(parse_joint_angles("a").is_err());
+        assert!(parse_joint_angles("a=nan").is_err());
+    }
+
+    #[test]
+    fn group_states_are_read() {
+        let srdf = r#"<robot name="r"><group name="arm"/>
+          <group_state name="home" group="arm"><joint name="j1" value="0.5"/><joint name="j2" value="-1"/></group_state>
+          <group_state name="up" group="arm"><joint name="j1" value="1"/></group_state></robot>"#;
+        let states = group_states(srdf).unwrap();
+        assert_eq!(states.len(), 2);
+        assert_eq!(
+            states[0].joints,
+            vec![("j1".to_string(), 0.5), ("j2".to_string(), -1.0)]
+        );
+    }
+}

@@ -1,0 +1,348 @@
+//! Builds the report's `statics` section: resolves the pose, evaluates torques (or samples the worst
+//! pose), adds the payload, and grades each joint against its declared effort.
+
+pub mod gravity;
+mod section;
+
+pub use section::{JointStatics, StaticsSection};
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::analysis::pose::{self, PoseKind, PoseOptions};
+use crate::diagnostics::suggest::did_you_mean;
+use crate::diagnostics::{Confidence, Status};
+use crate::model::kinematics::{Configuration, LinkMass};
+use crate::model::{JointId, LinkId, Model};
+use crate::urdf::robot::Robot;
+use gravity::{StaticsData, NEGLIGIBLE_TORQUE, PASS_MARGIN};
+
+/// What statics needs beyond the robot.
+#[derive(Clone, Debug, Default)]
+pub struct StaticsOptions {
+    /// The pose to evaluate.
+    pub pose: PoseOptions,
+    /// `--payload-mass`, kg.
+    pub payload_mass: Option<f64>,
+    /// `--payload-link`; default: the end of the longest actuated chain.
+    pub payload_link: Option<String>,
+}
+
+/// The statics section and the configuration it was evaluated at (the reference pose for `worst`), or a
+/// usage error (unknown joint or link name, unreadable SRDF).
+pub fn analyse(
+    robot: &Robot,
+    model: &Model,
+    urdf_path: &Path,
+    options: &StaticsOptions,
+) -> Result<(StaticsSection, Configuration), String> {
+    let resolved = pose::resolve(robot, model, urdf_path, &options.pose)?;
+    let payload_link = match &options.payload_link {
+        Some(name) => Some(model.link(name).ok_or_else(|| {
+            format!(
+                "--payload-link: unknown link '{name}' ({})",
+                did_you_mean(name, model.link_names())
+            )
+        })?),
+        None => gravity::default_payload_link(model),
+    };
+    if let Some(mass) = options.payload_mass {
+        if !(mass.is_finite() && mass >= 0.0) {
+            return Err(format!("--payload-mass {mass}: expected a mass ≥ 0 in kg"));
+        }
+    }
+    let payload = options
+        .payload_mass
+        .zip(payload_link)
+        .map(|(mass, link)| (link, mass));
+
+    let mut data = StaticsData::new(model);
+    gravity::evaluate(model, &resolved.q, &mut data);
+    let per_kg =
+        payload_link.map(|link| gravity::payload_torque_per_kg(model, &data.kinematics, link));
+    let (total_mass, com) = gravity::mass_and_com(model, &data);
+    let com = com.filter(|c| c.iter().all(|v| v.is_finite()));
+    let any_mass = model
+        .link_mass
+        .iter()
+        .any(|m| matches!(m, LinkMass::Declared { .. }));
+
+    let worst = (options.pose.kind == PoseKind::Worst).then(|| {
+        gravity::worst_configurations(
+            model,
+            &resolved.q,
+            options.pose.samples,
+            options.pose.seed,
+            payload,
+        )
+    });
+
+    let mut joints = Vec::new();
+    let mut constraints = Vec::new();
+    for (j, joint) in robot.joints.iter().enumerate() {
+        let info = &model.joint_data[j];
+        let Some((_, child)) = model.joint_links[j] else {
+            continue;
+        };
+        if !info.is_actuated() {
+            continue;
+        }
+        if let Some(mimic) = model.mimic[j] {
+            let leader = &robot.joints[mimic.leader.0].name.value;
+            joints.push(JointStatics {
+                name: joint.name.value.clone(),
+                required_torque_gravity: Some(data.raw_torque[j]),
+                torque_confidence: if any_mass {
+                    Confidence::Estimated
+                } else {
+                    Confidence::Missing
+                },
+                declared_effort: info.effort,
+                margin: None,
+                status: Status::NotApplicable,
+                subtree_mass: Some(data.sums.mass[child.0]),
+                summary: format!(
+                    "follows '{leader}' (×{}): its torque is folded into that joint",
+                    mimic.multiplier
+                ),
+                mimics: Some(leader.clone()),
+                worst_configuration: None,
+            });
+            continue;
+        }
+        let payload_part = |per_kg: &[f64]| payload.map_or(0.0, |(_, mass)| per_kg[j] * mass);
+        let (torque, unit, configuration) = match worst.as_ref().and_then(|w| w[j].as_ref()) {
+            Some((torque, q)) => {
+                let mut at_worst = StaticsData::new(model);
+                gravity::evaluate(model, q, &mut at_worst);
+                let unit = payload_link.map_or(0.0, |link| {
+                    gravity::payload_torque_per_kg(model, &at_worst.kinematics, link)[j]
+                });
+                (*torque, unit, Some(named_configuration(robot, model, q)))
+            }
+            None => {
+                let unit = per_kg.as_ref().map_or(0.0, |t| t[j]);
+                (
+                    data.torque[j] + per_kg.as_ref().map_or(0.0, |t| payload_part(t)),
+                    unit,
+                    None,
+                )
+            }
+        };
+        let mass_below = data.sums.mass[child.0];
+        let unknown_below = data.sums.unknown[child.0];
+        let graded = grade(torque, info.effort, mass_below, unknown_below);
+        if let (Some(effort), Status::Pass | Status::Warn | Status::Fail) =
+            (info.effort, graded.status)
+        {
+            let unloaded = torque - payload.map_or(0.0, |(_, m)| unit * m);
+            constraints.push((unloaded, unit, effort, JointId(j)));
+        }
+        joints.push(JointStatics {
+            name: joint.name.value.clone(),
+            required_torque_gravity: graded.torque,
+            torque_confidence: graded.confidence,
+            declared_effort: info.effort,
+            margin: graded.margin,
+            status: graded.status,
+            subtree_mass: Some(mass_below),
+            summary: graded.summary,
+            mimics: None,
+            worst_configuration: configuration,
+        });
+    }
+
+    let status = joints
+        .iter()
+        .map(|j| j.status)
+        .filter(|s| *s != Status::NotApplicable)
+        .max()
+        .unwrap_or(Status::NotApplicable);
+    let weakest_joint_name = joints
+        .iter()
+        .filter_map(|j| j.margin.map(|m| (m, &j.name)))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, name)| name.clone());
+    let (payload_capacity_kg, capacity_reason) = capacity(model, payload_link, &constraints);
+    let reason = if joints.is_empty() {
+        Some("no actuated joint: gravity torques do not apply".to_string())
+    } else if !any_mass {
+        Some("no link declares a mass: torques cannot be computed".to_string())
+    } else {
+        capacity_reason
+    };
+    let heaviest = model
+        .topological_order
+        .iter()
+        .map(|&l| (l, model.link_mass[l.0].mass()))
+        .filter(|(_, m)| *m > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    let confidence = if any_mass {
+        Confidence::Estimated
+    } else {
+        Confidence::Missing
+    };
+    let section = StaticsSection {
+        status,
+        pose: options.pose.kind.as_str().to_string(),
+        configuration: named_configuration(robot, model, &resolved.q),
+        notes: resolved.notes,
+        full_body_com: com.map(|c| [c.x, c.y, c.z]),
+        com_height_above_ground: com.map(|c| c.z),
+        com_confidence: if com.is_some() {
+            confidence
+        } else {
+            Confidence::Missing
+        },
+        total_mass: any_mass.then_some(total_mass),
+        mass_confidence: confidence,
+        heaviest_link_name: heaviest.map(|(l, _)| robot.links[l.0].name.value.clone()),
+        heaviest_link_pct: heaviest
+            .filter(|_| total_mass > 0.0)
+            .map(|(_, m)| 100.0 * m / total_mass),
+        weakest_joint_name,
+        payload_capacity_kg,
+        payload_mass: options.payload_mass,
+        payload_link: payload_link
+            .filter(|_| options.payload_mass.is_some() || payload_capacity_kg.is_some())
+            .map(|l| robot.links[l.0].name.value.clone()),
+        reason,
+        samples: worst.as_ref().map(|_| options.pose.samples),
+        seed: worst.as_ref().map(|_| options.pose.seed),
+        joints,
+    };
+    Ok((section, resolved.q))
+}
+
+/// Independent actuated joints by name.
+fn named_configuration(robot: &Robot, model: &Model, q: &Configuration) -> BTreeMap<String, f64> {
+    model
+        .joint_data
+        .iter()
+        .enumerate()
+        .filter(|(j, info)| {
+            info.is_actuated() && model.mimic[*j].is_none() && model.joint_links[*j].is_some()
+        })
+        .map(|(j, _)| (robot.joints[j].name.value.clone(), q[j]))
+        .collect()
+}
+
+struct Grade {
+    torque: Option<f64>,
+    confidence: Confidence,
+    margin: Option<f64>,
+    status: Status,
+    summary: String,
+}
+
+/// Grade one joint: torque against effort.
+fn grade(torque: f64, effort: Option<f64>, mass_below: f64, unknown_below: usize) -> Grade {
+    if mass_below == 0.0 && unknown_below > 0 {
+        return Grade {
+            torque: None,
+            confidence: Confidence::Missing,
+            margin: None,
+            status: Status::Unknown,
+            summary: "Cannot assess — no link below this joint declares a mass".to_string(),
+        };
+    }
+    if !torque.is_finite() {
+        return Grade {
+            torque: None,
+            confidence: Confidence::Missing,
+            margin: None,
+            status: Status::Unknown,
+            summary: "Cannot assess — the torque overflows (check the masses and origins below)"
+                .to_string(),
+        };
+    }
+    let caveat = match unknown_below {
+        0 => String::new(),
+        1 => " (1 link below has geometry but no mass: torque may be underestimated)".to_string(),
+        n => format!(" ({n} links below have geometry but no mass: torque may be underestimated)"),
+    };
+    let (margin, status, verdict) = if torque.abs() < NEGLIGIBLE_TORQUE {
+        (None, Status::Pass, "OK — torque negligible".to_string())
+    } else {
+        match effort {
+            None => (
+                None,
+                Status::Unknown,
+                format!(
+                    "Cannot assess — no effort limit declared (needs {:.2})",
+                    torque.abs()
+                ),
+            ),
+            Some(effort) => {
+                let margin = effort.max(0.0) / torque.abs();
+                let (status, verdict) = if margin >= PASS_MARGIN {
+                    (Status::Pass, format!("OK — margin {margin:.2}×"))
+                } else if margin >= 1.0 {
+                    (
+                        Status::Warn,
+                        format!("marginal — margin {margin:.2}× (< {PASS_MARGIN}×)"),
+                    )
+                } else {
+                    (
+                        Status::Fail,
+                        format!("undersized — needs {:.2}, declares {effort}", torque.abs()),
+                    )
+                };
+                (Some(margin), status, verdict)
+            }
+        }
+    };
+    Grade {
+        torque: Some(torque),
+        confidence: Confidence::Estimated,
+        margin,
+        status,
+        summary: verdict + &caveat,
+    }
+}
+
+/// Payload capacity over the joints on the payload link's path, and why it is 0 or absent.
+fn capacity(
+    model: &Model,
+    link: Option<LinkId>,
+    constraints: &[(f64, f64, f64, JointId)],
+) -> (Option<f64>, Option<String>) {
+    let Some(link) = link else {
+        return (None, None);
+    };
+    let mut on_path = vec![false; model.joint_data.len()];
+    for joint in path_joints(model, link) {
+        on_path[joint.0] = true;
+    }
+    let relevant: Vec<(f64, f64, f64)> = constraints
+        .iter()
+        .filter(|c| on_path[c.3 .0])
+        .map(|&(t, u, e, _)| (t, u, e))
+        .collect();
+    if relevant.is_empty() {
+        return (
+            None,
+            Some("no joint with a declared effort carries the payload link".to_string()),
+        );
+    }
+    match gravity::payload_capacity(&relevant) {
+        Some(kg) if kg.is_finite() => (Some(kg), None),
+        Some(_) => (
+            None,
+            Some("no joint on the payload path is loaded by a payload".to_string()),
+        ),
+        None => (
+            Some(0.0),
+            Some("a joint on the payload path is below margin 1.5 without payload".to_string()),
+        ),
+    }
+}
+
+/// Independent actuated joints between the root and `link` (followers are represented by their leaders).
+fn path_joints(model: &Model, link: LinkId) -> Vec<JointId> {
+    model
+        .joints_to_root(link)
+        .into_iter()
+        .map(|joint| gravity::independent_leader(model, joint).0)
+        .collect()
+}

@@ -1,0 +1,871 @@
+//! The workspace section: every arm's reach envelope by Monte Carlo sampling within the joint limits,
+//! task-height reachability with the whole-body COM checked at the reaching pose, orientation
+//! reachability, and self-collision over the same samples.
+//!
+//! Each arm is sampled on its own (its joints uniform within their limits, continuous joints over a full
+//! turn, everything else at the reference pose). Sample `i` of arm `a` is drawn from a generator seeded
+//! by (seed, a, i / CHUNK), so results do not depend on the number of threads.
+
+mod section;
+
+pub use section::{body_joints_held, ArmWorkspace, WorkspaceSection};
+
+pub mod chain;
+pub mod target;
+
+use std::collections::HashMap;
+
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+use crate::analysis::arms::Arm;
+use crate::analysis::classify::RobotType;
+use crate::analysis::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
+use crate::analysis::stability::support_polygon::{margin, Point2};
+use crate::analysis::statics::gravity::{evaluate, mass_and_com, StaticsData};
+use crate::diagnostics::{Confidence, Status};
+use crate::model::kinematics::{forward_kinematics_links, Configuration, Data};
+use crate::model::{JointId, LinkId, Model};
+use crate::rng::SplitMix64;
+use crate::urdf::robot::Robot;
+
+use chain::ArmChain;
+use target::{Orientation, OrientationMatcher, Task};
+
+/// Samples per parallel work unit (and per generator seed).
+const CHUNK: usize = 1024;
+/// Half-width of the height band around a task height, metres.
+pub const TASK_BAND: f64 = 0.05;
+/// A task height this close to the sampled tip envelope (as a fraction of the arm's reach) may be reachable
+/// by a pose no sample drew: the FAIL reason says so.
+const NEAR_ENVELOPE: f64 = 0.02;
+/// The most poses within the task band, per arm, whose centre of mass is checked (the first feasible ones
+/// sampled).
+const MAX_BAND_POSES: usize = 4096;
+/// Fraction of samples that must meet an orientation.
+pub const ORIENTATION_PASS_FRACTION: f64 = 0.05;
+/// Fraction of samples that must be free of self-collision.
+pub const COLLISION_FREE_PASS_FRACTION: f64 = 0.95;
+
+/// What the workspace analysis is asked.
+#[derive(Clone, Debug)]
+pub struct WorkspaceOptions {
+    /// Samples per arm (`--samples`).
+    pub samples: usize,
+    /// Seed (`--seed`).
+    pub seed: u64,
+    /// `--task` / `--height`.
+    pub task: Option<Task>,
+    /// `--orientation`.
+    pub orientation: Option<Orientation>,
+    /// `--orientation-tolerance`, degrees.
+    pub orientation_tolerance_deg: f64,
+    /// `--approach-axis` (tip frame); default: towards the fingers, else +z.
+    pub approach_axis: Option<Vector3<f64>>,
+}
+
+impl Default for WorkspaceOptions {
+    fn default() -> Self {
+        WorkspaceOptions {
+            samples: 30_000,
+            seed: 7,
+            task: None,
+            orientation: None,
+            orientation_tolerance_deg: 30.0,
+            approach_axis: None,
+        }
+    }
+}
+
+/// The robot at its reference pose, and what the other sections found about it.
+pub struct Scene<'a> {
+    /// The robot.
+    pub robot: &'a Robot,
+    /// Its tree.
+    pub model: &'a Model,
+    /// The reference configuration (the statics pose).
+    pub q: &'a [f64],
+    /// Placements at `q`.
+    pub data: &'a Data,
+    /// Height of the ground in the root frame.
+    pub ground: f64,
+    /// The support polygon at `q` (counter-clockwise), empty when the robot cannot tip.
+    pub support_polygon: &'a [Point2],
+    /// The robot category (for the N/A reason).
+    pub robot_type: RobotType,
+    /// `--payload-mass` in kg and `--payload-link`: the load the reaching arm carries, at that link, or at
+    /// the arm's tip when no link is given.
+    pub payload: Option<(f64, Option<LinkId>)>,
+}
+
+/// Self-collision set-up: the model with its allowed pairs, and what was excluded.
+pub struct CollisionSetup {
+    /// Shapes and allowed-collision matrix (touching-at-reference pairs already allowed).
+    pub model: CollisionModel,
+    /// Pairs in contact at the reference pose.
+    pub touching: Vec<(LinkId, LinkId)>,
+    /// Pairs an SRDF allows (not otherwise excluded).
+    pub srdf_disabled: usize,
+    /// SRDF entries naming links the robot does not have (`line:col: ...`).
+    pub unknown_srdf_links: Vec<String>,
+}
+
+impl CollisionSetup {
+    /// Build the collision model and exclude what is in contact at the reference placements.
+    pub fn new(
+        robot: &Robot,
+        model: &Model,
+        reference: &Data,
+        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+        srdf: &crate::input::srdf::SrdfCollisions,
+    ) -> CollisionSetup {
+        let mut collision = CollisionModel::build(robot, model, mesh_points);
+        let before = collision.all_pairs().len();
+        let unknown_srdf_links = collision.allow_srdf(model, srdf);
+        let srdf_disabled = before - collision.all_pairs().len();
+        let touching = collision.touching_pairs(&reference.link_placement);
+        collision.allow(&touching, Allowed::Touching);
+        CollisionSetup {
+            model: collision,
+            touching,
+            srdf_disabled,
+            unknown_srdf_links,
+        }
+    }
+}
+
+/// One arm prepared for sampling.
+struct ArmJob<'a> {
+    arm: &'a Arm,
+    chain: ArmChain,
+    approach: Vector3<f64>,
+    approach_source: &'static str,
+    /// Links whose placement changes with the arm's joints (parents first).
+    moving_links: Vec<LinkId>,
+    pairs: Option<PairSet>,
+}
+
+/// What the samples of one arm (or one chunk of them) showed.
+#[derive(Clone, Debug)]
+struct ArmStats {
+    samples: usize,
+    max_reach: f64,
+    max_height: f64,
+    min_height: f64,
+    /// Tip height range over the feasible samples (free of self-collision, tip above the ground): what
+    /// task heights are judged on.
+    feasible_heights: Option<(f64, f64)>,
+    max_horizontal: f64,
+    max_from_base: f64,
+    band_samples: usize,
+    /// Furthest horizontal reach within the task band: (distance, sample index, arm values).
+    band_best: Option<(f64, usize, Vec<f64>)>,
+    /// The first [`MAX_BAND_POSES`] samples within the task band (by sample index): (index, arm values).
+    band_poses: Vec<(usize, Vec<f64>)>,
+    orientation_ok: usize,
+    orientation_considered: usize,
+    collision_free: usize,
+    min_clearance: Option<(f64, (LinkId, LinkId))>,
+    /// Per pair, the colliding samples where it was the first contact found.
+    colliding: HashMap<(LinkId, LinkId), usize>,
+}
+
+impl ArmStats {
+    fn new() -> Self {
+        ArmStats {
+            samples: 0,
+            max_reach: f64::NEG_INFINITY,
+            max_height: f64::NEG_INFINITY,
+            min_height: f64::INFINITY,
+            feasible_heights: None,
+            max_horizontal: f64::NEG_INFINITY,
+            max_from_base: f64::NEG_INFINITY,
+            band_samples: 0,
+            band_best: None,
+            band_poses: Vec::new(),
+            orientation_ok: 0,
+            orientation_considered: 0,
+            collision_free: 0,
+            min_clearance: None,
+            colliding: HashMap::new(),
+        }
+    }
+
+    fn merge(mut self, other: ArmStats) -> ArmStats {
+        self.samples += other.samples;
+        self.max_reach = self.max_reach.max(other.max_reach);
+        self.max_height = self.max_height.max(other.max_height);
+        self.min_height = self.min_height.min(other.min_height);
+        self.feasible_heights = match (self.feasible_heights, other.feasible_heights) {
+            (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+            (a, b) => a.or(b),
+        };
+        self.max_horizontal = self.max_horizontal.max(other.max_horizontal);
+        self.max_from_base = self.max_from_base.max(other.max_from_base);
+        self.band_samples += other.band_samples;
+        self.band_best = match (self.band_best.take(), other.band_best) {
+            (Some(a), Some(b)) => Some(
+                if (b.0, std::cmp::Reverse(b.1)) > (a.0, std::cmp::Reverse(a.1)) {
+                    b
+                } else {
+                    a
+                },
+            ),
+            (a, b) => a.or(b),
+        };
+        self.band_poses.extend(other.band_poses);
+        self.band_poses.sort_unstable_by_key(|(index, _)| *index);
+        self.band_poses.truncate(MAX_BAND_POSES);
+        self.orientation_ok += other.orientation_ok;
+        self.orientation_considered += other.orientation_considered;
+        self.collision_free += other.collision_free;
+        self.min_clearance = match (self.min_clearance, other.min_clearance) {
+            (Some(a), Some(b)) => Some(if b.0 < a.0 || (b.0 == a.0 && b.1 < a.1) {
+                b
+            } else {
+                a
+            }),
+            (a, b) => a.or(b),
+        };
+        for (pair, count) in other.colliding {
+            *self.colliding.entry(pair).or_default() += count;
+        }
+        self
+    }
+}
+
+/// What one sample needs besides the arm.
+struct SampleContext<'a> {
+    scene: &'a Scene<'a>,
+    options: &'a WorkspaceOptions,
+    matcher: Option<OrientationMatcher>,
+    collision: Option<&'a CollisionModel>,
+}
+
+/// The generator seed of one chunk: the seed, the arm and the chunk hashed in turn, so nearby seeds
+/// (7 and 6) share no chunk stream.
+fn chunk_seed(seed: u64, arm: usize, chunk: usize) -> u64 {
+    let mix = |value: u64| SplitMix64::new(value).next_u64();
+    mix(mix(mix(seed) ^ arm as u64) ^ chunk as u64)
+}
+
+fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usize) -> ArmStats {
+    let scene = ctx.scene;
+    let start = chunk * CHUNK;
+    let count = CHUNK.min(ctx.options.samples.saturating_sub(start));
+    let mut stats = ArmStats::new();
+    let mut rng = SplitMix64::new(chunk_seed(ctx.options.seed, arm_index, chunk));
+    let mut q = vec![0.0; job.chain.dof()];
+    // Collision scratch: a full configuration and placements, updated on the moving links only.
+    let mut collision_state = match (ctx.collision, &job.pairs) {
+        (Some(model), Some(pairs)) if !pairs.is_empty() => Some((
+            model,
+            pairs,
+            scene.q.to_vec(),
+            scene.data.clone(),
+            CheckScratch::new(model),
+        )),
+        _ => None,
+    };
+    let target_height = ctx.options.task.map(|t| scene.ground + t.height());
+    let shoulder = job.chain.shoulder;
+    for i in 0..count {
+        for (value, (_, lo, hi)) in q.iter_mut().zip(&job.chain.sampled) {
+            *value = rng.uniform(*lo, *hi);
+        }
+        let tip = ctx
+            .matcher
+            .map(|matcher| (matcher, job.chain.tip(&q, &job.approach)));
+        let p = match &tip {
+            Some((_, pose)) => pose.position,
+            None => job.chain.tip_position(&q),
+        };
+        let offset = p - shoulder;
+        let horizontal = offset.x.hypot(offset.y);
+        stats.samples += 1;
+        stats.max_reach = stats.max_reach.max(offset.norm());
+        stats.max_height = stats.max_height.max(p.z - scene.ground);
+        stats.min_height = stats.min_height.min(p.z - scene.ground);
+        stats.max_horizontal = stats.max_horizontal.max(horizontal);
+        stats.max_from_base = stats.max_from_base.max(p.norm());
+        // Self-collision first: task heights, the band and orientations count feasible poses only.
+        let mut free = true;
+        if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
+            for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
+                q_full[joint.0] = *value;
+            }
+            scene.model.apply_mimic(q_full);
+            forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
+            let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
+            let check = model.check(pairs, &data.link_placement, cutoff, scratch);
+            free = check.is_free();
+            if free {
+                stats.collision_free += 1;
+                if let Some(clearance) = check.min_clearance {
+                    stats.min_clearance = Some(clearance);
+                }
+            }
+            if let Some(pair) = check.contact {
+                *stats.colliding.entry(pair).or_default() += 1;
+            }
+        }
+        let height = p.z - scene.ground;
+        if !free || height < 0.0 {
+            continue;
+        }
+        stats.feasible_heights = Some(match stats.feasible_heights {
+            Some((lo, hi)) => (lo.min(height), hi.max(height)),
+            None => (height, height),
+        });
+        let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
+        if in_band == Some(true) {
+            stats.band_samples += 1;
+            if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
+                stats.band_best = Some((horizontal, start + i, q.clone()));
+            }
+            if stats.band_poses.len() < MAX_BAND_POSES {
+                stats.band_poses.push((start + i, q.clone()));
+            }
+        }
+        if let Some((matcher, pose)) = &tip {
+            if in_band != Some(false) {
+                stats.orientation_considered += 1;
+                stats.orientation_ok += usize::from(matcher.accepts(&pose.approach));
+            }
+        }
+    }
+    stats
+}
+
+/// Links whose placement changes when `joints` move: the subtrees below them and below every mimic
+/// follower of them, parents first.
+fn moved_links(model: &Model, joints: &[JointId]) -> Vec<LinkId> {
+    let mut varies = vec![false; model.joint_data.len()];
+    for joint in joints {
+        varies[joint.0] = true;
+    }
+    // Followers of varying joints vary too (leaders come first in `mimic_order`).
+    for follower in &model.mimic_order {
+        if model.mimic[follower.0].is_some_and(|m| varies[m.leader.0]) {
+            varies[follower.0] = true;
+        }
+    }
+    // A link moves when its parent does or its parent joint varies (parents first).
+    let mut moved = vec![false; model.parent_joint.len()];
+    for &link in &model.topological_order {
+        if let Some(joint) = model.parent_joint[link.0] {
+            let parent_moved = model.joint_links[joint.0].is_some_and(|(p, _)| moved[p.0]);
+            moved[link.0] = parent_moved || varies[joint.0];
+        }
+    }
+    model
+        .topological_order
+        .iter()
+        .copied()
+        .filter(|l| moved[l.0])
+        .collect()
+}
+
+/// The tool's approach axis in the tip frame: declared, else from the hand towards its fingers, else +z.
+fn approach_axis(
+    arm: &Arm,
+    data: &Data,
+    declared: Option<Vector3<f64>>,
+) -> (Vector3<f64>, &'static str) {
+    if let Some(axis) = declared {
+        return (axis, "declared");
+    }
+    if let (Some(hand), false) = (arm.hand, arm.fingers.is_empty()) {
+        let centroid = arm
+            .fingers
+            .iter()
+            .map(|f| data.link_placement[f.0].translation.vector)
+            .sum::<Vector3<f64>>()
+            / arm.fingers.len() as f64;
+        let from_hand = centroid - data.link_placement[hand.0].translation.vector;
+        let tip = data.link_placement[arm.tip.0];
+        if let Some(direction) = (tip.rotation.inverse() * from_hand).try_normalize(1e-4) {
+            return (direction, "fingers");
+        }
+    }
+    (Vector3::z(), "z")
+}
+
+fn names(robot: &Robot, pair: (LinkId, LinkId)) -> [String; 2] {
+    [
+        robot.links[pair.0 .0].name.value.clone(),
+        robot.links[pair.1 .0].name.value.clone(),
+    ]
+}
+
+fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSection {
+    WorkspaceSection {
+        status: Status::NotApplicable,
+        max_reach: None,
+        vertical_reach: None,
+        horizontal_reach: None,
+        reach_from_base: None,
+        reach_confidence: Confidence::Missing,
+        samples: options.samples,
+        seed: options.seed,
+        arms: Vec::new(),
+        task: options.task.map(|t| t.name().to_string()),
+        task_target_height_m: options.task.map(Task::height),
+        task_height_reachable: None,
+        task_com_stable_during_reach: None,
+        task_com_shift_estimate_m: None,
+        task_com_margin_mm: None,
+        task_com_worst_margin_mm: None,
+        task_com_not_assessed: None,
+        orientation: options.orientation.map(|o| o.label()),
+        orientation_reachable: None,
+        orientation_fraction: None,
+        orientation_tolerance_deg: options.orientation_tolerance_deg,
+        self_collision_free_fraction: None,
+        self_collision_min_clearance_mm: None,
+        self_collision_worst_pair: None,
+        self_collision_touching_at_reference: Vec::new(),
+        self_collision_srdf_disabled: 0,
+        self_collision_not_assessed: None,
+        reason: Some(reason),
+    }
+}
+
+/// The workspace section for `arms` (detected or declared). `collision` is `None` when self-collision is
+/// not assessed (more than [`crate::analysis::collision::MAX_COLLISION_LINKS`] links).
+pub fn analyse(
+    scene: &Scene,
+    arms: &[Arm],
+    collision: Option<&CollisionSetup>,
+    options: &WorkspaceOptions,
+) -> WorkspaceSection {
+    let model = scene.model;
+    if arms.is_empty() {
+        let reason = format!(
+            "not applicable — no arm chain detected (robot type '{}'); declare one with --arm-root/--arm-tip",
+            scene.robot_type.as_str()
+        );
+        return not_applicable(options, reason);
+    }
+    if options.samples == 0 {
+        return not_applicable(
+            options,
+            "no configuration sampled (--samples 0)".to_string(),
+        );
+    }
+    let tolerance = options.orientation_tolerance_deg.to_radians();
+    let jobs: Vec<ArmJob> = arms
+        .iter()
+        .filter_map(|arm| {
+            let chain = ArmChain::new(model, arm, scene.data, scene.q);
+            let (approach, approach_source) = approach_axis(arm, scene.data, options.approach_axis);
+            arm.first_joint(model)?;
+            let sampled: Vec<JointId> = chain.sampled.iter().map(|(j, _, _)| *j).collect();
+            if sampled.is_empty() {
+                return None;
+            }
+            let moving_links = moved_links(model, &sampled);
+            let pairs = collision.map(|c| c.model.pairs_moved_by(&sampled));
+            Some(ArmJob {
+                arm,
+                chain,
+                approach,
+                approach_source,
+                moving_links,
+                pairs,
+            })
+        })
+        .collect();
+    if jobs.is_empty() {
+        return not_applicable(options, "no arm has a joint that moves".to_string());
+    }
+    let chunks = options.samples.div_ceil(CHUNK);
+    let per_arm: Vec<ArmStats> = jobs
+        .iter()
+        .enumerate()
+        .map(|(arm_index, job)| {
+            let ctx = SampleContext {
+                scene,
+                options,
+                matcher: options
+                    .orientation
+                    .map(|o| o.matcher(&job.approach, tolerance)),
+                collision: collision.map(|c| &c.model),
+            };
+            (0..chunks)
+                .into_par_iter()
+                .map(|chunk| sample_chunk(&ctx, job, arm_index, chunk))
+                .reduce(ArmStats::new, ArmStats::merge)
+        })
+        .collect();
+    summarize(scene, &jobs, &per_arm, collision, options)
+}
+
+fn fraction(part: usize, whole: usize) -> Option<f64> {
+    (whole > 0).then(|| part as f64 / whole as f64)
+}
+
+fn summarize(
+    scene: &Scene,
+    jobs: &[ArmJob],
+    per_arm: &[ArmStats],
+    collision: Option<&CollisionSetup>,
+    options: &WorkspaceOptions,
+) -> WorkspaceSection {
+    let robot = scene.robot;
+    let model = scene.model;
+    let target = options.task.map(Task::height);
+    let mut arms = Vec::new();
+    for (job, stats) in jobs.iter().zip(per_arm) {
+        let link_name = |l: LinkId| robot.links[l.0].name.value.clone();
+        let checked = job.pairs.as_ref().is_some_and(|p| !p.is_empty());
+        arms.push(ArmWorkspace {
+            root_link: link_name(job.arm.base),
+            tip_link: link_name(job.arm.tip),
+            first_joint: job
+                .arm
+                .first_joint(model)
+                .map(|j| robot.joints[j.0].name.value.clone()),
+            joints: job
+                .chain
+                .sampled
+                .iter()
+                .map(|(j, _, _)| robot.joints[j.0].name.value.clone())
+                .collect(),
+            body_joints_held: body_joints(model, job.arm.base)
+                .into_iter()
+                .map(|j| format!("{}={:.3}", robot.joints[j.0].name.value, scene.q[j.0]))
+                .collect(),
+            confidence: if job.arm.declared {
+                Confidence::Exact
+            } else {
+                Confidence::Estimated
+            },
+            hand_link: job.arm.hand.map(link_name),
+            approach_axis: [job.approach.x, job.approach.y, job.approach.z],
+            approach_axis_source: job.approach_source.to_string(),
+            max_reach: stats.max_reach,
+            vertical_reach: stats.max_height,
+            lowest_tip_height: stats.min_height,
+            horizontal_reach: stats.max_horizontal,
+            reach_from_base: stats.max_from_base,
+            task_height_reachable: target.map(|h| {
+                stats
+                    .feasible_heights
+                    .is_some_and(|(lo, hi)| lo <= h && h <= hi)
+            }),
+            task_band_samples: target.map(|_| stats.band_samples),
+            orientation_fraction: options
+                .orientation
+                .and_then(|_| fraction(stats.orientation_ok, stats.orientation_considered)),
+            self_collision_free_fraction: checked
+                .then(|| fraction(stats.collision_free, stats.samples))
+                .flatten(),
+            self_collision_min_clearance_mm: checked
+                .then(|| stats.min_clearance.map(|c| c.0 * 1000.0))
+                .flatten(),
+        });
+    }
+    let max = |f: fn(&ArmWorkspace) -> f64| arms.iter().map(f).reduce(f64::max);
+    let mut status = Status::Pass;
+    let mut reasons = Vec::new();
+
+    // Task: reachable by some arm; COM at the furthest horizontal reach at that height.
+    let task_height_reachable =
+        target.map(|_| arms.iter().any(|a| a.task_height_reachable == Some(true)));
+    let (mut com_stable, mut com_shift, mut com_margin, mut com_note) = (None, None, None, None);
+    let mut com_worst = None;
+    if let (Some(task), Some(reachable)) = (options.task, task_height_reachable) {
+        if !reachable {
+            status = status.worst(Status::Fail);
+            let held = body_joints_held(&arms);
+            // Sampled extremes approach the true ones from inside: a target just beyond them may be
+            // reachable by a pose no sample drew.
+            let gap = per_arm
+                .iter()
+                .filter_map(|stats| stats.feasible_heights)
+                .map(|(lo, hi)| {
+                    let h = task.height();
+                    if h > hi {
+                        h - hi
+                    } else {
+                        lo - h
+                    }
+                })
+                .reduce(f64::min);
+            let reach = arms.iter().map(|a| a.max_reach).fold(0.0, f64::max);
+            let near = gap.filter(|&gap| gap < NEAR_ENVELOPE * reach);
+            reasons.push(format!(
+                "no arm reaches the {} height ({:.2} m above the ground){}{}",
+                task.name(),
+                task.height(),
+                if held.is_empty() {
+                    String::new()
+                } else {
+                    format!(" with the body held at {}", held.join(", "))
+                },
+                near.map_or(String::new(), |gap| format!(
+                    " (the nearest sampled tip is {:.0} mm away, within sampling error: more --samples may reach it)",
+                    gap * 1000.0
+                ))
+            ));
+        }
+        let best = jobs
+            .iter()
+            .zip(per_arm)
+            .filter_map(|(job, stats)| stats.band_best.as_ref().map(|b| (job, b)))
+            .max_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+        com_note = match (&best, scene.support_polygon.is_empty()) {
+            (_, true) => Some(
+                "no support polygon (a fixed base, or stability could not be computed)".to_string(),
+            ),
+            (None, false) => Some(format!(
+                "no sampled pose within {:.0} cm of the height",
+                TASK_BAND * 100.0
+            )),
+            _ => None,
+        };
+        if let (Some((job, (_, _, q_arm))), false) = (best, scene.support_polygon.is_empty()) {
+            let com = com_at(scene, job, q_arm);
+            if com.is_none() {
+                com_note = Some("no centre of mass (no declared mass)".to_string());
+            }
+            if let Some((stable, shift, margin_mm)) = com {
+                com_stable = Some(stable);
+                com_shift = Some(shift);
+                com_margin = Some(margin_mm);
+                if !stable {
+                    status = status.worst(Status::Fail);
+                    reasons.push(format!(
+                        "the robot tips over while reaching for the {} height (COM {:.1} mm outside the support polygon)",
+                        task.name(),
+                        -margin_mm
+                    ));
+                }
+            }
+            // The furthest pose is one heading; the worst over every pose at that height is stable
+            // from seed to seed and catches headings over a short edge of the polygon.
+            let mut probe = ComProbe::new(scene);
+            com_worst = jobs
+                .iter()
+                .zip(per_arm)
+                .flat_map(|(job, stats)| stats.band_poses.iter().map(move |(_, q)| (job, q)))
+                .filter_map(|(job, q_arm)| probe.margin(job, q_arm))
+                .reduce(f64::min)
+                .map(|worst| worst * 1000.0);
+            if let (Some(worst), Some(true)) = (com_worst, com_stable) {
+                if worst < 0.0 {
+                    status = status.worst(Status::Warn);
+                    reasons.push(format!(
+                        "some sampled poses at the {} height tip the robot over (worst: COM {:.1} mm outside the support polygon)",
+                        task.name(),
+                        -worst
+                    ));
+                }
+            }
+        }
+    }
+
+    // Orientation: the best arm's fraction.
+    let orientation_fraction = arms
+        .iter()
+        .filter_map(|a| a.orientation_fraction)
+        .reduce(f64::max);
+    // No fraction: no sampled pose at the task height, so the orientation was not assessed.
+    let orientation_reachable = options
+        .orientation
+        .and(orientation_fraction)
+        .map(|f| f >= ORIENTATION_PASS_FRACTION);
+    if orientation_reachable == Some(false) {
+        status = status.worst(Status::Warn);
+        reasons.push(format!(
+            "orientation {} is met by {:.1}% of samples (< {:.0}%)",
+            options.orientation.map(|o| o.label()).unwrap_or_default(),
+            orientation_fraction.unwrap_or_default() * 100.0,
+            ORIENTATION_PASS_FRACTION * 100.0
+        ));
+    }
+
+    // Self-collision over every arm's samples.
+    let checked: Vec<&ArmStats> = jobs
+        .iter()
+        .zip(per_arm)
+        .filter(|(job, _)| job.pairs.as_ref().is_some_and(|p| !p.is_empty()))
+        .map(|(_, s)| s)
+        .collect();
+    let total: usize = checked.iter().map(|s| s.samples).sum();
+    let free: usize = checked.iter().map(|s| s.collision_free).sum();
+    let free_fraction = fraction(free, total);
+    let mut colliding: HashMap<(LinkId, LinkId), usize> = HashMap::new();
+    for stats in &checked {
+        for (pair, count) in &stats.colliding {
+            *colliding.entry(*pair).or_default() += count;
+        }
+    }
+    let min_clearance = checked
+        .iter()
+        .filter_map(|s| s.min_clearance)
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let worst_pair = colliding
+        .iter()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+        .map(|(pair, _)| *pair)
+        .or(min_clearance.map(|c| c.1));
+    if let Some(f) = free_fraction.filter(|f| *f < COLLISION_FREE_PASS_FRACTION) {
+        status = status.worst(Status::Warn);
+        reasons.push(format!(
+            "{:.1}% of sampled poses are free of self-collision (< {:.0}%){}",
+            f * 100.0,
+            COLLISION_FREE_PASS_FRACTION * 100.0,
+            worst_pair.map_or(String::new(), |p| {
+                let [a, b] = names(robot, p);
+                format!("; most often {a} × {b}")
+            })
+        ));
+    }
+    WorkspaceSection {
+        status,
+        max_reach: max(|a| a.max_reach),
+        vertical_reach: max(|a| a.vertical_reach),
+        horizontal_reach: max(|a| a.horizontal_reach),
+        reach_from_base: max(|a| a.reach_from_base),
+        reach_confidence: Confidence::Estimated,
+        samples: options.samples,
+        seed: options.seed,
+        arms,
+        task: options.task.map(|t| t.name().to_string()),
+        task_target_height_m: target,
+        task_height_reachable,
+        task_com_stable_during_reach: com_stable,
+        task_com_shift_estimate_m: com_shift,
+        task_com_margin_mm: com_margin,
+        task_com_worst_margin_mm: com_worst,
+        task_com_not_assessed: com_note,
+        orientation: options.orientation.map(|o| o.label()),
+        orientation_reachable,
+        orientation_fraction,
+        orientation_tolerance_deg: options.orientation_tolerance_deg,
+        self_collision_free_fraction: free_fraction,
+        self_collision_min_clearance_mm: min_clearance.map(|c| c.0 * 1000.0),
+        self_collision_worst_pair: worst_pair.map(|p| names(robot, p)),
+        self_collision_touching_at_reference: collision
+            .map(|c| c.touching.iter().map(|&p| names(robot, p)).collect())
+            .unwrap_or_default(),
+        self_collision_srdf_disabled: collision.map_or(0, |c| c.srdf_disabled),
+        self_collision_not_assessed: checked
+            .is_empty()
+            .then(|| collision_not_assessed(robot, jobs, collision)),
+        reason: (!reasons.is_empty()).then(|| reasons.join("; ")),
+    }
+}
+
+/// The independent actuated joints from the robot's root down to `link`, root first.
+fn body_joints(model: &Model, link: LinkId) -> Vec<JointId> {
+    let mut joints: Vec<JointId> = model
+        .joints_to_root(link)
+        .into_iter()
+        .filter(|j| model.joint_data[j.0].is_actuated() && model.mimic[j.0].is_none())
+        .collect();
+    joints.reverse();
+    joints
+}
+
+/// Why no pair was checked for self-collision.
+fn collision_not_assessed(
+    robot: &Robot,
+    jobs: &[ArmJob],
+    collision: Option<&CollisionSetup>,
+) -> String {
+    let Some(collision) = collision else {
+        return format!(
+            "the robot has more than {} links (a limit that bounds self-collision's time and memory)",
+            crate::analysis::collision::MAX_COLLISION_LINKS
+        );
+    };
+    let mut moved: Vec<LinkId> = jobs
+        .iter()
+        .flat_map(|j| j.moving_links.iter().copied())
+        .collect();
+    moved.sort_unstable();
+    moved.dedup();
+    let without: Vec<LinkId> = moved
+        .iter()
+        .copied()
+        .filter(|&l| !collision.model.has_geometry(l))
+        .collect();
+    let unusable: Vec<&str> = without
+        .iter()
+        .map(|l| &robot.links[l.0])
+        .filter(|link| !link.collisions.is_empty())
+        .map(|link| link.name.value.as_str())
+        .collect();
+    if !unusable.is_empty() {
+        let shown: Vec<&str> = unusable.iter().copied().take(4).collect();
+        format!(
+            "{} of the {} links the arms move have <collision> geometry that could not be used (meshes not found or unreadable, or shapes of a millimetre or less): {}{}",
+            unusable.len(),
+            moved.len(),
+            shown.join(", "),
+            if unusable.len() > shown.len() { ", …" } else { "" }
+        )
+    } else if without.len() == moved.len() {
+        "the links the arms move have no <collision> geometry".to_string()
+    } else {
+        "no pair the arms move can collide (adjacent, rigidly attached, allowed by the SRDF or in contact at the zero pose)".to_string()
+    }
+}
+
+/// Whole-body COM, with the payload, at the reference pose with an arm moved: one scratch reused over
+/// many poses.
+struct ComProbe<'a> {
+    scene: &'a Scene<'a>,
+    q: Configuration,
+    statics: StaticsData,
+}
+
+impl<'a> ComProbe<'a> {
+    fn new(scene: &'a Scene<'a>) -> Self {
+        ComProbe {
+            scene,
+            q: scene.q.to_vec(),
+            statics: StaticsData::new(scene.model),
+        }
+    }
+
+    /// The COM with `job`'s arm at `q_arm` (`None`: the arm at the reference pose).
+    fn com(&mut self, job: &ArmJob, q_arm: Option<&[f64]>) -> Option<Vector3<f64>> {
+        let (scene, model) = (self.scene, self.scene.model);
+        self.q.copy_from_slice(scene.q);
+        if let Some(q_arm) = q_arm {
+            for (value, (joint, _, _)) in q_arm.iter().zip(&job.chain.sampled) {
+                self.q[joint.0] = *value;
+            }
+            model.apply_mimic(&mut self.q);
+        }
+        evaluate(model, &self.q, &mut self.statics);
+        let (mass, com) = mass_and_com(model, &self.statics);
+        let com = com?;
+        let Some((load, link)) = scene.payload else {
+            return Some(com);
+        };
+        let at = self.statics.kinematics.link_placement[link.unwrap_or(job.arm.tip).0].translation;
+        Some((com * mass + at.vector * load) / (mass + load))
+    }
+
+    /// The support-polygon margin of the COM with `job`'s arm at `q_arm`, metres.
+    fn margin(&mut self, job: &ArmJob, q_arm: &[f64]) -> Option<f64> {
+        let com = self.com(job, Some(q_arm))?;
+        Some(margin(self.scene.support_polygon, [com.x, com.y])?.distance)
+    }
+}
+
+/// Whole-body COM, with the payload, at the reference pose with `job`'s arm at `q_arm`: (over the polygon,
+/// horizontal shift from the reference COM in metres, margin in mm).
+fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)> {
+    let mut probe = ComProbe::new(scene);
+    let reference_com = probe.com(job, None)?;
+    let com = probe.com(job, Some(q_arm))?;
+    let m = margin(scene.support_polygon, [com.x, com.y])?;
+    let shift = (com.xy() - reference_com.xy()).norm();
+    Some((m.distance >= 0.0, shift, m.distance * 1000.0))
+}

@@ -1,0 +1,358 @@
+//! The rule registry: every check's stable code, name, default severity and documentation, in one table.
+//!
+//! `urdf_validate --explain CODE` and `docs/rules.md` are both generated from [`ALL`].
+
+use crate::diagnostics::finding::Severity;
+
+/// One rule: identity, default severity and documentation.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Rule {
+    /// Stable code, e.g. `U205`. Never reused.
+    pub code: &'static str,
+    /// Kebab-case name, e.g. `inertia-not-positive-definite`.
+    pub name: &'static str,
+    /// Default severity.
+    pub severity: Severity,
+    /// What the rule checks.
+    pub what: &'static str,
+    /// Why it matters (which tool refuses or misbehaves).
+    pub why: &'static str,
+    /// How to fix it.
+    pub fix: &'static str,
+}
+
+macro_rules! rules {
+    ($($ident:ident = $code:literal $name:literal $sev:ident { what: $what:literal, why: $why:literal, fix: $fix:literal $(,)? })*) => {
+        $(
+            #[doc = concat!("`", $code, "` ", $name, ": ", $what)]
+            pub static $ident: Rule = Rule {
+                code: $code, name: $name, severity: Severity::$sev, what: $what, why: $why, fix: $fix,
+            };
+        )*
+        /// Every rule, in code order.
+        pub static ALL: &[&Rule] = &[$(&$ident),*];
+    };
+}
+
+rules! {
+    NOT_A_ROBOT = "U001" "not-a-robot" Critical {
+        what: "The document's root element is not `<robot>`.",
+        why: "URDF parsers (urdfdom, Pinocchio, MuJoCo) only accept a `<robot>` root; nothing else can be checked.",
+        fix: "Make `<robot name=\"...\">` the root element. SDF or MJCF files need their own tools.",
+    }
+    MISSING_ATTRIBUTE = "U002" "missing-attribute" Critical {
+        what: "A required attribute is absent (a link or joint name, a joint's type, parent or child link, a mesh filename, a box size, ...).",
+        why: "urdfdom refuses to load the file; other tools silently invent a default.",
+        fix: "Add the attribute named in the message.",
+    }
+    INVALID_NUMBER = "U003" "invalid-number" Critical {
+        what: "A numeric attribute does not hold the expected number of decimal numbers.",
+        why: "urdfdom refuses the file; lenient parsers read 0, which silently changes the physics.",
+        fix: "Write plain decimal numbers separated by spaces, e.g. `xyz=\"0 0 0.1\"`.",
+    }
+    NON_FINITE_VALUE = "U004" "non-finite-value" Critical {
+        what: "A number is NaN or infinite.",
+        why: "Every downstream computation (mass, centre of mass, torques) becomes NaN; simulators explode or refuse the model.",
+        fix: "Replace the value with a finite number; NaN often comes from a failed export or a xacro expression dividing by zero.",
+    }
+    UNKNOWN_ELEMENT = "U005" "unknown-element" Info {
+        what: "An element that the URDF specification does not define at this place.",
+        why: "Tools ignore it, so whatever it was meant to say has no effect; it is often a typo (`<inertia>` outside `<inertial>`).",
+        fix: "Check the spelling and nesting, or remove it. Extensions belong in `<gazebo>` or `<ros2_control>`.",
+    }
+    UNKNOWN_ATTRIBUTE = "U006" "unknown-attribute" Info {
+        what: "An attribute that the URDF specification does not define on this element.",
+        why: "Tools ignore it; a misspelt attribute (`efort`) means the intended value is never used.",
+        fix: "Check the spelling against the URDF specification, or remove it.",
+    }
+    UNKNOWN_JOINT_TYPE = "U007" "unknown-joint-type" Critical {
+        what: "A joint's `type` is not one of revolute, continuous, prismatic, fixed, floating, planar.",
+        why: "urdfdom and MuJoCo refuse the file.",
+        fix: "Use one of the six URDF joint types.",
+    }
+    MISSING_GEOMETRY = "U008" "missing-geometry" Critical {
+        what: "A `<visual>` or `<collision>` without a `<geometry>`, or a `<geometry>` without a shape.",
+        why: "urdfdom refuses the file.",
+        fix: "Add a `<geometry>` holding one of `<box>`, `<cylinder>`, `<sphere>` or `<mesh>`.",
+    }
+    NO_LINKS = "U009" "no-links" Critical {
+        what: "The robot has no `<link>` at all.",
+        why: "There is nothing to simulate; every tool refuses an empty robot.",
+        fix: "Check that the file is the generated URDF and not an empty stub (xacro output with a false condition, an empty template).",
+    }
+    XACRO_WARNING = "U010" "xacro-warning" Info {
+        what: "The xacro expander warned (an unknown attribute on a xacro tag, an include matching no file, `xacro.warning(...)`).",
+        why: "Python xacro prints the same warning; the expanded URDF may not be what the author meant.",
+        fix: "Follow the message; it names the xacro file, line and column.",
+    }
+    DUPLICATE_NAME = "U101" "duplicate-name" Critical {
+        what: "Two links, two joints or two materials share a name.",
+        why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",
+        fix: "Rename one of them; names must be unique per kind.",
+    }
+    UNDEFINED_LINK = "U102" "undefined-link" Critical {
+        what: "A joint's parent or child names a link that does not exist.",
+        why: "The kinematic tree is broken; urdfdom and MuJoCo refuse the file.",
+        fix: "Fix the link name (see the suggestion) or add the missing link.",
+    }
+    KINEMATIC_LOOP = "U103" "kinematic-loop" Critical {
+        what: "A link has more than one parent joint, or joints form a cycle.",
+        why: "URDF describes trees only; urdfdom and MuJoCo refuse loops.",
+        fix: "Remove one joint of the loop; model closed chains with a mimic joint or in the simulator (e.g. an SDF or MJCF equality constraint).",
+    }
+    MULTIPLE_ROOTS = "U104" "multiple-roots" Critical {
+        what: "The links do not form one tree: several links have no parent.",
+        why: "urdfdom refuses a file with two root links; other tools drop the disconnected part.",
+        fix: "Connect each extra root to the robot with a joint (often a forgotten fixed joint to `base_link`).",
+    }
+    TOO_MANY_LINKS = "U105" "too-many-links" Info {
+        what: "The robot has more than 50 links.",
+        why: "Large models simulate and validate slower; many tiny links are often CAD sub-assemblies that could be merged.",
+        fix: "Nothing is wrong; consider merging links joined by fixed joints for simulation.",
+    }
+    MISSING_INERTIAL = "U201" "missing-inertial" Warn {
+        what: "A link moved by a non-fixed joint has no `<inertial>`.",
+        why: "Gazebo drops massless links together with their joint, MuJoCo refuses them or invents a mass from the geometry, and statics cannot count their weight.",
+        fix: "Add `<inertial>` with the link's mass, centre of mass and inertia tensor (from CAD, or from the collision geometry at a realistic density).",
+    }
+    NEGATIVE_MASS = "U202" "negative-mass" Critical {
+        what: "A link's mass is negative.",
+        why: "Physically impossible; every dynamics library produces nonsense and MuJoCo refuses it.",
+        fix: "Use the link's real, positive mass.",
+    }
+    ZERO_MASS = "U203" "zero-mass" Warn {
+        what: "A link moved by a non-fixed joint has mass 0.",
+        why: "MuJoCo refuses moving bodies lighter than mjMINVAL; Gazebo and physics engines become unstable.",
+        fix: "Give the link its real mass; if it is only a frame, attach it with a fixed joint and drop the `<inertial>`.",
+    }
+    ZERO_INERTIA = "U204" "zero-inertia" Warn {
+        what: "A moving link with mass has an all-zero inertia tensor.",
+        why: "A point mass on a rotating link is not simulable: MuJoCo refuses it and other engines divide by zero.",
+        fix: "Compute the inertia from the link's shape (e.g. solid box: m(b²+c²)/12 ...).",
+    }
+    INERTIA_NOT_POSITIVE_DEFINITE = "U205" "inertia-not-positive-definite" Warn {
+        what: "The inertia tensor has a zero or negative eigenvalue.",
+        why: "Physically impossible; MuJoCo refuses it (`inertia must have positive eigenvalues`), Gazebo and Bullet become unstable.",
+        fix: "Recompute the tensor; a common cause is writing only `ixx` and leaving `iyy`/`izz` at 0, or a sign error in an off-diagonal term.",
+    }
+    INERTIA_TRIANGLE_INEQUALITY = "U206" "inertia-triangle-inequality" Warn {
+        what: "The principal moments violate A + B ≥ C.",
+        why: "No real mass distribution has such moments; MuJoCo refuses the body (`inertia must satisfy A + B >= C`) and Gazebo warns.",
+        fix: "Recompute the inertia from the geometry; the failing inequality and the shortfall are in the message.",
+    }
+    MASSLESS_GEOMETRY = "U207" "massless-geometry" Info {
+        what: "A link with visual or collision geometry but no `<inertial>`, attached by a fixed joint.",
+        why: "Its weight is missing from the parent's mass, centre of mass and every torque above it.",
+        fix: "Add an `<inertial>` if the part has a real mass; ignore this if it is a massless marker.",
+    }
+    MISSING_LIMIT = "U301" "missing-limit" Critical {
+        what: "A revolute or prismatic joint has no `<limit>`.",
+        why: "urdfdom refuses the file (`joint is of type REVOLUTE but it does not specify limits`).",
+        fix: "Add `<limit lower=... upper=... effort=... velocity=.../>`, or make the joint continuous if it really turns freely.",
+    }
+    INCOMPLETE_LIMIT = "U302" "incomplete-limit" Critical {
+        what: "A `<limit>` lacks the `effort` or `velocity` attribute.",
+        why: "urdfdom refuses the file (`joint limit: no effort`).",
+        fix: "Add both `effort` (N·m or N) and `velocity` (rad/s or m/s) from the actuator's datasheet.",
+    }
+    MISSING_EFFORT_VELOCITY = "U303" "missing-effort-velocity" Info {
+        what: "A continuous joint declares no effort or velocity limit.",
+        why: "Gravity-torque margins and controllers cannot be checked against an unknown motor.",
+        fix: "Add `<limit effort=... velocity=.../>` from the actuator's datasheet.",
+    }
+    INVERTED_LIMITS = "U304" "inverted-limits" Warn {
+        what: "A joint's lower limit is greater than its upper limit.",
+        why: "URDF 1.2 parsers refuse it; others accept it and the joint cannot move.",
+        fix: "Swap `lower` and `upper`.",
+    }
+    EMPTY_JOINT_RANGE = "U305" "empty-joint-range" Warn {
+        what: "A revolute or prismatic joint has lower == upper.",
+        why: "The joint cannot move (often both limits were left at their default 0); it should be fixed, or the limits are missing.",
+        fix: "Declare the real range, or make the joint `fixed`.",
+    }
+    NON_POSITIVE_EFFORT = "U306" "non-positive-effort" Warn {
+        what: "An actuated joint declares effort ≤ 0.",
+        why: "The motor cannot hold any load; controllers saturate at zero torque and every gravity-torque check fails.",
+        fix: "Declare the actuator's peak or continuous torque (force for prismatic joints).",
+    }
+    NON_POSITIVE_VELOCITY = "U307" "non-positive-velocity" Warn {
+        what: "An actuated joint declares velocity ≤ 0.",
+        why: "Planners and velocity-limited controllers will not move the joint.",
+        fix: "Declare the actuator's maximum speed.",
+    }
+    CONTINUOUS_WITH_LIMITS = "U308" "continuous-joint-limits" Info {
+        what: "A continuous joint declares `lower`/`upper`.",
+        why: "Continuous joints have no position limits: simulators and planners ignore these values.",
+        fix: "Remove `lower`/`upper`, or make the joint revolute if the range is real.",
+    }
+    ZERO_AXIS = "U309" "zero-axis" Critical {
+        what: "A joint axis is the zero vector.",
+        why: "The joint has no direction; MuJoCo refuses it (`axis too small`) and kinematics are undefined.",
+        fix: "Give the axis a unit direction, e.g. `xyz=\"0 0 1\"`.",
+    }
+    NON_UNIT_AXIS = "U310" "non-unit-axis" Warn {
+        what: "A joint axis is not a unit vector.",
+        why: "Some libraries normalise it and others scale velocities and torques by its length, so tools disagree.",
+        fix: "Normalise the axis.",
+    }
+    MIMIC_UNDEFINED_JOINT = "U311" "mimic-undefined-joint" Critical {
+        what: "A `<mimic>` names a joint that does not exist.",
+        why: "The follower has no leader; tools refuse the model or leave the joint free.",
+        fix: "Fix the joint name in `<mimic joint=...>`.",
+    }
+    MIMIC_CYCLE = "U312" "mimic-cycle" Critical {
+        what: "Mimic joints follow each other in a cycle (including a joint mimicking itself).",
+        why: "No joint drives the cycle; MuJoCo's equality constraints and Pinocchio refuse it.",
+        fix: "Make one joint of the cycle the independent leader.",
+    }
+    FLOATING_JOINT = "U313" "floating-joint" Info {
+        what: "A floating or planar joint.",
+        why: "Statics holds it at identity (as a fixed joint); many tools support these types poorly.",
+        fix: "Nothing to fix if intended; legged robots are better modelled with a floating base outside the URDF.",
+    }
+    TRANSMISSION_UNDEFINED_JOINT = "U401" "transmission-undefined-joint" Warn {
+        what: "A `<transmission>` names a joint that does not exist.",
+        why: "ros_control / gazebo_ros_control fail to start the controller for it.",
+        fix: "Fix the joint name, or remove the stale transmission.",
+    }
+    GAZEBO_UNDEFINED_REFERENCE = "U402" "gazebo-undefined-reference" Warn {
+        what: "A `<gazebo reference=...>` names no link or joint.",
+        why: "Gazebo ignores the block, so its material, friction or sensor never applies.",
+        fix: "Fix the reference to an existing link or joint name.",
+    }
+    ROS2_CONTROL_UNDEFINED_JOINT = "U403" "ros2-control-undefined-joint" Warn {
+        what: "A `<ros2_control>` block names a joint that does not exist.",
+        why: "The controller manager refuses to load the hardware interface.",
+        fix: "Fix the joint name, or remove the stale `<joint>` entry.",
+    }
+    UNDEFINED_MATERIAL = "U404" "undefined-material" Info {
+        what: "A visual refers to a material by name that is defined nowhere and gives no colour.",
+        why: "urdfdom logs an error and renderers fall back to a default colour.",
+        fix: "Define `<material name=...><color rgba=.../></material>` at robot level, or give the colour inline.",
+    }
+    MESH_NOT_FOUND = "U501" "mesh-not-found" Info {
+        what: "A mesh file cannot be found.",
+        why: "Simulators fail to load the link's geometry; collision and mass checks based on it cannot run.",
+        fix: "Pass `--package-path DIR` for `package://` URIs, or fix the path; the message lists where it looked.",
+    }
+    VISUAL_WITHOUT_COLLISION = "U502" "visual-without-collision" Info {
+        what: "A link has visual geometry but no collision geometry.",
+        why: "It is invisible to physics engines: it passes through the ground and other links.",
+        fix: "Add a `<collision>` (a simplified shape or convex mesh) if the part can touch anything.",
+    }
+    INVALID_GEOMETRY_SIZE = "U503" "invalid-geometry-size" Warn {
+        what: "A box size, cylinder or sphere dimension is zero or negative, or a mesh scale has a zero component.",
+        why: "Degenerate shapes break collision detection and mass estimates. (Negative mesh scales, the usual way to mirror a part, are accepted.)",
+        fix: "Use positive dimensions in metres.",
+    }
+    MESH_IN_MILLIMETRES = "U504" "mesh-in-millimetres" Warn {
+        what: "A mesh is hundreds of times larger than the spacing of its link's joints.",
+        why: "The classic CAD-export bug: the mesh is in millimetres, so collisions, contacts and inertia estimates are 1000× too large.",
+        fix: "Add `scale=\"0.001 0.001 0.001\"` to the `<mesh>`, or re-export the mesh in metres.",
+    }
+    MESH_UNREADABLE = "U505" "mesh-unreadable" Warn {
+        what: "A mesh file exists but cannot be read (broken, truncated, or an unsupported format).",
+        why: "Simulators fail to load the link's geometry; contact and collision checks leave the link out.",
+        fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
+    }
+    SRDF_PROBLEM = "U602" "srdf-problem" Warn {
+        what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` / `<robot name>.srdf` beside the URDF or in `../srdf/`) cannot be read, or one of its `<disable_collisions>`, `<enable_collisions>` or `<disable_default_collisions>` names a link the robot does not have.",
+        why: "Its allowed collisions (or that entry) are not applied, so self-collision may report contacts MoveIt would ignore; a stale SRDF also misleads MoveIt itself.",
+        fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
+    }
+    CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
+        what: "Two links that are not joined to each other have collision geometry in contact at the zero pose (joints clamped into their limits).",
+        why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",
+        fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
+    }
+}
+
+/// Look a rule up by code (`U205`, any case) or name (`inertia-not-positive-definite`).
+pub fn find(code_or_name: &str) -> Option<&'static Rule> {
+    ALL.iter()
+        .copied()
+        .find(|rule| rule.code.eq_ignore_ascii_case(code_or_name) || rule.name == code_or_name)
+}
+
+/// The `--explain` text of a rule.
+pub fn explain(rule: &Rule) -> String {
+    format!(
+        "{code} {name} (default severity: {sev})\n\nWhat: {what}\n\nWhy it matters: {why}\n\nHow to fix: {fix}\n",
+        code = rule.code,
+        name = rule.name,
+        sev = rule.severity.label(),
+        what = rule.what,
+        why = rule.why,
+        fix = rule.fix
+    )
+}
+
+/// The rules reference as Markdown (`docs/rules.md`).
+pub fn reference_markdown() -> String {
+    let mut out = String::from(
+        "# Rules reference\n\n<!-- Generated from crates/urdf-validator/src/rules.rs by `urdf_validate --list-rules-markdown`; a test fails when this file is stale. -->\n\n\
+         Every finding names one of these rules. `urdf_validate --explain CODE` prints one entry.\n\n\
+         | Code | Name | Severity | What |\n|---|---|---|---|\n",
+    );
+    for rule in ALL {
+        out.push_str(&format!(
+            "| {} | `{}` | {} | {} |\n",
+            rule.code,
+            rule.name,
+            rule.severity.label(),
+            rule.what
+        ));
+    }
+    for rule in ALL {
+        out.push_str(&format!(
+            "\n## {} `{}`\n\n**Severity:** {}\n\n**What:** {}\n\n**Why it matters:** {}\n\n**How to fix:** {}\n",
+            rule.code,
+            rule.name,
+            rule.severity.label(),
+            rule.what,
+            rule.why,
+            rule.fix
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_and_names_are_unique_and_well_formed() {
+        let mut codes = std::collections::HashSet::new();
+        let mut names = std::collections::HashSet::new();
+        for rule in ALL {
+            assert!(codes.insert(rule.code), "duplicate code {}", rule.code);
+            assert!(names.insert(rule.name), "duplicate name {}", rule.name);
+            assert!(rule
+                .name
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'));
+            assert!(rule.code.starts_with('U') && rule.code.len() == 4);
+        }
+    }
+
+    #[test]
+    fn find_accepts_code_and_name() {
+        assert_eq!(
+            find("u205").map(|r| r.name),
+            Some("inertia-not-positive-definite")
+        );
+        assert_eq!(find("mesh-not-found").map(|r| r.code), Some("U501"));
+        assert!(find("U999").is_none());
+    }
+
+    #[test]
+    fn docs_rules_md_is_up_to_date() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/rules.md");
+        let committed = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            committed == reference_markdown(),
+            "docs/rules.md is stale: regenerate it with `cargo run -p urdf-validate-cli -- --list-rules-markdown > docs/rules.md`"
+        );
+    }
+}

@@ -1,0 +1,118 @@
+//! The report: one serde type tree, the single source of truth for the JSON file and every renderer.
+//!
+//! Field names follow the Python tool's JSON so existing CI scripts keep working. Sections that are not
+//! implemented yet (statics, stability, workspace) are absent, never filled with placeholders.
+
+pub mod schema_doc;
+pub mod timestamp;
+
+pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
+pub use crate::analysis::stability::{RaisedContact, StabilitySection};
+pub use crate::analysis::statics::{JointStatics, StaticsSection};
+pub use crate::analysis::workspace::{body_joints_held, ArmWorkspace, WorkspaceSection};
+pub use crate::diagnostics::{Confidence, ConfidenceLevel, Status};
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use crate::diagnostics::Severity;
+
+/// The validation report of one robot: `<stem>_validation.json`.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct Report {
+    /// The validated file, as given on the command line.
+    pub urdf_path: String,
+    /// `name` of `<robot>` (empty when absent).
+    pub robot_name: String,
+    /// When validation ran, ISO 8601 UTC.
+    pub timestamp: String,
+    /// Version of urdf_validate that wrote this report.
+    pub validator_version: String,
+    /// Worst applicable section status.
+    pub overall_status: Status,
+    /// The robot category used for the capability profile (declared with `--robot-type`, else detected).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type: Option<crate::analysis::classify::RobotType>,
+    /// `exact` when declared, `estimated` when detected.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_confidence: Option<Confidence>,
+    /// What the structure shows (also when a type was declared, as a cross-check), and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_detected: Option<crate::analysis::classify::RobotType>,
+    /// The evidence behind `robot_type_detected`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robot_type_evidence: Option<String>,
+    /// Quality of the physics data.
+    pub confidence_level: ConfidenceLevel,
+    /// Messages of CRITICAL findings.
+    pub critical_issues: Vec<String>,
+    /// Messages of WARN findings.
+    pub warnings: Vec<String>,
+    /// What could not be assessed.
+    pub unknowns: Vec<String>,
+    /// Structural checks.
+    pub schema: SchemaSection,
+    /// Counts behind the `[PHYSICS]` line.
+    pub physics: PhysicsSummary,
+    /// Per-link mass data, in document order.
+    pub links: Vec<LinkReport>,
+    /// Mass, centre of mass and gravity torques (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub statics: Option<StaticsSection>,
+    /// Support polygon and tipping (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stability: Option<StabilitySection>,
+    /// Reach, task, orientation and self-collision of every arm (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub workspace: Option<WorkspaceSection>,
+    /// Every finding with its rule and source position.
+    pub findings: Vec<FindingReport>,
+}
+
+/// The `schema` section.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct SchemaSection {
+    /// FAIL with any CRITICAL finding, WARN with any WARN finding, else PASS.
+    pub status: Status,
+    /// Messages of CRITICAL findings.
+    pub critical_issues: Vec<String>,
+    /// Messages of WARN findings.
+    pub warnings: Vec<String>,
+    /// Messages of INFO findings.
+    pub infos: Vec<String>,
+}
+
+/// One finding, positioned.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct FindingReport {
+    /// Rule code, e.g. `U205`.
+    pub rule: String,
+    /// Rule name, e.g. `inertia-not-positive-definite`.
+    pub name: String,
+    /// CRITICAL, WARN or INFO.
+    pub severity: Severity,
+    /// What is wrong, naming the element.
+    pub message: String,
+    /// File holding the problem (null when it has no place).
+    pub file: Option<String>,
+    /// 1-based line.
+    pub line: Option<u32>,
+    /// 1-based column.
+    pub column: Option<u32>,
+    /// 1-based line where the flagged text ends.
+    pub end_line: Option<u32>,
+    /// 1-based column just past the flagged text.
+    pub end_column: Option<u32>,
+    /// What to do about it.
+    pub help: Option<String>,
+    /// For xacro input: the macro calls and includes that produced the flagged text, innermost first
+    /// (`in macro 'wheel' called at robot.urdf.xacro:40:3`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub expanded_from: Vec<String>,
+}
+
+/// The JSON Schema of [`Report`], pretty-printed.
+pub fn json_schema() -> String {
+    let schema = schemars::schema_for!(Report);
+    serde_json::to_string_pretty(&schema).unwrap_or_default() + "\n"
+}

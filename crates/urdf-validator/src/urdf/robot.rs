@@ -1,0 +1,358 @@
+//! The typed robot as written in the file: every value keeps the span it was read from.
+//!
+//! Values that the file omits stay `None` here; defaults are applied by the analyses that need them, so the
+//! checks can tell "absent" from "zero".
+
+use crate::input::source::{Span, Spanned};
+
+/// A parsed `<robot>`.
+#[derive(Clone, Debug, Default)]
+pub struct Robot {
+    /// `name` of `<robot>`.
+    pub name: Option<Spanned<String>>,
+    /// The `<robot>` element.
+    pub span: Span,
+    /// `<link>` elements in document order.
+    pub links: Vec<Link>,
+    /// `<joint>` elements in document order.
+    pub joints: Vec<Joint>,
+    /// Robot-level `<material>` definitions.
+    pub materials: Vec<Material>,
+    /// `<transmission>` elements (old and ROS-control formats).
+    pub transmissions: Vec<Transmission>,
+    /// `<gazebo>` extension blocks.
+    pub gazebo: Vec<GazeboBlock>,
+    /// `<ros2_control>` blocks.
+    pub ros2_control: Vec<Ros2Control>,
+}
+
+/// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Pose {
+    /// Translation in metres.
+    pub xyz: [f64; 3],
+    /// Roll, pitch, yaw about fixed x, y, z.
+    pub rpy: [f64; 3],
+    /// The `<origin>` element, when written.
+    pub span: Option<Span>,
+}
+
+/// A `<link>`.
+#[derive(Clone, Debug)]
+pub struct Link {
+    /// `name` attribute.
+    pub name: Spanned<String>,
+    /// The `<link>` element.
+    pub span: Span,
+    /// `<inertial>`, if any.
+    pub inertial: Option<Inertial>,
+    /// `<visual>` elements.
+    pub visuals: Vec<Shape>,
+    /// `<collision>` elements.
+    pub collisions: Vec<Shape>,
+}
+
+impl Link {
+    /// True when the link carries neither mass nor geometry: a coordinate frame.
+    pub fn is_bare(&self) -> bool {
+        self.inertial.is_none() && self.visuals.is_empty() && self.collisions.is_empty()
+    }
+}
+
+/// An `<inertial>`.
+#[derive(Clone, Debug)]
+pub struct Inertial {
+    /// The `<inertial>` element.
+    pub span: Span,
+    /// Centre-of-mass frame.
+    pub origin: Pose,
+    /// `<mass value>`.
+    pub mass: Option<Spanned<f64>>,
+    /// `<inertia>`, present only when all six components parsed.
+    pub inertia: Option<Inertia>,
+}
+
+/// The six independent components of a symmetric inertia tensor, about the inertial frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inertia {
+    /// The `<inertia>` element.
+    pub span: Span,
+    /// ixx
+    pub ixx: f64,
+    /// ixy
+    pub ixy: f64,
+    /// ixz
+    pub ixz: f64,
+    /// iyy
+    pub iyy: f64,
+    /// iyz
+    pub iyz: f64,
+    /// izz
+    pub izz: f64,
+}
+
+impl Inertia {
+    /// The full 3×3 tensor, row-major.
+    pub fn matrix(&self) -> [[f64; 3]; 3] {
+        [
+            [self.ixx, self.ixy, self.ixz],
+            [self.ixy, self.iyy, self.iyz],
+            [self.ixz, self.iyz, self.izz],
+        ]
+    }
+}
+
+/// A `<visual>` or `<collision>`.
+#[derive(Clone, Debug)]
+pub struct Shape {
+    /// The element.
+    pub span: Span,
+    /// Optional `name`.
+    pub name: Option<String>,
+    /// Placement relative to the link frame.
+    pub origin: Pose,
+    /// The shape, when `<geometry>` holds a valid one.
+    pub geometry: Option<Spanned<Geometry>>,
+    /// `<material>` of a visual (name reference and/or inline colour).
+    pub material: Option<MaterialRef>,
+}
+
+/// A geometric primitive or a mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// `<box size>`: full side lengths.
+    Box {
+        /// x, y, z side lengths in metres.
+        size: [f64; 3],
+    },
+    /// `<cylinder>` along the local z axis.
+    Cylinder {
+        /// Radius in metres.
+        radius: f64,
+        /// Length in metres.
+        length: f64,
+    },
+    /// `<sphere>`.
+    Sphere {
+        /// Radius in metres.
+        radius: f64,
+    },
+    /// `<capsule>` (URDF 1.x extension some tools accept), along z.
+    Capsule {
+        /// Radius in metres.
+        radius: f64,
+        /// Length of the cylindrical part in metres.
+        length: f64,
+    },
+    /// `<mesh filename scale>`.
+    Mesh {
+        /// The URI as written.
+        filename: Spanned<String>,
+        /// Per-axis scale (default 1 1 1).
+        scale: [f64; 3],
+    },
+}
+
+/// The `<material>` of a visual.
+#[derive(Clone, Debug)]
+pub struct MaterialRef {
+    /// The element.
+    pub span: Span,
+    /// `name`, possibly referring to a robot-level material.
+    pub name: Option<String>,
+    /// True when the element defines a colour or texture itself.
+    pub defines_appearance: bool,
+}
+
+/// A robot-level `<material>` definition.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// `name`.
+    pub name: Spanned<String>,
+    /// `<color rgba>`.
+    pub rgba: Option<[f64; 4]>,
+    /// `<texture filename>` (optional: real files carry `<texture/>` without it).
+    pub texture: Option<String>,
+}
+
+/// The six URDF joint types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// Rotation about the axis within limits.
+    Revolute,
+    /// Unlimited rotation about the axis.
+    Continuous,
+    /// Translation along the axis within limits.
+    Prismatic,
+    /// No motion.
+    Fixed,
+    /// Six degrees of freedom.
+    Floating,
+    /// Motion in the plane normal to the axis.
+    Planar,
+}
+
+impl JointKind {
+    /// Parse a `type` attribute.
+    pub fn parse(text: &str) -> Option<Self> {
+        Some(match text {
+            "revolute" => JointKind::Revolute,
+            "continuous" => JointKind::Continuous,
+            "prismatic" => JointKind::Prismatic,
+            "fixed" => JointKind::Fixed,
+            "floating" => JointKind::Floating,
+            "planar" => JointKind::Planar,
+            _ => return None,
+        })
+    }
+
+    /// The keyword as written in URDF.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Continuous => "continuous",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+            JointKind::Floating => "floating",
+            JointKind::Planar => "planar",
+        }
+    }
+
+    /// One scalar degree of freedom driven by a motor: revolute, continuous or prismatic.
+    pub fn is_actuated(self) -> bool {
+        matches!(
+            self,
+            JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic
+        )
+    }
+}
+
+/// A `<joint>`.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    /// `name`.
+    pub name: Spanned<String>,
+    /// The `<joint>` element.
+    pub span: Span,
+    /// `type`; `None` when absent or not a URDF type (a finding says which).
+    pub kind: Option<Spanned<JointKind>>,
+    /// Placement of the joint frame in the parent link frame.
+    pub origin: Pose,
+    /// `<parent link>`.
+    pub parent: Option<Spanned<String>>,
+    /// `<child link>`.
+    pub child: Option<Spanned<String>>,
+    /// `<axis xyz>` when written (URDF's default is 1 0 0).
+    pub axis: Option<Spanned<[f64; 3]>>,
+    /// `<limit>`.
+    pub limit: Option<Limit>,
+    /// `<dynamics>`.
+    pub dynamics: Option<Dynamics>,
+    /// `<mimic>`.
+    pub mimic: Option<Mimic>,
+    /// `<safety_controller>`.
+    pub safety_controller: Option<SafetyController>,
+    /// `<calibration>`.
+    pub calibration: Option<Calibration>,
+}
+
+impl Joint {
+    /// The axis with URDF's default (1, 0, 0) applied.
+    pub fn axis_or_default(&self) -> [f64; 3] {
+        self.axis.as_ref().map_or([1.0, 0.0, 0.0], |a| a.value)
+    }
+}
+
+/// A `<limit>`; absent attributes stay `None`.
+#[derive(Clone, Debug)]
+pub struct Limit {
+    /// The element.
+    pub span: Span,
+    /// `lower` (urdfdom's default: 0).
+    pub lower: Option<Spanned<f64>>,
+    /// `upper` (urdfdom's default: 0).
+    pub upper: Option<Spanned<f64>>,
+    /// `effort` (required by urdfdom).
+    pub effort: Option<Spanned<f64>>,
+    /// `velocity` (required by urdfdom).
+    pub velocity: Option<Spanned<f64>>,
+}
+
+/// A `<dynamics>`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dynamics {
+    /// Viscous damping.
+    pub damping: Option<f64>,
+    /// Coulomb friction.
+    pub friction: Option<f64>,
+}
+
+/// A `<mimic>`: `q = multiplier · q_leader + offset`.
+#[derive(Clone, Debug)]
+pub struct Mimic {
+    /// The element.
+    pub span: Span,
+    /// The leader joint's name.
+    pub joint: Spanned<String>,
+    /// Default 1.
+    pub multiplier: f64,
+    /// Default 0.
+    pub offset: f64,
+}
+
+/// A `<safety_controller>`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SafetyController {
+    /// `soft_lower_limit`.
+    pub soft_lower_limit: Option<f64>,
+    /// `soft_upper_limit`.
+    pub soft_upper_limit: Option<f64>,
+    /// `k_position`.
+    pub k_position: Option<f64>,
+    /// `k_velocity` (required by urdfdom).
+    pub k_velocity: Option<f64>,
+}
+
+/// A `<calibration>`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Calibration {
+    /// `rising`.
+    pub rising: Option<f64>,
+    /// `falling`.
+    pub falling: Option<f64>,
+    /// `reference_position`.
+    pub reference_position: Option<f64>,
+}
+
+/// A `<transmission>`, in the old (`type` attribute) or the ROS-control (`<type>` element) format.
+#[derive(Clone, Debug)]
+pub struct Transmission {
+    /// `name`.
+    pub name: Option<String>,
+    /// The element.
+    pub span: Span,
+    /// The transmission type, from the attribute or the `<type>` element.
+    pub kind: Option<String>,
+    /// Every joint the transmission names (`<joint name>` and PR2-style `<flexJoint>`, `<rollJoint>`, ...).
+    pub joints: Vec<Spanned<String>>,
+}
+
+/// A `<gazebo>` block, kept for its reference.
+#[derive(Clone, Debug)]
+pub struct GazeboBlock {
+    /// The element.
+    pub span: Span,
+    /// `reference` (a link or joint name); robot-level blocks have none.
+    pub reference: Option<Spanned<String>>,
+}
+
+/// A `<ros2_control>` block, kept for its joint names.
+#[derive(Clone, Debug)]
+pub struct Ros2Control {
+    /// `name`.
+    pub name: Option<String>,
+    /// The element.
+    pub span: Span,
+    /// `<joint name>` entries.
+    pub joints: Vec<Spanned<String>>,
+}
