@@ -52,11 +52,11 @@ pub struct Args {
     pub state: String,
 
     /// Samples per arm for the workspace (reach, task, orientation, self-collision), and for --pose worst.
-    #[arg(long, value_name = "N", default_value_t = 30_000)]
+    #[arg(long, value_name = "N", default_value_t = urdf_validator::DEFAULT_SAMPLES)]
     pub samples: usize,
 
     /// Seed of the sampling (same seed, same report).
-    #[arg(long, value_name = "S", default_value_t = 7)]
+    #[arg(long, value_name = "S", default_value_t = urdf_validator::DEFAULT_SEED)]
     pub seed: u64,
 
     /// Payload carried at --payload-link, kg: torques and verdicts include it.
@@ -126,6 +126,11 @@ pub struct Args {
     /// Do not write JSON report files.
     #[arg(long)]
     pub no_write: bool,
+
+    /// Time each phase (load, parse, model, assets, checks, statics, classify, stability, workspace, …):
+    /// `timings_ms` in the JSON report and a one-line breakdown after the text report.
+    #[arg(long)]
+    pub timings: bool,
 
     /// Colour: auto (a terminal without NO_COLOR set), always, never.
     #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]

@@ -34,7 +34,8 @@ pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
 }
 
 /// Files named directly are kept as given; directories contribute every `*.urdf` below them and every
-/// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted. Inputs that
+/// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted; hidden folders and
+/// files ignored by `.gitignore` are skipped. Inputs that
 /// do not exist come back as error lines.
 pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
     let mut files = Vec::new();
@@ -42,7 +43,7 @@ pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
     for input in inputs {
         if input.is_dir() {
             let before = files.len();
-            collect_urdfs(input, 0, &mut files);
+            collect_urdfs(input, &mut files);
             files[before..].sort();
             if files.len() == before {
                 errors.push(format!(
@@ -62,26 +63,24 @@ pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
     (files, errors)
 }
 
-fn collect_urdfs(dir: &Path, depth: usize, files: &mut Vec<PathBuf>) {
-    if depth > MAX_DEPTH {
-        return;
-    }
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        let Ok(kind) = entry.file_type() else {
+/// Every `*.urdf` and robot `*.xacro` below `dir`, skipping hidden folders and what `.gitignore` /
+/// `.ignore` files exclude (build and install trees).
+fn collect_urdfs(dir: &Path, files: &mut Vec<PathBuf>) {
+    let walk = ignore::WalkBuilder::new(dir)
+        .max_depth(Some(MAX_DEPTH))
+        .require_git(false)
+        .build();
+    for entry in walk.flatten() {
+        if !entry.file_type().is_some_and(|t| t.is_file()) {
             continue;
-        };
+        }
+        let path = entry.path();
         let extension = path
             .extension()
             .map(|e| e.to_ascii_lowercase())
             .unwrap_or_default();
-        if kind.is_dir() {
-            collect_urdfs(&path, depth + 1, files);
-        } else if extension == "urdf" || (extension == "xacro" && is_robot_xacro(&path)) {
-            files.push(path);
+        if extension == "urdf" || (extension == "xacro" && is_robot_xacro(path)) {
+            files.push(path.to_path_buf());
         }
     }
 }

@@ -1,5 +1,27 @@
 //! `urdf_validate`: validate URDF files, write one JSON report each, exit 0 / 1 / 2.
 
+/// Write to stdout, ignoring a closed pipe (`urdf_validate --list-rules | head -1`): the rest is dropped
+/// quietly and the exit status stays what the run decides.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// [`out!`] with a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// `eprintln!` that does not panic when stderr is closed.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stderr().lock(), $($arg)*);
+    }};
+}
+
 mod args;
 mod inputs;
 mod outputs;
@@ -38,7 +60,7 @@ fn run(args: Args) -> u8 {
     }
     if args.list_rules {
         for rule in rules::ALL {
-            println!(
+            outln!(
                 "{}  {:<32} {:<8} {}",
                 rule.code,
                 rule.name,
@@ -49,22 +71,22 @@ fn run(args: Args) -> u8 {
         return 0;
     }
     if args.list_rules_markdown {
-        print!("{}", rules::reference_markdown());
+        out!("{}", rules::reference_markdown());
         return 0;
     }
     if args.json_schema_markdown {
-        print!(
+        out!(
             "{}",
             urdf_validator::report::schema_doc::json_schema_markdown()
         );
         return 0;
     }
     if args.json_schema {
-        print!("{}", urdf_validator::report::json_schema());
+        out!("{}", urdf_validator::report::json_schema());
         return 0;
     }
     if args.inputs.is_empty() {
-        eprintln!(
+        errln!(
             "error: no input given (expected one or more URDF or xacro files or directories; see --help)"
         );
         return 2;
@@ -78,12 +100,12 @@ fn run(args: Args) -> u8 {
     let workspace = match workspace_options(&args) {
         Ok(workspace) => workspace,
         Err(message) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return 2;
         }
     };
     if args.arm_root.len() != args.arm_tip.len() {
-        eprintln!(
+        errln!(
             "error: {} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
             args.arm_root.len(),
             args.arm_tip.len()
@@ -95,20 +117,20 @@ fn run(args: Args) -> u8 {
         match inputs::parse_xacro_arg_flag(arg) {
             Ok(pair) => xacro_args.push(pair),
             Err(message) => {
-                eprintln!("error: {message}");
+                errln!("error: {message}");
                 return 2;
             }
         }
     }
     let (files, input_errors) = inputs::expand(&paths);
     if files.is_empty() && input_errors.is_empty() {
-        eprintln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
+        errln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
         return 2;
     }
     let resolver = PackageResolver::from_env(args.package_path.clone());
     if args.expand_only {
         if paths.len() != 1 || paths[0].is_dir() {
-            eprintln!(
+            errln!(
                 "error: --expand-only expands one xacro file (got {} input(s){})",
                 paths.len(),
                 if paths.iter().any(|p| p.is_dir()) {
@@ -147,6 +169,7 @@ fn run(args: Args) -> u8 {
                 .zip(args.arm_tip.iter().cloned())
                 .collect(),
         },
+        timings: args.timings,
         ..Options::default()
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
@@ -170,12 +193,12 @@ fn run(args: Args) -> u8 {
 fn explain(code: &str) -> u8 {
     match rules::find(code) {
         Some(rule) => {
-            print!("{}", rules::explain(rule));
+            out!("{}", rules::explain(rule));
             0
         }
         None => {
             let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
-            eprintln!(
+            errln!(
                 "error: no rule '{code}' ({}); `urdf_validate --list-rules` lists them all",
                 urdf_validator::diagnostics::suggest::did_you_mean(code, names)
             );
@@ -278,13 +301,13 @@ fn expand_only(
     resolver: &PackageResolver,
 ) -> u8 {
     for error in input_errors {
-        eprintln!("error: {error}");
+        errln!("error: {error}");
     }
     let mut status = u8::from(!input_errors.is_empty()) * 2;
     let mut stdout = std::io::stdout().lock();
     for file in files {
         if !urdf_validator::input::xacro::is_xacro(file) {
-            eprintln!(
+            errln!(
                 "error: {}: --expand-only expects a .xacro file",
                 file.display()
             );
@@ -296,15 +319,15 @@ fn expand_only(
                 for (message, location) in expanded.warnings() {
                     match location {
                         Some(at) => {
-                            eprintln!("warning: {}:{}:{}: {message}", at.file, at.line, at.column)
+                            errln!("warning: {}:{}:{}: {message}", at.file, at.line, at.column)
                         }
-                        None => eprintln!("warning: {message}"),
+                        None => errln!("warning: {message}"),
                     }
                 }
                 let _ = stdout.write_all(expanded.xml().as_bytes());
             }
             Err(error) => {
-                eprintln!("error: {error}");
+                errln!("error: {error}");
                 status = 2;
             }
         }

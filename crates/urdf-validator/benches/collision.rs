@@ -9,7 +9,6 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::Isometry3;
 use urdf_validator::analysis::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
-use urdf_validator::checks::CheckContext;
 use urdf_validator::input::mesh::MeshCache;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::model::kinematics::{forward_kinematics, Configuration, Data};
@@ -52,12 +51,16 @@ fn arm(side: &str) -> Option<Arm> {
     let (model, _) = Model::build(&robot);
     let meshes = MeshCache::new();
     let resolver = PackageResolver::default();
-    let ctx = CheckContext {
-        urdf_dir: path.parent()?,
-        resolver: &resolver,
-        meshes: &meshes,
-    };
-    let mut collision = CollisionModel::build(&robot, &model, &|uri| ctx.mesh_points(uri));
+    let assets = urdf_validator::assets::Assets::load(
+        &robot,
+        &urdf_validator::assets::AssetSource {
+            urdf_path: &path,
+            resolver: &resolver,
+            meshes: &meshes,
+            srdf: None,
+        },
+    );
+    let mut collision = CollisionModel::build(&robot, &model, &assets.supports);
     let mut data = Data::new(&model);
     forward_kinematics(&model, &model.zero_configuration(), &mut data);
     let touching = collision.touching_pairs(&data.link_placement);
@@ -194,10 +197,14 @@ fn build_pr2(bencher: divan::Bencher) {
     let Some(urdf_dir) = path.parent() else {
         return;
     };
-    let ctx = CheckContext {
-        urdf_dir,
-        resolver: &resolver,
-        meshes: &meshes,
-    };
-    bencher.bench_local(|| CollisionModel::build(&robot, &model, &|uri| ctx.mesh_points(uri)));
+    let assets = urdf_validator::assets::Assets::load(
+        &robot,
+        &urdf_validator::assets::AssetSource {
+            urdf_path: &urdf_dir.join("robot.urdf"),
+            resolver: &resolver,
+            meshes: &meshes,
+            srdf: None,
+        },
+    );
+    bencher.bench_local(|| CollisionModel::build(&robot, &model, &assets.supports));
 }

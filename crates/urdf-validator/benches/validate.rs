@@ -170,23 +170,22 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
     let (robot, _) = parse_urdf(&text, &path).expect("parses");
     let (model, _) = Model::build(&robot);
     let options = Options::default();
-    let ctx = urdf_validator::checks::CheckContext {
-        urdf_dir: path.parent().unwrap_or(Path::new(".")),
-        resolver: &options.resolver,
-        meshes: &options.meshes,
-    };
-    let mesh_points = |uri: &str| ctx.mesh_points(uri);
-    let supports: Vec<_> = robot
-        .links
-        .iter()
-        .map(|l| urdf_validator::assets::supports::link_supports(l, &mesh_points))
-        .collect();
+    let assets = urdf_validator::assets::Assets::load(
+        &robot,
+        &urdf_validator::assets::AssetSource {
+            urdf_path: &path,
+            resolver: &options.resolver,
+            meshes: &options.meshes,
+            srdf: None,
+        },
+    );
     let q = model.zero_configuration();
     let mut data = Data::new(&model);
     forward_kinematics(&model, &q, &mut data);
     let classification =
-        urdf_validator::analysis::classify::classify(&robot, &model, &data, &supports);
-    let collision = CollisionSetup::new(&robot, &model, &data, &mesh_points, &Default::default());
+        urdf_validator::analysis::classify::classify(&robot, &model, &data, &assets.supports);
+    let collision =
+        CollisionSetup::new(&robot, &model, &data, &assets.supports, &Default::default());
     let scene = Scene {
         robot: &robot,
         model: &model,

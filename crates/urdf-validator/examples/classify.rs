@@ -4,9 +4,9 @@
 use std::path::Path;
 
 use urdf_validator::analysis::classify;
-use urdf_validator::assets::supports as geometry;
+use urdf_validator::assets::{AssetSource, Assets};
 use urdf_validator::model::kinematics::{forward_kinematics, Data};
-use urdf_validator::{checks, input, model::Model, urdf::parse, Options};
+use urdf_validator::{input, model::Model, urdf::parse, Options};
 
 fn main() {
     let options = Options {
@@ -27,19 +27,18 @@ fn main() {
             continue;
         };
         let (model, _) = Model::build(&robot);
-        let ctx = checks::CheckContext {
-            urdf_dir: path.parent().unwrap_or(Path::new(".")),
-            resolver: &options.resolver,
-            meshes: &options.meshes,
-        };
-        let supports: Vec<_> = robot
-            .links
-            .iter()
-            .map(|l| geometry::link_supports(l, &|u| ctx.mesh_points(u)))
-            .collect();
+        let assets = Assets::load(
+            &robot,
+            &AssetSource {
+                urdf_path: path,
+                resolver: &options.resolver,
+                meshes: &options.meshes,
+                srdf: None,
+            },
+        );
         let mut data = Data::new(&model);
         forward_kinematics(&model, &model.zero_configuration(), &mut data);
-        let c = classify::classify(&robot, &model, &data, &supports);
+        let c = classify::classify(&robot, &model, &data, &assets.supports);
         println!("{arg}: {} ({})", c.robot_type.as_str(), c.evidence);
         for w in &c.wheels {
             println!("  wheel {}", robot.links[w.0].name.value);

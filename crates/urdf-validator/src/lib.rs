@@ -1,8 +1,19 @@
-//! urdf-validator: physics-aware validation of URDF robot descriptions.
+//! urdf-validator: physics-aware validation of URDF (and xacro) robot descriptions.
 //!
-//! Pipeline: [`parse`] the XML into a typed [`robot::Robot`] that keeps source spans, build the kinematic
-//! [`model::Model`], run the [`checks`], and assemble one [`report::Report`]. Renderers (text, JSON) are
-//! views of the report.
+//! The library is laid out by pipeline stage, each folder handing the next exactly what it needs:
+//!
+//! | stage | module | produces |
+//! |---|---|---|
+//! | load | [`input`] | the URDF text (xacro expanded), positions back into the files the user edits |
+//! | parse | [`urdf`] | a typed [`urdf::Robot`] with spans, and parse findings |
+//! | model | [`model`] | the kinematic tree, forward kinematics, mass properties |
+//! | assets | [`assets`] | meshes and their hulls, link supports, the SRDF: loaded once |
+//! | checks | [`checks`] | structural findings |
+//! | analyses | [`analysis`] | statics, stability, workspace sections and their findings |
+//! | report | [`report`] | the one [`report::Report`] |
+//! | render | [`render`] | views of the report (text) |
+//!
+//! Findings, rules and verdicts ([`diagnostics`]) are shared by every stage.
 //!
 //! ```no_run
 //! let options = urdf_validator::Options::default();
@@ -24,32 +35,42 @@ pub mod urdf;
 
 use std::path::Path;
 
-use analysis::{mass, Physics};
-use diagnostics::{rules, Finding, Severity};
-use input::LoadError;
-use input::{resolve::PackageResolver, source::SourceText, xacro as xacro_input};
+use analysis::workspace::WorkspaceOptions;
+use analysis::{statics::StaticsOptions, Overrides};
+use assets::{AssetSource, Assets};
+use input::mesh::MeshCache;
+use input::resolve::PackageResolver;
+use input::source::SourceText;
+use input::{LoadError, Loaded};
 use model::Model;
-use report::{FindingReport, Report, SchemaSection, Status};
-use urdf::Robot;
+use report::{Outcome, Report, Stopwatch};
 
 /// This library's version, written into every report.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// What a validation run needs besides the file.
+/// Samples for every sampled analysis (`--samples`): the workspace of each arm and `--pose worst`.
+pub const DEFAULT_SAMPLES: usize = 30_000;
+
+/// Seed of every sampled analysis (`--seed`).
+pub const DEFAULT_SEED: u64 = 7;
+
+/// What a validation run needs besides the file; one value flows one way through the stages.
 #[derive(Clone, Debug, Default)]
 pub struct Options {
     /// Where `package://` URIs are looked up.
     pub resolver: PackageResolver,
     /// Pose and payload for statics.
-    pub statics: analysis::statics::StaticsOptions,
+    pub statics: StaticsOptions,
     /// Samples, task and orientation for the workspace.
-    pub workspace: analysis::workspace::WorkspaceOptions,
+    pub workspace: WorkspaceOptions,
     /// What the user declares instead of heuristics.
-    pub overrides: analysis::Overrides,
+    pub overrides: Overrides,
     /// Meshes loaded so far (shared by every file of a run).
-    pub meshes: input::mesh::MeshCache,
+    pub meshes: MeshCache,
     /// Arguments for `.xacro` inputs (`name:=value`).
     pub xacro_args: Vec<(String, String)>,
+    /// Record the time of each phase in the report (`timings_ms`).
+    pub timings: bool,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -73,13 +94,10 @@ impl Validation {
 
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
-    if xacro_input::is_xacro(path) {
-        let expanded = xacro_input::expand(path, &options.xacro_args, &options.resolver, false)?;
-        let text = expanded.xml().to_string();
-        return validate_source(text, path, options, Locator::Xacro(expanded));
-    }
-    let text = input::read_text(path)?;
-    validate_text(text, path, options)
+    let mut clock = Stopwatch::start();
+    let loaded = Loaded::read(path, &options.xacro_args, &options.resolver)?;
+    clock.lap("load");
+    run(loaded, options, clock)
 }
 
 /// Validate URDF `text` that was read from `path` (used for positions, relative meshes and the report).
@@ -88,229 +106,69 @@ pub fn validate_text(
     path: &Path,
     options: &Options,
 ) -> Result<Validation, LoadError> {
-    validate_source(text, path, options, Locator::Urdf)
+    run(Loaded::from_text(text, path), options, Stopwatch::start())
 }
 
-/// How positions in the parsed text become positions in the files the user edits.
-enum Locator {
-    /// The text is the file.
-    Urdf,
-    /// The text was expanded from xacro sources.
-    Xacro(xacro_input::Expanded),
-}
-
-fn validate_source(
-    text: String,
-    path: &Path,
-    options: &Options,
-    locator: Locator,
-) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = urdf::parse_urdf(&text, path)?;
-    // Expander warnings are located in the sources already (not in the expanded text).
-    let xacro_warnings = match &locator {
-        Locator::Urdf => Vec::new(),
-        Locator::Xacro(expanded) => expanded.warnings(),
-    };
+/// The pipeline: parse → model → assets → checks → analyses → report.
+fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
+    let (robot, mut findings) = urdf::parse_urdf(loaded.text(), &loaded.path)?;
+    clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
-    let is_robot = !findings.iter().any(|f| f.rule == &rules::NOT_A_ROBOT);
-    let physics = if is_robot {
-        let urdf_dir = path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let ctx = checks::CheckContext {
-            urdf_dir,
-            resolver: &options.resolver,
-            meshes: &options.meshes,
-        };
-        findings.extend(checks::run(&robot, &model, &ctx));
-        let supports: Vec<assets::supports::LinkSupports> = robot
-            .links
-            .iter()
-            .map(|link| assets::supports::link_supports(link, &|uri| ctx.mesh_points(uri)))
-            .collect();
-        let mesh_points = |uri: &str| ctx.mesh_points(uri);
-        let inputs = analysis::Inputs {
-            urdf_path: path,
-            supports: &supports,
-            mesh_points: &mesh_points,
-            statics: &options.statics,
-            workspace: &options.workspace,
-            overrides: &options.overrides,
-        };
-        let physics =
-            analysis::analyse(&robot, &model, &inputs).map_err(|message| LoadError::Usage {
-                path: path.to_path_buf(),
-                message,
-            })?;
+    clock.lap("model");
+    let is_robot = !findings
+        .iter()
+        .any(|f| f.rule == &diagnostics::rules::NOT_A_ROBOT);
+    let analyses = if is_robot {
+        let assets = Assets::load(&robot, &asset_source(&loaded.path, options));
+        clock.lap("assets");
+        findings.extend(checks::run(&robot, &model, &assets));
+        clock.lap("checks");
+        let physics = analysis::analyse(
+            &robot,
+            &model,
+            &analysis_inputs(&assets, options),
+            &mut clock,
+        )
+        .map_err(|message| LoadError::Usage {
+            path: loaded.path.clone(),
+            message,
+        })?;
         findings.extend(physics.findings.iter().cloned());
         Some(physics)
     } else {
         None
     };
-    let source = SourceText::new(path, text);
-    let mut report_findings: Vec<FindingReport> = findings
-        .iter()
-        .map(|f| finding_report(f, &source, &locator))
-        .collect();
-    for (message, location) in xacro_warnings {
-        let finding = Finding::new(&rules::XACRO_WARNING, None, message);
-        let mut report = finding_report(&finding, &source, &locator);
-        if let Some(at) = location {
-            report.file = Some(at.file);
-            report.line = Some(at.line);
-            report.column = Some(at.column);
-            report.end_line = Some(at.end_line);
-            report.end_column = Some(at.end_column);
-            report.expanded_from = at.stack;
-        }
-        report_findings.push(report);
-        findings.push(finding);
-    }
-    let report = build_report(path, &robot, &model, &findings, report_findings, physics);
-    let sources = match &locator {
-        Locator::Urdf => vec![source],
-        Locator::Xacro(expanded) => expanded.sources(),
+    let report = report::build(Outcome {
+        loaded: &loaded,
+        robot: &robot,
+        model: &model,
+        findings,
+        analyses,
+    });
+    clock.lap("report");
+    let report = Report {
+        timings_ms: options.timings.then_some(clock.timings),
+        ..report
     };
+    let sources = loaded.into_sources();
     Ok(Validation { report, sources })
 }
 
-/// What could not be assessed, one line per section.
-fn unknowns(analyses: &Physics) -> Vec<String> {
-    let mut lines = Vec::new();
-    if analyses.statics.status == Status::Unknown {
-        lines.push(format!(
-            "Statics: {}",
-            analyses
-                .statics
-                .reason
-                .as_deref()
-                .unwrap_or("a joint cannot be assessed")
-        ));
-    }
-    if analyses.stability.status == Status::Unknown {
-        lines.push(format!(
-            "Stability: {}",
-            analyses.stability.reason.as_deref().unwrap_or("no result")
-        ));
-    }
-    if analyses.workspace.status == Status::Unknown {
-        lines.push(format!(
-            "Workspace: {}",
-            analyses.workspace.reason.as_deref().unwrap_or("no result")
-        ));
-    }
-    lines
-}
-
-fn messages(findings: &[Finding], severity: Severity) -> Vec<String> {
-    findings
-        .iter()
-        .filter(|f| f.severity() == severity)
-        .map(|f| f.message.clone())
-        .collect()
-}
-
-fn build_report(
-    path: &Path,
-    robot: &Robot,
-    model: &Model,
-    findings: &[Finding],
-    finding_reports: Vec<FindingReport>,
-    analyses: Option<Physics>,
-) -> Report {
-    let critical_issues = messages(findings, Severity::Critical);
-    let warnings = messages(findings, Severity::Warn);
-    let schema_status = if !critical_issues.is_empty() {
-        Status::Fail
-    } else if !warnings.is_empty() {
-        Status::Warn
-    } else {
-        Status::Pass
-    };
-    let links = mass::link_reports(robot, model);
-    let summary = mass::summarize(&links);
-    let overall_status = analyses.as_ref().map_or(schema_status, |a| {
-        schema_status
-            .worst(a.statics.status)
-            .worst(a.stability.status)
-            .worst(a.workspace.status)
-    });
-    Report {
-        urdf_path: path.display().to_string(),
-        robot_name: robot
-            .name
-            .as_ref()
-            .map(|n| n.value.clone())
-            .unwrap_or_default(),
-        timestamp: report::timestamp::now(),
-        validator_version: VERSION.to_string(),
-        overall_status,
-        robot_type: analyses.as_ref().map(|a| a.robot_type),
-        robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
-        robot_type_detected: analyses.as_ref().map(|a| a.detected),
-        robot_type_evidence: analyses.as_ref().map(|a| a.evidence.clone()),
-        confidence_level: mass::confidence_level(&summary),
-        critical_issues: critical_issues.clone(),
-        warnings: warnings
-            .iter()
-            .chain(analyses.iter().flat_map(|a| &a.warnings))
-            .cloned()
-            .collect(),
-        unknowns: analyses.iter().flat_map(unknowns).collect(),
-        schema: SchemaSection {
-            status: schema_status,
-            critical_issues,
-            warnings,
-            infos: messages(findings, Severity::Info),
-        },
-        physics: summary,
-        links,
-        statics: analyses.as_ref().map(|a| a.statics.clone()),
-        workspace: analyses.as_ref().map(|a| a.workspace.clone()),
-        stability: analyses.map(|a| a.stability),
-        findings: finding_reports,
+fn asset_source<'a>(path: &'a Path, options: &'a Options) -> AssetSource<'a> {
+    AssetSource {
+        urdf_path: path,
+        resolver: &options.resolver,
+        meshes: &options.meshes,
+        srdf: options.statics.pose.srdf.as_deref(),
     }
 }
 
-fn finding_report(finding: &Finding, source: &SourceText, locator: &Locator) -> FindingReport {
-    let mut report = FindingReport {
-        rule: finding.rule.code.to_string(),
-        name: finding.rule.name.to_string(),
-        severity: finding.severity(),
-        message: finding.message.clone(),
-        file: None,
-        line: None,
-        column: None,
-        end_line: None,
-        end_column: None,
-        help: finding.help.clone(),
-        expanded_from: Vec::new(),
-    };
-    let Some(span) = finding.span else {
-        return report;
-    };
-    match locator {
-        Locator::Urdf => {
-            let start = source.location(span);
-            let end = source.line_col(span.end as usize);
-            report.file = Some(start.file);
-            report.line = Some(start.line);
-            report.column = Some(start.column);
-            report.end_line = Some(end.0);
-            report.end_column = Some(end.1);
-        }
-        Locator::Xacro(expanded) => {
-            if let Some(at) = expanded.locate(span) {
-                report.file = Some(at.file);
-                report.line = Some(at.line);
-                report.column = Some(at.column);
-                report.end_line = Some(at.end_line);
-                report.end_column = Some(at.end_column);
-                report.expanded_from = at.stack;
-            }
-        }
+fn analysis_inputs<'a>(assets: &'a Assets, options: &'a Options) -> analysis::Inputs<'a> {
+    analysis::Inputs {
+        assets,
+        statics: &options.statics,
+        workspace: &options.workspace,
+        overrides: &options.overrides,
     }
-    report
 }

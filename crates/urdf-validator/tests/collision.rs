@@ -12,7 +12,6 @@ use urdf_validator::analysis::collision::{
     Allowed, CheckScratch, CollisionModel, PairSet, PoseCheck,
 };
 use urdf_validator::analysis::pose::ConfigurationSampler;
-use urdf_validator::checks::CheckContext;
 use urdf_validator::input::mesh::MeshCache;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::srdf::srdf_collisions;
@@ -36,12 +35,16 @@ impl Setup {
         assert!(findings.is_empty(), "{findings:?}");
         let resolver = PackageResolver::default();
         let meshes = MeshCache::new();
-        let ctx = CheckContext {
-            urdf_dir: path.parent().unwrap_or(Path::new(".")),
-            resolver: &resolver,
-            meshes: &meshes,
-        };
-        let collision = CollisionModel::build(&robot, &model, &|uri| ctx.mesh_points(uri));
+        let assets = urdf_validator::assets::Assets::load(
+            &robot,
+            &urdf_validator::assets::AssetSource {
+                urdf_path: &path,
+                resolver: &resolver,
+                meshes: &meshes,
+                srdf: None,
+            },
+        );
+        let collision = CollisionModel::build(&robot, &model, &assets.supports);
         Setup {
             robot,
             model,
@@ -685,12 +688,16 @@ fn degenerate_input_is_skipped_without_panicking() {
     let (model, _) = Model::build(&robot);
     let resolver = PackageResolver::default();
     let meshes = MeshCache::new();
-    let ctx = CheckContext {
-        urdf_dir: &dir.0,
-        resolver: &resolver,
-        meshes: &meshes,
-    };
-    let collision = CollisionModel::build(&robot, &model, &|uri| ctx.mesh_points(uri));
+    let assets = urdf_validator::assets::Assets::load(
+        &robot,
+        &urdf_validator::assets::AssetSource {
+            urdf_path: &dir.0.join("robot.urdf"),
+            resolver: &resolver,
+            meshes: &meshes,
+            srdf: None,
+        },
+    );
+    let collision = CollisionModel::build(&robot, &model, &assets.supports);
     let has = |name: &str| collision.has_geometry(model.link(name).expect("link"));
     assert!(
         has("base") && has("arm"),
@@ -739,12 +746,16 @@ fn pr2() -> Option<Setup> {
     let (model, _) = Model::build(&robot);
     let resolver = PackageResolver::default();
     let meshes = MeshCache::new();
-    let ctx = CheckContext {
-        urdf_dir: path.parent().expect("folder"),
-        resolver: &resolver,
-        meshes: &meshes,
-    };
-    let collision = CollisionModel::build(&robot, &model, &|uri| ctx.mesh_points(uri));
+    let assets = urdf_validator::assets::Assets::load(
+        &robot,
+        &urdf_validator::assets::AssetSource {
+            urdf_path: &path,
+            resolver: &resolver,
+            meshes: &meshes,
+            srdf: None,
+        },
+    );
+    let collision = CollisionModel::build(&robot, &model, &assets.supports);
     Some(Setup {
         robot,
         model,

@@ -12,8 +12,6 @@ pub mod stability;
 pub mod statics;
 pub mod workspace;
 
-use std::path::Path;
-
 use nalgebra::Vector3;
 
 use crate::analysis::classify::{classify, RobotType};
@@ -21,14 +19,15 @@ use crate::analysis::collision::MAX_COLLISION_LINKS;
 use crate::analysis::stability::StabilitySection;
 use crate::analysis::statics::StaticsSection;
 use crate::analysis::workspace::WorkspaceSection;
-use crate::assets::supports::LinkSupports;
+use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::diagnostics::suggest::did_you_mean;
 use crate::diagnostics::Confidence;
-use crate::input::srdf::{srdf_collisions, SrdfCollisions};
+use crate::input::srdf::{srdf_collisions, Srdf, SrdfCollisions};
 use crate::model::kinematics::{forward_kinematics, Data};
 use crate::model::{LinkId, Model};
+use crate::report::Stopwatch;
 use crate::urdf::robot::Robot;
 use arms::Arm;
 use pose::PoseOptions;
@@ -100,14 +99,10 @@ fn declared_arm(robot: &Robot, model: &Model, root: &str, tip: &str) -> Result<A
     Ok(arm)
 }
 
-/// What the analyses need besides the robot.
+/// What the analyses need besides the robot and its model.
 pub struct Inputs<'a> {
-    /// The file (for SRDF lookup and messages).
-    pub urdf_path: &'a Path,
-    /// Ground-contact shapes per link.
-    pub supports: &'a [LinkSupports],
-    /// Hull points of a mesh URI (mesh frame, before scale), `None` when unusable.
-    pub mesh_points: &'a dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+    /// Meshes, link supports and the SRDF, loaded once.
+    pub assets: &'a Assets,
     /// Pose and payload.
     pub statics: &'a StaticsOptions,
     /// Samples, task and orientation.
@@ -117,14 +112,19 @@ pub struct Inputs<'a> {
 }
 
 /// Run the analyses.
-pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics, String> {
+pub fn analyse(
+    robot: &Robot,
+    model: &Model,
+    inputs: &Inputs,
+    clock: &mut Stopwatch,
+) -> Result<Physics, String> {
     let Inputs {
-        urdf_path,
-        supports,
+        assets,
         statics: statics_options,
         overrides,
         ..
     } = *inputs;
+    let supports = &assets.supports;
     // An explicit --srdf must exist, whichever analyses end up reading it.
     if let Some(path) = statics_options
         .pose
@@ -148,12 +148,14 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         ),
         None => None,
     };
-    let (mut statics, q) = statics::analyse(robot, model, urdf_path, statics_options)?;
+    let (mut statics, q) = statics::analyse(robot, model, assets.srdf.as_ref(), statics_options)?;
+    clock.lap("statics");
 
-    let reference = pose::resolve(robot, model, urdf_path, &PoseOptions::default())?;
+    let reference = pose::resolve(robot, model, None, &PoseOptions::default())?;
     let mut data = Data::new(model);
     forward_kinematics(model, &reference.q, &mut data);
     let classification = classify(robot, model, &data, supports);
+    clock.lap("classify");
     let detected = classification.robot_type;
     let mut warnings = Vec::new();
     let (robot_type, confidence) = match overrides.robot_type {
@@ -189,6 +191,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         declared_contacts.as_deref(),
         com,
     );
+    clock.lap("stability");
     if let (Some(ground), Some(com)) = (stability.ground_height, com) {
         statics.com_height_above_ground = Some(com.z - ground);
     }
@@ -252,7 +255,9 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
         let (setup, findings) = collision_setup(robot, model, &reference_data, inputs)?;
         (Some(setup), findings)
     };
+    clock.lap("collision_setup");
     let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
+    clock.lap("workspace");
     if let Some(c) = &collision {
         findings.extend(contact_findings(robot, &c.touching));
     }
@@ -270,7 +275,7 @@ pub fn analyse(robot: &Robot, model: &Model, inputs: &Inputs) -> Result<Physics,
 }
 
 /// The collision model at the chosen pose, with the allowed collisions of the SRDF (`--srdf`, else the one
-/// [`pose::find_srdf`] finds) applied.
+/// [`crate::input::srdf::find`] finds) applied.
 ///
 /// (An explicit `--srdf` that does not exist was refused by [`analyse`].) An SRDF that cannot be read, or that names
 /// links the robot does not have, gives U602 findings and the rest runs.
@@ -280,15 +285,16 @@ fn collision_setup(
     data: &Data,
     inputs: &Inputs,
 ) -> Result<(CollisionSetup, Vec<Finding>), String> {
-    let explicit = inputs.statics.pose.srdf.as_deref();
     let mut findings = Vec::new();
     let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
-    let path = pose::find_srdf(inputs.urdf_path, pose::robot_name(robot), explicit);
-    let srdf = match &path {
-        Some(path) => {
-            let parsed = std::fs::read_to_string(path)
+    let file = inputs.assets.srdf.as_ref();
+    let path = file.map(|srdf| &srdf.path);
+    let srdf = match file {
+        Some(Srdf { path, text }) => {
+            let parsed = text
+                .as_ref()
                 .map_err(|e| format!("cannot read it: {e}"))
-                .and_then(|text| srdf_collisions(&text));
+                .and_then(|text| srdf_collisions(text));
             match parsed {
                 Ok(collisions) => collisions,
                 Err(e) => {
@@ -302,7 +308,7 @@ fn collision_setup(
         }
         None => SrdfCollisions::default(),
     };
-    let setup = CollisionSetup::new(robot, model, data, inputs.mesh_points, &srdf);
+    let setup = CollisionSetup::new(robot, model, data, &inputs.assets.supports, &srdf);
     // One finding per SRDF: an SRDF written for a larger model can name hundreds of absent links.
     if let (Some(path), false) = (&path, setup.unknown_srdf_links.is_empty()) {
         let mentions = setup.unknown_srdf_links.len();

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::diagnostics::suggest::did_you_mean;
+use crate::input::srdf::{group_states, GroupState, Srdf};
 use crate::model::kinematics::Configuration;
 use crate::model::{JointId, Model};
 use crate::rng::SplitMix64;
@@ -47,7 +48,7 @@ pub struct PoseOptions {
     pub kind: PoseKind,
     /// `--joint-angles "j1=0.5,j2=30deg"` for `Custom`.
     pub joint_angles: Option<String>,
-    /// `--srdf FILE` for `Home`; when absent, the one [`find_srdf`] finds.
+    /// `--srdf FILE` for `Home` and self-collision; when absent, the one [`crate::input::srdf::find`] finds.
     pub srdf: Option<PathBuf>,
     /// The `group_state` name for `Home`.
     pub state: String,
@@ -64,8 +65,8 @@ impl Default for PoseOptions {
             joint_angles: None,
             srdf: None,
             state: "home".to_string(),
-            samples: 5000,
-            seed: 7,
+            samples: crate::DEFAULT_SAMPLES,
+            seed: crate::DEFAULT_SEED,
         }
     }
 }
@@ -103,7 +104,7 @@ fn clamped_zero(robot: &Robot, model: &Model, notes: &mut Vec<String>) -> Config
 pub fn resolve(
     robot: &Robot,
     model: &Model,
-    urdf_path: &Path,
+    srdf: Option<&Srdf>,
     options: &PoseOptions,
 ) -> Result<ResolvedPose, String> {
     let mut notes = Vec::new();
@@ -126,11 +127,12 @@ pub fn resolve(
                 set_joint(robot, model, &mut q, &name, value, &mut notes)?;
             }
         }
-        PoseKind::Home => match find_srdf(urdf_path, robot_name(robot), options.srdf.as_deref()) {
-            Some(srdf) => {
-                let text = std::fs::read_to_string(&srdf)
+        PoseKind::Home => match srdf {
+            Some(Srdf { path: srdf, text }) => {
+                let text = text
+                    .as_ref()
                     .map_err(|e| format!("{}: cannot read SRDF: {e}", srdf.display()))?;
-                let states = group_states(&text).map_err(|e| format!("{}: {e}", srdf.display()))?;
+                let states = group_states(text).map_err(|e| format!("{}: {e}", srdf.display()))?;
                 let wanted: Vec<&GroupState> =
                     states.iter().filter(|s| s.name == options.state).collect();
                 if wanted.is_empty() {
@@ -247,75 +249,6 @@ pub fn parse_joint_angles(text: &str) -> Result<Vec<(String, f64)>, String> {
         .collect()
 }
 
-/// One `<group_state>` of an SRDF.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GroupState {
-    /// `name`.
-    pub name: String,
-    /// `group`.
-    pub group: String,
-    /// `<joint name value>` entries (multi-value joints keep their first value).
-    pub joints: Vec<(String, f64)>,
-}
-
-/// Every `group_state` of an SRDF document.
-pub fn group_states(text: &str) -> Result<Vec<GroupState>, String> {
-    let doc = roxmltree::Document::parse(text).map_err(|e| format!("not well-formed XML: {e}"))?;
-    Ok(doc
-        .root_element()
-        .children()
-        .filter(|n| n.has_tag_name("group_state"))
-        .map(|state| GroupState {
-            name: state.attribute("name").unwrap_or_default().to_string(),
-            group: state.attribute("group").unwrap_or_default().to_string(),
-            joints: state
-                .children()
-                .filter(|n| n.has_tag_name("joint"))
-                .filter_map(|j| {
-                    let value = j
-                        .attribute("value")?
-                        .split_whitespace()
-                        .next()?
-                        .parse::<f64>()
-                        .ok()?;
-                    Some((j.attribute("name")?.to_string(), value))
-                })
-                .collect(),
-        })
-        .collect())
-}
-
-/// The SRDF to use: the explicit one, else `<stem>.srdf`, else `<robot name>.srdf` (the name MoveIt's
-/// setup assistant gives it), each beside the URDF or in a sibling `srdf/` folder.
-pub fn find_srdf(
-    urdf_path: &Path,
-    robot_name: Option<&str>,
-    explicit: Option<&Path>,
-) -> Option<PathBuf> {
-    if let Some(path) = explicit {
-        return path.is_file().then(|| path.to_path_buf());
-    }
-    let file_name = urdf_path.file_name()?.to_str()?;
-    let stem = file_name.strip_suffix(".xacro").unwrap_or(file_name);
-    let stem = stem.strip_suffix(".urdf").unwrap_or(stem);
-    let dir = urdf_path.parent().unwrap_or(Path::new("."));
-    // A robot name is a file name only when it cannot leave the folder.
-    let safe_name = robot_name.filter(|n| !n.is_empty() && !n.contains(['/', '\\']) && *n != "..");
-    [Some(stem), safe_name]
-        .into_iter()
-        .flatten()
-        .flat_map(|name| {
-            let name = format!("{name}.srdf");
-            [dir.join(&name), dir.join("../srdf").join(&name)]
-        })
-        .find(|p| p.is_file())
-}
-
-/// The robot's `name` attribute, when it has one.
-pub fn robot_name(robot: &Robot) -> Option<&str> {
-    robot.name.as_ref().map(|name| name.value.as_str())
-}
-
 /// A seeded uniform sampler over the configuration space (continuous joints over a full turn; joints
 /// without a usable range stay at the reference value).
 pub struct ConfigurationSampler<'a> {
@@ -362,18 +295,5 @@ mod tests {
             .contains("not a number"));
         assert!(parse_joint_angles("a").is_err());
         assert!(parse_joint_angles("a=nan").is_err());
-    }
-
-    #[test]
-    fn group_states_are_read() {
-        let srdf = r#"<robot name="r"><group name="arm"/>
-          <group_state name="home" group="arm"><joint name="j1" value="0.5"/><joint name="j2" value="-1"/></group_state>
-          <group_state name="up" group="arm"><joint name="j1" value="1"/></group_state></robot>"#;
-        let states = group_states(srdf).unwrap();
-        assert_eq!(states.len(), 2);
-        assert_eq!(
-            states[0].joints,
-            vec![("j1".to_string(), 0.5), ("j2".to_string(), -1.0)]
-        );
     }
 }

@@ -103,10 +103,10 @@ pub struct LinkSupports {
 }
 
 /// The shapes a link contributes: its collisions, or its visuals when it has none.
-/// `mesh_points` loads a mesh URI to hull points in the mesh frame (before scale), `None` when unusable.
-pub fn link_supports(
+/// `mesh_points` gives a mesh URI's hull points in the mesh frame (before scale), `None` when unusable.
+pub fn link_supports<'m>(
     link: &Link,
-    mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
+    mesh_points: &dyn Fn(&str) -> Option<&'m [[f64; 3]]>,
 ) -> LinkSupports {
     let shapes: &[Shape] = if link.collisions.is_empty() {
         &link.visuals

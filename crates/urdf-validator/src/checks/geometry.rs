@@ -7,9 +7,9 @@ use crate::input::source::Spanned;
 use crate::model::{LinkId, Model};
 use crate::urdf::robot::{Geometry, Robot};
 
-use super::CheckContext;
+use crate::assets::Assets;
 
-pub(super) fn check(robot: &Robot, model: &Model, ctx: &CheckContext) -> Vec<Finding> {
+pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
     for (index, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
@@ -25,12 +25,13 @@ pub(super) fn check(robot: &Robot, model: &Model, ctx: &CheckContext) -> Vec<Fin
                 ));
             }
             if let Geometry::Mesh { filename, scale } = &geometry.value {
-                match ctx.resolver.resolve(&filename.value, ctx.urdf_dir) {
-                    Resolution::Found(_) => {
+                match assets.resolution(&filename.value) {
+                    None => {}
+                    Some(Resolution::Found(_)) => {
                         let spacing = joint_spacing(robot, model, LinkId(index));
-                        findings.extend(check_mesh(ctx, &owner, filename, *scale, spacing));
+                        findings.extend(check_mesh(assets, &owner, filename, *scale, spacing));
                     }
-                    Resolution::NotFound { searched } => {
+                    Some(Resolution::NotFound { searched }) => {
                         let looked: Vec<String> =
                             searched.iter().map(|p| p.display().to_string()).collect();
                         let mut finding = Finding::new(
@@ -47,7 +48,7 @@ pub(super) fn check(robot: &Robot, model: &Model, ctx: &CheckContext) -> Vec<Fin
                         };
                         findings.push(finding);
                     }
-                    Resolution::Unsupported(why) => findings.push(Finding::new(
+                    Some(Resolution::Unsupported(why)) => findings.push(Finding::new(
                         &rules::MESH_NOT_FOUND,
                         filename.span,
                         format!(
@@ -124,13 +125,13 @@ fn joint_spacing(robot: &Robot, model: &Model, link: LinkId) -> f64 {
 
 /// A resolved mesh that cannot be loaded, or whose size says it is in millimetres.
 fn check_mesh(
-    ctx: &CheckContext,
+    assets: &Assets,
     owner: &str,
     filename: &Spanned<String>,
     scale: [f64; 3],
     spacing: f64,
 ) -> Option<Finding> {
-    let loaded = ctx.mesh(&filename.value)?;
+    let loaded = assets.mesh(&filename.value)?;
     let mesh = match loaded.as_ref() {
         Ok(mesh) => mesh,
         Err(error) => {

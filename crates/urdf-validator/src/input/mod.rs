@@ -9,6 +9,9 @@ pub mod xacro;
 
 use std::path::{Path, PathBuf};
 
+use source::{SourceText, Span};
+use xacro::SourceLocation;
+
 /// Largest input accepted (bounded memory on untrusted input).
 pub const MAX_FILE_BYTES: u64 = 128 * 1024 * 1024;
 
@@ -95,4 +98,100 @@ pub fn read_text(path: &Path) -> Result<String, LoadError> {
     String::from_utf8(raw).map_err(|_| LoadError::NotUtf8 {
         path: path.to_path_buf(),
     })
+}
+
+/// A robot description read from disk: the URDF text (expanded first when the file is xacro) and how
+/// positions in that text map to the files the user edits.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The file as given.
+    pub path: PathBuf,
+    origin: Origin,
+}
+
+/// Where the URDF text came from.
+#[derive(Debug)]
+enum Origin {
+    /// The text is the file.
+    Urdf(SourceText),
+    /// The text was expanded from xacro sources.
+    Xacro(xacro::Expanded),
+}
+
+impl Loaded {
+    /// Read `path` (expanding `.xacro` files with `xacro_args`, finding `$(find)` packages with `resolver`).
+    pub fn read(
+        path: &Path,
+        xacro_args: &[(String, String)],
+        resolver: &resolve::PackageResolver,
+    ) -> Result<Loaded, LoadError> {
+        if xacro::is_xacro(path) {
+            let expanded = xacro::expand(path, xacro_args, resolver, false)?;
+            return Ok(Loaded {
+                path: path.to_path_buf(),
+                origin: Origin::Xacro(expanded),
+            });
+        }
+        Ok(Loaded::from_text(read_text(path)?, path))
+    }
+
+    /// URDF `text` as read from `path` (used for positions, relative meshes and the report).
+    pub fn from_text(text: String, path: &Path) -> Loaded {
+        Loaded {
+            path: path.to_path_buf(),
+            origin: Origin::Urdf(SourceText::new(path, text)),
+        }
+    }
+
+    /// The URDF text the parser reads.
+    pub fn text(&self) -> &str {
+        match &self.origin {
+            Origin::Urdf(source) => source.text(),
+            Origin::Xacro(expanded) => expanded.xml(),
+        }
+    }
+
+    /// The folder relative paths are resolved from (`.` for a bare file name).
+    pub fn dir(&self) -> &Path {
+        self.path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."))
+    }
+
+    /// Where `span` of the URDF text is in the files the user edits (`None` when a xacro position
+    /// cannot be traced back).
+    pub fn locate(&self, span: Span) -> Option<SourceLocation> {
+        match &self.origin {
+            Origin::Urdf(source) => {
+                let start = source.location(span);
+                let (end_line, end_column) = source.line_col(span.end as usize);
+                Some(SourceLocation {
+                    file: start.file,
+                    line: start.line,
+                    column: start.column,
+                    end_line,
+                    end_column,
+                    stack: Vec::new(),
+                })
+            }
+            Origin::Xacro(expanded) => expanded.locate(span),
+        }
+    }
+
+    /// The xacro expander's warnings, located in the xacro sources (none for a URDF).
+    pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
+        match &self.origin {
+            Origin::Urdf(_) => Vec::new(),
+            Origin::Xacro(expanded) => expanded.warnings(),
+        }
+    }
+
+    /// The source texts findings point into (for snippets).
+    pub fn into_sources(self) -> Vec<SourceText> {
+        match self.origin {
+            Origin::Urdf(source) => vec![source],
+            Origin::Xacro(expanded) => expanded.sources(),
+        }
+    }
 }

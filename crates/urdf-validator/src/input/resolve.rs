@@ -320,67 +320,51 @@ fn dir_basename_is(dir: &Path, name: &str) -> bool {
         .is_some_and(|n| n == name)
 }
 
+/// Largest `package.xml` read (real ones are a few KB).
+const MAX_PACKAGE_XML_BYTES: u64 = 1024 * 1024;
+
 /// The `<name>` declared in `dir/package.xml`, if readable.
 fn package_xml_name(dir: &Path) -> Option<String> {
-    let text = std::fs::read_to_string(dir.join("package.xml")).ok()?;
-    let text = strip_xml_comments(&text);
-    let mut rest = text.as_str();
-    while let Some(pos) = rest.find("<name") {
-        rest = &rest[pos + "<name".len()..];
-        let opens_tag = rest
-            .chars()
-            .next()
-            .is_some_and(|c| c == '>' || c.is_whitespace());
-        if !opens_tag {
+    let path = dir.join("package.xml");
+    if std::fs::metadata(&path).ok()?.len() > MAX_PACKAGE_XML_BYTES {
+        return None;
+    }
+    let text = std::fs::read_to_string(path).ok()?;
+    let doc = roxmltree::Document::parse(&text).ok()?;
+    let name = doc
+        .root_element()
+        .children()
+        .find(|n| n.has_tag_name("name"))?
+        .text()?
+        .trim();
+    (!name.is_empty()).then(|| name.to_string())
+}
+
+/// Recursively collect packages named `package` below `dir`, at most `depth` levels down (ROS 1 crawl):
+/// hidden directories are skipped and package directories are not descended into. A package matches by
+/// folder name or by its `package.xml` `<name>`.
+fn search_ros_tree(dir: &Path, package: &str, depth: usize, found: &mut Vec<PathBuf>) {
+    let mut walk = walkdir::WalkDir::new(dir)
+        .min_depth(1)
+        .max_depth(depth)
+        .follow_links(true)
+        .sort_by_file_name()
+        .into_iter();
+    while let Some(entry) = walk.next() {
+        let Ok(entry) = entry else { continue };
+        if !entry.file_type().is_dir() {
             continue;
         }
-        let body = &rest[rest.find('>')? + 1..];
-        let end = body.find("</name")?;
-        return Some(body[..end].trim().to_string());
-    }
-    None
-}
-
-fn strip_xml_comments(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(start) = rest.find("<!--") {
-        out.push_str(&rest[..start]);
-        match rest[start..].find("-->") {
-            Some(end) => rest = &rest[start + end + "-->".len()..],
-            None => return out,
-        }
-    }
-    out.push_str(rest);
-    out
-}
-
-/// Recursively collect packages named `package` below `dir` (ROS 1 crawl):
-/// hidden directories are skipped and package directories are not descended
-/// into. A package matches by folder name or by its `package.xml` `<name>`.
-fn search_ros_tree(dir: &Path, package: &str, depth: usize, found: &mut Vec<PathBuf>) {
-    if depth == 0 {
-        return;
-    }
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut children: Vec<PathBuf> = entries
-        .filter_map(Result::ok)
-        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
-        .map(|e| e.path())
-        .filter(|p| p.is_dir())
-        .collect();
-    children.sort();
-    for child in children {
-        if has_package_xml(&child) {
+        let child = entry.path();
+        if entry.file_name().to_string_lossy().starts_with('.') {
+            walk.skip_current_dir();
+        } else if has_package_xml(child) {
             let matches = child.file_name().is_some_and(|n| n == package)
-                || package_xml_name(&child).as_deref() == Some(package);
+                || package_xml_name(child).as_deref() == Some(package);
             if matches {
-                found.push(child);
+                found.push(child.to_path_buf());
             }
-        } else {
-            search_ros_tree(&child, package, depth - 1, found);
+            walk.skip_current_dir();
         }
     }
 }

@@ -1,7 +1,94 @@
-//! The allowed-collision entries of an SRDF, as MoveIt reads them: `<disable_collisions>`,
-//! `<enable_collisions>` and `<disable_default_collisions>`.
+//! The SRDF beside a URDF, found and read once: its named poses (`<group_state>`) and its allowed-collision
+//! entries as MoveIt reads them (`<disable_collisions>`, `<enable_collisions>`,
+//! `<disable_default_collisions>`).
+
+use std::path::{Path, PathBuf};
 
 use crate::input::source::SourceText;
+
+/// An SRDF file and its text (or why it could not be read).
+#[derive(Clone, Debug)]
+pub struct Srdf {
+    /// The file.
+    pub path: PathBuf,
+    /// Its text, or the read error.
+    pub text: Result<String, String>,
+}
+
+impl Srdf {
+    /// Read the SRDF at `path` (size-limited like every input).
+    pub fn read(path: PathBuf) -> Srdf {
+        let text = crate::input::read_text(&path).map_err(|e| match e {
+            crate::input::LoadError::Io { error, .. } => error.to_string(),
+            other => other.to_string(),
+        });
+        Srdf { path, text }
+    }
+}
+
+/// The SRDF to use: the explicit one, else `<stem>.srdf`, else `<robot name>.srdf` (the name MoveIt's
+/// setup assistant gives it), each beside the URDF or in a sibling `srdf/` folder.
+pub fn find(
+    urdf_path: &Path,
+    robot_name: Option<&str>,
+    explicit: Option<&Path>,
+) -> Option<PathBuf> {
+    if let Some(path) = explicit {
+        return path.is_file().then(|| path.to_path_buf());
+    }
+    let file_name = urdf_path.file_name()?.to_str()?;
+    let stem = file_name.strip_suffix(".xacro").unwrap_or(file_name);
+    let stem = stem.strip_suffix(".urdf").unwrap_or(stem);
+    let dir = urdf_path.parent().unwrap_or(Path::new("."));
+    // A robot name is a file name only when it cannot leave the folder.
+    let safe_name = robot_name.filter(|n| !n.is_empty() && !n.contains(['/', '\\']) && *n != "..");
+    [Some(stem), safe_name]
+        .into_iter()
+        .flatten()
+        .flat_map(|name| {
+            let name = format!("{name}.srdf");
+            [dir.join(&name), dir.join("../srdf").join(&name)]
+        })
+        .find(|p| p.is_file())
+}
+
+/// One `<group_state>` of an SRDF.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GroupState {
+    /// `name`.
+    pub name: String,
+    /// `group`.
+    pub group: String,
+    /// `<joint name value>` entries (multi-value joints keep their first value).
+    pub joints: Vec<(String, f64)>,
+}
+
+/// Every `group_state` of an SRDF document.
+pub fn group_states(text: &str) -> Result<Vec<GroupState>, String> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| format!("not well-formed XML: {e}"))?;
+    Ok(doc
+        .root_element()
+        .children()
+        .filter(|n| n.has_tag_name("group_state"))
+        .map(|state| GroupState {
+            name: state.attribute("name").unwrap_or_default().to_string(),
+            group: state.attribute("group").unwrap_or_default().to_string(),
+            joints: state
+                .children()
+                .filter(|n| n.has_tag_name("joint"))
+                .filter_map(|j| {
+                    let value = j
+                        .attribute("value")?
+                        .split_whitespace()
+                        .next()?
+                        .parse::<f64>()
+                        .ok()?;
+                    Some((j.attribute("name")?.to_string(), value))
+                })
+                .collect(),
+        })
+        .collect())
+}
 
 /// One `<disable_collisions>` or `<enable_collisions>` entry (`link1`, `link2`, `reason`).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -177,5 +264,18 @@ mod tests {
         );
         let broken = srdf_collisions("<robot>\n<a></b></robot>").unwrap_err();
         assert!(broken.starts_with("2:4: not well-formed XML"), "{broken}");
+    }
+
+    #[test]
+    fn group_states_are_read() {
+        let srdf = r#"<robot name="r"><group name="arm"/>
+          <group_state name="home" group="arm"><joint name="j1" value="0.5"/><joint name="j2" value="-1"/></group_state>
+          <group_state name="up" group="arm"><joint name="j1" value="1"/></group_state></robot>"#;
+        let states = group_states(srdf).unwrap();
+        assert_eq!(states.len(), 2);
+        assert_eq!(
+            states[0].joints,
+            vec![("j1".to_string(), 0.5), ("j2".to_string(), -1.0)]
+        );
     }
 }

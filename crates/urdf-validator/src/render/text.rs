@@ -9,7 +9,7 @@ use anstyle::{AnsiColor, Style};
 use crate::diagnostics::finding::Severity;
 use crate::report::{
     ArmWorkspace, FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
-    WorkspaceSection,
+    Timings, WorkspaceSection,
 };
 use crate::Validation;
 
@@ -90,7 +90,27 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     if let Some(path) = &options.report_path {
         let _ = writeln!(out, "Full report: {path}");
     }
+    if let Some(timings) = &report.timings_ms {
+        timings_line(&mut out, timings);
+    }
     out
+}
+
+/// `Timings: 12.3 ms = load 0.1 + parse 1.2 + …` (phases below 0.05 ms are left out).
+fn timings_line(out: &mut String, timings: &Timings) {
+    let phases: Vec<String> = timings
+        .phases()
+        .iter()
+        .filter(|(_, ms)| *ms >= 0.05)
+        .map(|(phase, ms)| format!("{phase} {ms:.1}"))
+        .collect();
+    let _ = writeln!(
+        out,
+        "{}  {:.1} ms = {}",
+        paint(BOLD, "[TIMINGS]"),
+        timings.total_ms(),
+        phases.join(" + ")
+    );
 }
 
 fn header(out: &mut String, report: &Report) {

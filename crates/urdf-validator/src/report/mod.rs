@@ -3,8 +3,13 @@
 //! Field names follow the Python tool's JSON so existing CI scripts keep working. Sections that are not
 //! implemented yet (statics, stability, workspace) are absent, never filled with placeholders.
 
+mod build;
 pub mod schema_doc;
-pub mod timestamp;
+mod timestamp;
+mod timings;
+
+pub use build::{build, Outcome};
+pub use timings::{Stopwatch, Timings};
 
 pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
 pub use crate::analysis::stability::{RaisedContact, StabilitySection};
@@ -67,6 +72,9 @@ pub struct Report {
     pub workspace: Option<WorkspaceSection>,
     /// Every finding with its rule and source position.
     pub findings: Vec<FindingReport>,
+    /// Milliseconds per pipeline phase (`--timings` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub timings_ms: Option<Timings>,
 }
 
 /// The `schema` section.
@@ -109,6 +117,18 @@ pub struct FindingReport {
     /// (`in macro 'wheel' called at robot.urdf.xacro:40:3`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub expanded_from: Vec<String>,
+}
+
+impl FindingReport {
+    /// Point the finding at `at`.
+    fn place(&mut self, at: crate::input::xacro::SourceLocation) {
+        self.file = Some(at.file);
+        self.line = Some(at.line);
+        self.column = Some(at.column);
+        self.end_line = Some(at.end_line);
+        self.end_column = Some(at.end_column);
+        self.expanded_from = at.stack;
+    }
 }
 
 /// The JSON Schema of [`Report`], pretty-printed.

@@ -7,8 +7,8 @@
 //! ```no_run
 //! # use urdf_validator::{collision::*, kinematics::*, model::*, robot::Robot};
 //! # fn run(robot: &Robot, model: &Model, arm_joints: &[JointId], samples: &[Vec<f64>],
-//! #        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>) {
-//! let mut collision = CollisionModel::build(robot, model, mesh_points);
+//! #        supports: &[urdf_validator::assets::LinkSupports]) {
+//! let mut collision = CollisionModel::build(robot, model, supports);
 //! // Reference pose: pairs already in contact are reported, then no longer checked.
 //! let mut data = Data::new(model);
 //! forward_kinematics(model, &model.zero_configuration(), &mut data);
@@ -42,7 +42,7 @@ use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::gjk::VoronoiSimplex;
 
-use crate::assets::supports::link_supports;
+use crate::assets::LinkSupports;
 use crate::input::srdf::{SrdfCollisions, SrdfPair};
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::Robot;
@@ -211,23 +211,20 @@ fn usable(placement: &Isometry3<f64>) -> bool {
 }
 
 impl CollisionModel {
-    /// The collision shapes of every link (`<collision>` elements only: primitives, and meshes as the
-    /// convex hull of `mesh_points(uri)`, which returns hull points in the mesh frame before the URDF
-    /// scale, `None` when unusable). Markers (≤ 1 mm) and unusable shapes are left out, as in
-    /// [`link_supports`]. The allowed-collision matrix starts with the adjacent and rigidly attached pairs.
-    pub fn build(
-        robot: &Robot,
-        model: &Model,
-        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
-    ) -> CollisionModel {
+    /// The collision shapes of every link (`<collision>` elements only: primitives, and meshes as their
+    /// convex hull), from the links' supports the assets stage built (`supports[link]`). Markers (≤ 1 mm)
+    /// and unusable shapes are left out there. The allowed-collision matrix starts with the adjacent and
+    /// rigidly attached pairs.
+    pub fn build(robot: &Robot, model: &Model, supports: &[LinkSupports]) -> CollisionModel {
         let links = robot.links.len();
         let mut shapes = Vec::new();
         let mut bodies = Vec::with_capacity(links);
-        for link in &robot.links {
+        for (link, link_supports) in robot.links.iter().zip(supports) {
             let start = shapes.len();
+            // Supports are the collisions, or the visuals when a link has none: only collisions collide.
             if !link.collisions.is_empty() {
                 shapes.extend(
-                    link_supports(link, mesh_points)
+                    link_supports
                         .shapes
                         .iter()
                         .filter_map(ConvexShape::from_support),

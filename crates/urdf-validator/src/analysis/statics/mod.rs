@@ -7,11 +7,11 @@ mod section;
 pub use section::{JointStatics, StaticsSection};
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use crate::analysis::pose::{self, PoseKind, PoseOptions};
 use crate::diagnostics::suggest::did_you_mean;
 use crate::diagnostics::{Confidence, Status};
+use crate::input::srdf::Srdf;
 use crate::model::kinematics::{Configuration, LinkMass};
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::Robot;
@@ -33,10 +33,10 @@ pub struct StaticsOptions {
 pub fn analyse(
     robot: &Robot,
     model: &Model,
-    urdf_path: &Path,
+    srdf: Option<&Srdf>,
     options: &StaticsOptions,
 ) -> Result<(StaticsSection, Configuration), String> {
-    let resolved = pose::resolve(robot, model, urdf_path, &options.pose)?;
+    let resolved = pose::resolve(robot, model, srdf, &options.pose)?;
     let payload_link = match &options.payload_link {
         Some(name) => Some(model.link(name).ok_or_else(|| {
             format!(

@@ -23,7 +23,9 @@ use crate::analysis::classify::RobotType;
 use crate::analysis::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
 use crate::analysis::stability::support_polygon::{margin, Point2};
 use crate::analysis::statics::gravity::{evaluate, mass_and_com, StaticsData};
+use crate::assets::LinkSupports;
 use crate::diagnostics::{Confidence, Status};
+use crate::input::srdf::SrdfCollisions;
 use crate::model::kinematics::{forward_kinematics_links, Configuration, Data};
 use crate::model::{JointId, LinkId, Model};
 use crate::rng::SplitMix64;
@@ -67,8 +69,8 @@ pub struct WorkspaceOptions {
 impl Default for WorkspaceOptions {
     fn default() -> Self {
         WorkspaceOptions {
-            samples: 30_000,
-            seed: 7,
+            samples: crate::DEFAULT_SAMPLES,
+            seed: crate::DEFAULT_SEED,
             task: None,
             orientation: None,
             orientation_tolerance_deg: 30.0,
@@ -116,10 +118,10 @@ impl CollisionSetup {
         robot: &Robot,
         model: &Model,
         reference: &Data,
-        mesh_points: &dyn Fn(&str) -> Option<Vec<[f64; 3]>>,
-        srdf: &crate::input::srdf::SrdfCollisions,
+        supports: &[LinkSupports],
+        srdf: &SrdfCollisions,
     ) -> CollisionSetup {
-        let mut collision = CollisionModel::build(robot, model, mesh_points);
+        let mut collision = CollisionModel::build(robot, model, supports);
         let before = collision.all_pairs().len();
         let unknown_srdf_links = collision.allow_srdf(model, srdf);
         let srdf_disabled = before - collision.all_pairs().len();

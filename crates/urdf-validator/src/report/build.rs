@@ -1,0 +1,162 @@
+//! Assembling the [`Report`] from the stages' results: findings positioned in the files the user edits,
+//! the schema section and the overall verdict.
+
+use crate::analysis::{mass, Physics};
+use crate::diagnostics::{rules, Finding, Severity};
+use crate::input::Loaded;
+use crate::model::Model;
+use crate::report::{FindingReport, Report, SchemaSection, Status};
+use crate::urdf::Robot;
+
+/// What the stages produced for one robot.
+pub struct Outcome<'a> {
+    /// The file as loaded (positions, xacro warnings).
+    pub loaded: &'a Loaded,
+    /// The parsed robot.
+    pub robot: &'a Robot,
+    /// Its tree.
+    pub model: &'a Model,
+    /// Every finding of the parse, model, checks and analyses.
+    pub findings: Vec<Finding>,
+    /// The analyses' sections (`None` when the file is not a robot).
+    pub analyses: Option<Physics>,
+}
+
+/// The report of one robot.
+pub fn build(outcome: Outcome) -> Report {
+    let Outcome {
+        loaded,
+        robot,
+        model,
+        mut findings,
+        analyses,
+    } = outcome;
+    let mut finding_reports: Vec<FindingReport> = findings
+        .iter()
+        .map(|finding| {
+            let mut report = finding_report(finding);
+            if let Some(at) = finding.span.and_then(|span| loaded.locate(span)) {
+                report.place(at);
+            }
+            report
+        })
+        .collect();
+    // Expander warnings are located in the xacro sources already (not in the expanded text).
+    for (message, location) in loaded.warnings() {
+        let finding = Finding::new(&rules::XACRO_WARNING, None, message);
+        let mut report = finding_report(&finding);
+        if let Some(at) = location {
+            report.place(at);
+        }
+        finding_reports.push(report);
+        findings.push(finding);
+    }
+    let critical_issues = messages(&findings, Severity::Critical);
+    let warnings = messages(&findings, Severity::Warn);
+    let schema_status = if !critical_issues.is_empty() {
+        Status::Fail
+    } else if !warnings.is_empty() {
+        Status::Warn
+    } else {
+        Status::Pass
+    };
+    let links = mass::link_reports(robot, model);
+    let summary = mass::summarize(&links);
+    let overall_status = analyses.as_ref().map_or(schema_status, |a| {
+        schema_status
+            .worst(a.statics.status)
+            .worst(a.stability.status)
+            .worst(a.workspace.status)
+    });
+    Report {
+        urdf_path: loaded.path.display().to_string(),
+        robot_name: robot
+            .name
+            .as_ref()
+            .map(|n| n.value.clone())
+            .unwrap_or_default(),
+        timestamp: super::timestamp::now(),
+        validator_version: crate::VERSION.to_string(),
+        overall_status,
+        robot_type: analyses.as_ref().map(|a| a.robot_type),
+        robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
+        robot_type_detected: analyses.as_ref().map(|a| a.detected),
+        robot_type_evidence: analyses.as_ref().map(|a| a.evidence.clone()),
+        confidence_level: mass::confidence_level(&summary),
+        critical_issues: critical_issues.clone(),
+        warnings: warnings
+            .iter()
+            .chain(analyses.iter().flat_map(|a| &a.warnings))
+            .cloned()
+            .collect(),
+        unknowns: analyses.iter().flat_map(unknowns).collect(),
+        schema: SchemaSection {
+            status: schema_status,
+            critical_issues,
+            warnings,
+            infos: messages(&findings, Severity::Info),
+        },
+        physics: summary,
+        links,
+        statics: analyses.as_ref().map(|a| a.statics.clone()),
+        workspace: analyses.as_ref().map(|a| a.workspace.clone()),
+        stability: analyses.map(|a| a.stability),
+        findings: finding_reports,
+        timings_ms: None,
+    }
+}
+
+/// What could not be assessed, one line per section.
+fn unknowns(analyses: &Physics) -> Vec<String> {
+    let sections = [
+        (
+            "Statics",
+            &analyses.statics.status,
+            &analyses.statics.reason,
+            "a joint cannot be assessed",
+        ),
+        (
+            "Stability",
+            &analyses.stability.status,
+            &analyses.stability.reason,
+            "no result",
+        ),
+        (
+            "Workspace",
+            &analyses.workspace.status,
+            &analyses.workspace.reason,
+            "no result",
+        ),
+    ];
+    sections
+        .into_iter()
+        .filter(|(_, status, _, _)| **status == Status::Unknown)
+        .map(|(name, _, reason, fallback)| {
+            format!("{name}: {}", reason.as_deref().unwrap_or(fallback))
+        })
+        .collect()
+}
+
+fn messages(findings: &[Finding], severity: Severity) -> Vec<String> {
+    findings
+        .iter()
+        .filter(|f| f.severity() == severity)
+        .map(|f| f.message.clone())
+        .collect()
+}
+
+fn finding_report(finding: &Finding) -> FindingReport {
+    FindingReport {
+        rule: finding.rule.code.to_string(),
+        name: finding.rule.name.to_string(),
+        severity: finding.severity(),
+        message: finding.message.clone(),
+        file: None,
+        line: None,
+        column: None,
+        end_line: None,
+        end_column: None,
+        help: finding.help.clone(),
+        expanded_from: Vec::new(),
+    }
+}
