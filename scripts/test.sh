@@ -26,3 +26,5 @@ else
 fi
 
 cargo test --workspace --all-targets "$@"
+# Examples in the documentation compile and run too (--all-targets leaves doc tests out).
+cargo test --workspace --doc

@@ -5,7 +5,7 @@
 //! Use from a sampling loop:
 //!
 //! ```no_run
-//! # use urdf_validator::{collision::*, kinematics::*, model::*, robot::Robot};
+//! # use urdf_validator::{analysis::collision::*, model::*, urdf::Robot};
 //! # fn run(robot: &Robot, model: &Model, arm_joints: &[JointId], samples: &[Vec<f64>],
 //! #        supports: &[urdf_validator::assets::LinkSupports]) {
 //! let mut collision = CollisionModel::build(robot, model, supports);
