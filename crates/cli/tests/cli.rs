@@ -1,5 +1,7 @@
 //! End-to-end tests of the `urdf_validate` binary: exit codes, files written, error lines, colour.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicUsize, Ordering};

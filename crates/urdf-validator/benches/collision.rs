@@ -5,6 +5,8 @@
 //! collision check alone; `fk_and_check` measures both, as a sampling loop runs them. One iteration runs
 //! all the poses of a set: divide the time by 1024, or read the throughput.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 
 use nalgebra::Isometry3;

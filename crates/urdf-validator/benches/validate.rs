@@ -3,6 +3,8 @@
 //! The whole pipeline runs (rules, statics, classification, stability); mesh resolution and loading are
 //! included, as in a real run.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 
 use urdf_validator::analysis::workspace::chain::ArmChain;

@@ -1,6 +1,8 @@
 //! Print the detected robot type and arm chains of each URDF given on the command line (a development aid
 //! for the classification and arm-detection heuristics): `cargo run --example classify -- a.urdf b.urdf`.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::Path;
 
 use urdf_validator::analysis::classify;

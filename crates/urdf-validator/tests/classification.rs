@@ -1,5 +1,7 @@
 //! Robot types of every example-robot-data robot and of the reference robots, and stability on them.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use urdf_validator::analysis::classify::RobotType;

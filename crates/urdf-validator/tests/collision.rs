@@ -1,6 +1,8 @@
 //! Self-collision engine on analytic robots (exact distances, a known colliding fraction, every rule of
 //! the allowed-collision matrix), a mesh hull, degenerate input, and PR2 with its real meshes.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};

@@ -1,6 +1,8 @@
 //! The mesh loader (`urdf_validator::input::mesh`) on generated files (STL binary/ASCII, OBJ, COLLADA with
 //! units, up axes and node hierarchies, broken files) and on every mesh of the reference robots.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::{Path, PathBuf};

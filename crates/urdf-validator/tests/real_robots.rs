@@ -1,6 +1,8 @@
 //! The validator on real robot descriptions: the reference robots in `../shared/robots` and the
 //! example-robot-data corpus (installed by `scripts/setup-test-env.sh`).
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::Path;

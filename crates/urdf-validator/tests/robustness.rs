@@ -2,6 +2,8 @@
 //! memory (most were found by the fuzz targets in `crates/urdf-validator/fuzz`). Each test checks the
 //! clear finding or error that replaces the failure, and that the rest of the report still runs.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::Path;
 use std::time::{Duration, Instant};
 

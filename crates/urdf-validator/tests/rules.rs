@@ -5,6 +5,8 @@
 //! (line, column) of the span start, and each expectation names the text found there so that a miscounted
 //! expectation fails as a test bug rather than as a library bug.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::fs;
 use std::path::{Path, PathBuf};
 

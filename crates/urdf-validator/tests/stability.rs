@@ -1,6 +1,8 @@
 //! Stability on robots whose answers are known on paper: a box chassis on four wheels, the same rocking on
 //! three, a biped on box feet, a tripod on spheres; declarations and capability profiles.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::Path;
 
 use urdf_validator::analysis::classify::RobotType;

@@ -1,6 +1,8 @@
 //! Statics on robots whose answers are known on paper: pendulums, a mimic pair, a lift, a payload; and the
 //! pose options on real SRDFs.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::Path;

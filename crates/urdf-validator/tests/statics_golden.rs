@@ -2,6 +2,8 @@
 //! (`scripts/oracle/pinocchio_goldens.py`, pin 4.1.0) on every example-robot-data robot Pinocchio loads:
 //! the zero pose and 10 seeded random configurations each, to 1e-9.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::Path;

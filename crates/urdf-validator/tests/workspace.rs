@@ -1,6 +1,8 @@
 //! Workspace: reach, task heights, orientation and self-collision on robots whose answers are known on
 //! paper; arm detection and maximum reach on real robots against an optimiser (scripts/oracle/max_reach.py).
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::Path;

@@ -1,6 +1,8 @@
 //! `.xacro` input end to end: findings point into the xacro sources through macros and includes, xacro
 //! errors are load errors with their location, and nothing in an expression can run code.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::{Path, PathBuf};

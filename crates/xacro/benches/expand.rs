@@ -1,6 +1,8 @@
 //! Expansion speed on PR2 (`../shared/robots/pr2`, 53 files, ~2,000 output elements).
 //! `scripts/bench-xacro.sh` compares it with Python xacro.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::PathBuf;
 
 fn pr2() -> Option<PathBuf> {

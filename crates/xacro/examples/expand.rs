@@ -7,6 +7,8 @@
 //! `--origins` prints, after the XML, the source location of every start tag; `--repeat N` expands N times
 //! and prints the median wall time and the mean CPU time to stderr instead of the XML.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;

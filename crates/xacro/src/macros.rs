@@ -73,21 +73,22 @@ impl MacroTable {
     }
 }
 
-fn macro_arg_re() -> &'static Regex {
-    static RE: OnceLock<Regex> = OnceLock::new();
+/// The macro-parameter pattern (a constant: `None` never happens, but is no reason to panic).
+fn macro_arg_re() -> Option<&'static Regex> {
+    static RE: OnceLock<Option<Regex>> = OnceLock::new();
     RE.get_or_init(|| {
         let default_value = r#"\$\{.*?\}|\$\(.*?\)|(?:'.*?'|".*?"|[^\s'"]+)+|"#;
         let pattern =
             format!(r"^\s*([^\s:=]+?)\s*:?=\s*(\^\|?)?({default_value})(?:\s+|$)((?s).*)");
-        // The pattern is a constant; it compiles.
-        Regex::new(&pattern).unwrap_or_else(|_| Regex::new("$^").expect("trivial regex"))
+        Regex::new(&pattern).ok()
     })
+    .as_ref()
 }
 
 /// Python xacro's `parse_macro_arg`: the first parameter of `s`, its (forward, default) spec when it has
 /// `:=` / `=`, and the rest of the string.
 pub(crate) fn parse_macro_arg(s: &str) -> (String, Option<DefaultSpec>, String) {
-    if let Some(c) = macro_arg_re().captures(s) {
+    if let Some(c) = macro_arg_re().and_then(|re| re.captures(s)) {
         let param = c.get(1).map_or("", |m| m.as_str()).to_string();
         let forward = c.get(2).map(|_| param.clone());
         let default = c

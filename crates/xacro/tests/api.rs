@@ -1,5 +1,7 @@
 //! The public API: arguments, options, tracing output bytes back to the sources, the banner.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 

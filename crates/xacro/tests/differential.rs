@@ -4,6 +4,8 @@
 //! byte (comments and layout as xacro writes them, banner included). When both fail, the error classes must
 //! agree.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 mod common;
 
 use std::path::{Path, PathBuf};

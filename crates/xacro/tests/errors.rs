@@ -1,5 +1,7 @@
 //! Errors: the class, a file:line:col location and the include / macro stack, for every error fixture.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 
 use xacro::{expand_file, ErrorKind, Options};

@@ -1,6 +1,8 @@
 //! Regressions found by the fuzz targets in `fuzz/` (see fuzz/README.md): each input, minimised, with the
 //! output Python xacro 2.1.1 gives or the clear error expected. None may panic, hang or grow unbounded.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::Path;
 
 use xacro::expr::{eval_str, EmptyScope, Value};

@@ -1,6 +1,8 @@
 //! Safety: expressions cannot run code, and runaway inputs stop at the limits with an error (never a
 //! panic, a hang or an unbounded allocation).
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::Path;
 
 use xacro::{expand_str, ErrorKind, Limits, Options};

@@ -1,6 +1,8 @@
 //! Source mapping: every output start tag, attribute and text maps back to where it was written, with the
 //! macro calls and includes that produced it.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
+
 use std::path::{Path, PathBuf};
 
 use xacro::{expand_file, Expansion, FrameKind, Options, Piece};
