@@ -24,7 +24,7 @@
 
 pub mod analysis;
 pub mod assets;
-pub mod checks;
+pub(crate) mod checks;
 pub mod diagnostics;
 pub mod input;
 pub mod model;

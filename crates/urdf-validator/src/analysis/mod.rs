@@ -6,7 +6,7 @@
 pub mod arms;
 pub mod classify;
 pub mod collision;
-pub mod mass;
+pub(crate) mod mass;
 pub mod pose;
 pub mod stability;
 pub mod statics;

@@ -5,7 +5,7 @@
 //! ground-contact [`LinkSupports`] are built once from those hulls, and the SRDF is found and read once.
 //! The checks report what could not be loaded (once per mesh element); the analyses only borrow.
 
-pub mod supports;
+pub(crate) mod supports;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -3,7 +3,7 @@
 //! capability profile of the robot type.
 
 mod section;
-pub mod support_polygon;
+pub(crate) mod support_polygon;
 
 pub use section::{RaisedContact, StabilitySection};
 
