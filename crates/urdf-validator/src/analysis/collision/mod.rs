@@ -104,6 +104,99 @@ pub struct PairSet {
     /// Per pair: the slots of its links and the sum of their bounding radii (the broad phase reads only
     /// this, from memory laid out in pair order).
     broad: Vec<(u32, u32, f64)>,
+    /// For sets with many pairs per link (long chains): a sweep-and-prune index, so a pose costs about
+    /// the number of nearby pairs instead of every pair.
+    sweep: Option<SweepIndex>,
+}
+
+/// Pair sets with more pairs than this per link use the sweep-and-prune broad phase (below it, scanning
+/// every pair is as fast).
+const SWEEP_FROM_PAIRS_PER_LINK: usize = 64;
+
+/// With the sweep, the first `SWEEP_AFTER_LINKS × links` pairs are still scanned one by one first.
+const SWEEP_AFTER_LINKS: usize = 4;
+
+/// Slack added to every sweep interval, metres: the sweep only preselects pairs (each is tested exactly
+/// afterwards), so a margin that is too large changes nothing but a little time.
+const SWEEP_SLACK: f64 = 1e-6;
+
+/// What sweep-and-prune needs of a [`PairSet`]: each slot's bounding radius and, for each pair of slots,
+/// its index in the set.
+#[derive(Clone, Debug, PartialEq)]
+struct SweepIndex {
+    radius: Vec<f64>,
+    /// `pair_of[a * slots + b]` (a < b): the pair's index, `u32::MAX` when the set does not hold it.
+    pair_of: Vec<u32>,
+}
+
+impl SweepIndex {
+    fn new(broad: &[(u32, u32, f64)], radius: Vec<f64>) -> SweepIndex {
+        let slots = radius.len();
+        let mut pair_of = vec![u32::MAX; slots * slots];
+        for (index, &(a, b, _)) in broad.iter().enumerate() {
+            let (a, b) = (a.min(b) as usize, a.max(b) as usize);
+            pair_of[a * slots + b] = index as u32;
+        }
+        SweepIndex { radius, pair_of }
+    }
+
+    /// Into `scratch.candidates`, in increasing order: the index of every pair whose bounding spheres,
+    /// grown by `margin`, may overlap (a superset of those that do), with every slot's centre at `centre`.
+    fn candidates(&self, centre: &[Vector3<f64>], margin: f64, scratch: &mut SweepScratch) {
+        let slots = self.radius.len();
+        let (mut low, mut high) = (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        );
+        for c in centre {
+            low = low.inf(c);
+            high = high.sup(c);
+        }
+        // Sweep along the axis the links spread most along.
+        let axis = (high - low).imax();
+        scratch.intervals.clear();
+        scratch
+            .intervals
+            .extend(centre.iter().enumerate().map(|(slot, c)| {
+                let grown = self.radius[slot] + margin / 2.0 + SWEEP_SLACK;
+                (c[axis] - grown, c[axis] + grown, slot as u32)
+            }));
+        scratch
+            .intervals
+            .sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+        scratch.candidates.clear();
+        scratch.active.clear();
+        for &(start, end, slot) in &scratch.intervals {
+            scratch.active.retain(|&(other_end, _)| other_end > start);
+            for &(_, other) in &scratch.active {
+                let (a, b) = (slot.min(other) as usize, slot.max(other) as usize);
+                let index = self.pair_of[a * slots + b];
+                if index != u32::MAX {
+                    scratch.candidates.push(index);
+                }
+            }
+            scratch.active.push((end, slot));
+        }
+        scratch.candidates.sort_unstable();
+    }
+}
+
+/// Where a pose's scan over its pairs stands.
+struct Scan {
+    /// Pairs further apart than this are not looked at (the nearest clearance so far).
+    margin: f64,
+    /// The nearest pair so far and its distance.
+    nearest: Option<(f64, (LinkId, LinkId))>,
+    /// Some pair is in contact.
+    in_contact: bool,
+}
+
+/// Per-thread buffers of the sweep.
+#[derive(Clone, Debug, Default)]
+struct SweepScratch {
+    intervals: Vec<(f64, f64, u32)>,
+    active: Vec<(f64, u32)>,
+    candidates: Vec<u32>,
 }
 
 impl PairSet {
@@ -155,6 +248,7 @@ pub struct CheckScratch {
     /// Per pair of the last pair set: the last GJK direction (see [`shape::proximity`]).
     axis: Vec<Vector>,
     simplex: VoronoiSimplex,
+    sweep: SweepScratch,
 }
 
 impl CheckScratch {
@@ -166,6 +260,7 @@ impl CheckScratch {
             stamp: 0,
             axis: Vec::new(),
             simplex: VoronoiSimplex::new(),
+            sweep: SweepScratch::default(),
         }
     }
 
@@ -363,14 +458,19 @@ impl CollisionModel {
         links.sort_unstable();
         links.dedup();
         let slot = |link: LinkId| links.binary_search(&link).unwrap_or_default() as u32;
-        let broad = pairs
+        let broad: Vec<(u32, u32, f64)> = pairs
             .iter()
             .map(|&pair| (slot(pair.0), slot(pair.1), size(pair)))
             .collect();
+        let sweep = (pairs.len() > SWEEP_FROM_PAIRS_PER_LINK * links.len()).then(|| {
+            let radius = links.iter().map(|l| self.bodies[l.0].radius).collect();
+            SweepIndex::new(&broad, radius)
+        });
         PairSet {
             pairs,
             links,
             broad,
+            sweep,
         }
     }
 
@@ -565,10 +665,64 @@ impl CollisionModel {
         if scratch.axis.len() < pairs.len() {
             scratch.axis.resize(pairs.len(), Vector::ZERO);
         }
-        let mut margin = clearance_cutoff.max(CONTACT_DISTANCE);
-        let mut nearest = None;
-        let mut in_contact = false;
-        for (index, &(slot_a, slot_b, radii)) in pairs.broad.iter().enumerate() {
+        let margin = clearance_cutoff.max(CONTACT_DISTANCE);
+        // Pairs are visited in set order either way, so the sweep changes no result, only the time. The
+        // first pairs of the set (the largest links) are scanned before the sweep is built: a pose in
+        // contact usually stops there.
+        let mut candidates = std::mem::take(&mut scratch.sweep.candidates);
+        let sweep = pairs
+            .sweep
+            .as_ref()
+            .filter(|_| all_usable && margin.is_finite());
+        let scanned = match sweep {
+            Some(_) => (SWEEP_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len()),
+            None => pairs.broad.len(),
+        };
+        let mut state = Scan {
+            margin,
+            nearest: None,
+            in_contact: false,
+        };
+        let going = self.scan(
+            pairs,
+            0..scanned,
+            placements,
+            scratch,
+            &mut state,
+            on_contact,
+        );
+        if let (true, Some(sweep)) = (going, sweep) {
+            scratch.sweep.candidates = candidates;
+            sweep.candidates(&scratch.centre, state.margin, &mut scratch.sweep);
+            candidates = std::mem::take(&mut scratch.sweep.candidates);
+            let rest = candidates
+                .iter()
+                .map(|&i| i as usize)
+                .filter(|&i| i >= scanned);
+            self.scan(pairs, rest, placements, scratch, &mut state, on_contact);
+        }
+        scratch.sweep.candidates = candidates;
+        if !state.in_contact {
+            result.min_clearance = state.nearest;
+        }
+        result
+    }
+
+    /// Check the pairs at `indices` (increasing) in order, updating `state`; false when `on_contact` stopped
+    /// the scan.
+    fn scan(
+        &self,
+        pairs: &PairSet,
+        indices: impl Iterator<Item = usize>,
+        placements: &[Isometry3<f64>],
+        scratch: &mut CheckScratch,
+        state: &mut Scan,
+        on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
+    ) -> bool {
+        let mut margin = state.margin;
+        let mut going = true;
+        for index in indices {
+            let (slot_a, slot_b, radii) = pairs.broad[index];
             // Squared, so no root; NaN centres are unusable placements.
             let reach = radii + margin;
             let squared =
@@ -579,23 +733,22 @@ impl CollisionModel {
             let (a, b) = pairs.pairs[index];
             match self.link_proximity(a, b, index, placements, margin, scratch) {
                 Proximity::Contact => {
-                    in_contact = true;
+                    state.in_contact = true;
                     margin = CONTACT_DISTANCE;
                     if !on_contact((a, b)) {
+                        going = false;
                         break;
                     }
                 }
                 Proximity::Apart(d) => {
-                    nearest = Some((d, (a, b)));
+                    state.nearest = Some((d, (a, b)));
                     margin = d;
                 }
                 Proximity::Beyond => {}
             }
         }
-        if !in_contact {
-            result.min_clearance = nearest;
-        }
-        result
+        state.margin = margin;
+        going
     }
 
     /// The proximity of two links (both placements usable): the closest of their shape pairs.
@@ -661,5 +814,78 @@ impl CollisionModel {
             };
         }
         *placed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::pose::ConfigurationSampler;
+    use crate::assets::link_supports;
+    use crate::model::{forward_kinematics, Data};
+
+    /// A chain of `n` box links 2 cm apart, each joint bending by up to `range` radians.
+    fn chain(n: usize, range: f64) -> String {
+        let body = "<collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision>";
+        let links: String = (0..=n)
+            .map(|i| format!("<link name=\"l{i}\">{body}</link>"))
+            .collect();
+        let joints: String = (0..n)
+            .map(|i| {
+                format!(
+                    "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
+                     <origin xyz=\"0 0 0.02\"/><axis xyz=\"{} 1 0\"/>\
+                     <limit lower=\"-{range}\" upper=\"{range}\" effort=\"1\" velocity=\"1\"/></joint>",
+                    i + 1,
+                    i % 2
+                )
+            })
+            .collect();
+        format!("<robot name=\"chain\">{links}{joints}</robot>")
+    }
+
+    /// The sweep-and-prune broad phase only skips pairs the full scan would reject: on long chains,
+    /// folded (contacts) and nearly straight (clearances), every pose gives the same result both ways.
+    #[test]
+    fn the_sweep_gives_the_same_result_as_scanning_every_pair() {
+        for range in [1.5, 0.2, 0.01] {
+            let text = chain(300, range);
+            let (robot, _) =
+                crate::urdf::parse_urdf(&text, std::path::Path::new("c.urdf")).unwrap();
+            let (model, _) = Model::build(&robot);
+            let supports: Vec<_> = robot
+                .links
+                .iter()
+                .map(|l| link_supports(l, &|_| None))
+                .collect();
+            let collision = CollisionModel::build(&robot, &model, &supports);
+            let swept = collision.all_pairs();
+            assert!(swept.sweep.is_some(), "a 300-link chain uses the sweep");
+            let scanned = PairSet {
+                sweep: None,
+                ..swept.clone()
+            };
+            let mut sampler = ConfigurationSampler::new(&model, 11);
+            let mut q = model.zero_configuration();
+            let mut data = Data::new(&model);
+            let (mut one, mut other) =
+                (CheckScratch::new(&collision), CheckScratch::new(&collision));
+            let mut cutoff = f64::INFINITY;
+            let mut free = 0;
+            for _ in 0..300 {
+                sampler.sample_into(&mut q);
+                forward_kinematics(&model, &q, &mut data);
+                let a = collision.check(&swept, &data.link_placement, cutoff, &mut one);
+                let b = collision.check(&scanned, &data.link_placement, cutoff, &mut other);
+                assert_eq!(a, b, "range {range}");
+                if let Some((distance, _)) = a.min_clearance {
+                    cutoff = distance;
+                }
+                free += usize::from(a.is_free());
+            }
+            if range < 0.05 {
+                assert_eq!(free, 300, "a nearly straight chain is free");
+            }
+        }
     }
 }
