@@ -121,10 +121,11 @@ impl Hull {
         let outside = |plane: &Option<(Vector, Vector)>, p: Vector| {
             plane.is_some_and(|(normal, a)| normal.dot(p - a) > 1e-9)
         };
-        if vertices.len() == points.len() && planes.iter().all(Option::is_some) {
-            // Every point is a vertex of the surface (the usual case: hull vertices in), so it is the hull
-            // when it is convex: closed, and convex across every edge, checked in O(faces). A degenerate
-            // (zero-area) face could hide a fold from its neighbours: then every point is checked.
+        if planes.iter().all(Option::is_some) {
+            // A closed surface convex across every edge is convex: checked in O(faces). Its vertices are
+            // then inside every face's plane; only the input points that are not vertices (quickhull drops
+            // points on edges and faces) are checked against every plane. A degenerate (zero-area) face
+            // could hide a fold from its neighbours: then every point is checked.
             let mut sides: Vec<((u32, u32), usize)> = Vec::with_capacity(triangles.len() * 3);
             for (index, t) in triangles.iter().enumerate() {
                 for k in 0..3 {
@@ -145,6 +146,19 @@ impl Hull {
                     || outside(&planes[second], opposite(first))
                 {
                     return None;
+                }
+            }
+            if vertices.len() != points.len() {
+                let bits = |p: &Vector| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+                let mut on_surface: Vec<[u64; 3]> = vertices.iter().map(bits).collect();
+                on_surface.sort_unstable();
+                let inner = points
+                    .iter()
+                    .filter(|p| on_surface.binary_search(&bits(p)).is_err());
+                for &p in inner {
+                    if planes.iter().any(|plane| outside(plane, p)) {
+                        return None;
+                    }
                 }
             }
         } else if planes
