@@ -25,6 +25,9 @@ else
     echo "test.sh: $shared_robots is absent; its tests skip (or fail under CI=true)" >&2
 fi
 
+# The CLI keeps mesh hulls between runs; the tests keep theirs under target/, not in the user's cache.
+export URDF_VALIDATOR_CACHE_DIR="$repo_root/target/mesh-cache"
+
 cargo test --workspace --all-targets "$@"
 # Examples in the documentation compile and run too (--all-targets leaves doc tests out).
 cargo test --workspace --doc

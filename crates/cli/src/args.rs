@@ -132,6 +132,11 @@ pub struct Args {
     #[arg(long)]
     pub timings: bool,
 
+    /// Do not read or write the mesh cache (hulls of meshes loaded in earlier runs, kept in
+    /// $URDF_VALIDATOR_CACHE_DIR, else $XDG_CACHE_HOME/urdf-validator, else ~/.cache/urdf-validator).
+    #[arg(long)]
+    pub no_cache: bool,
+
     /// Colour: auto (a terminal without NO_COLOR set), always, never.
     #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
     pub color: ColorChoice,

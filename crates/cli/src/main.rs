@@ -37,6 +37,7 @@ use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task}
 use urdf_validator::analysis::workspace::WorkspaceOptions;
 use urdf_validator::analysis::Overrides;
 use urdf_validator::diagnostics::rules;
+use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::render::{render_text, TextOptions};
 use urdf_validator::Options;
@@ -170,7 +171,7 @@ fn run(args: Args) -> u8 {
                 .collect(),
         },
         timings: args.timings,
-        ..Options::default()
+        meshes: mesh_cache(args.no_cache),
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
     let outcomes: Vec<Outcome> = files
@@ -260,6 +261,14 @@ fn print_outcomes(args: &Args, single_file: bool, outcomes: &[Outcome], input_er
                 let _ = write!(stdout, "{}", outputs::summary_table(outcomes));
             }
         }
+    }
+}
+
+/// The run's mesh cache: in memory, and on disk unless `--no-cache` (or no cache folder is known).
+fn mesh_cache(no_cache: bool) -> MeshCache {
+    match DiskCache::user_default().filter(|_| !no_cache) {
+        Some(disk) => MeshCache::new().with_disk_cache(disk),
+        None => MeshCache::new(),
     }
 }
 

@@ -22,6 +22,8 @@
 //! first occurrence: an STL's triangle soup shrinks about sixfold. The convex hull is computed with
 //! parry3d-f64's quickhull after an affine normalisation (see [`MeshData::hull`]).
 
+mod disk_cache;
+
 use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -29,6 +31,8 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use nalgebra::{Matrix4, Rotation3, SymmetricEigen, Unit, Vector3};
 use roxmltree::{Document, Node};
+
+pub use disk_cache::DiskCache;
 
 /// Largest mesh file read, in bytes (256 MiB).
 pub const MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
@@ -43,7 +47,7 @@ pub const MAX_NODE_INSTANCES: usize = 100_000;
 /// candidates × hull vertices (≈ 1 s, release build, for 60,000 points that are all on the hull).
 pub const HULL_EXACT_LIMIT: usize = 60_000;
 /// Above this many vertices, points provably inside the hull are dropped before quickhull.
-const HULL_PREFILTER_MIN: usize = 10_000;
+const HULL_PREFILTER_MIN: usize = 64;
 /// Largest points × hull faces product for which every point is checked to be inside the hull.
 const HULL_CONTAINMENT_CHECK_LIMIT: usize = 2_000_000;
 /// Grid resolution (cells per axis) of the first thinning step above [`HULL_EXACT_LIMIT`].
@@ -200,11 +204,13 @@ pub fn load_mesh_with(path: &Path, options: &MeshOptions) -> Result<MeshData, Me
 }
 
 /// Thread-safe cache keyed by path: each file read and parsed once per run, shared across
-/// robots/poses. Clones share the same entries.
+/// robots/poses. Clones share the same entries. With a [`DiskCache`], meshes loaded in earlier runs are
+/// read from it, and meshes loaded now are kept in it.
 #[derive(Default, Clone)]
 pub struct MeshCache {
     entries: Arc<Mutex<CacheEntries>>,
     options: MeshOptions,
+    disk: Option<DiskCache>,
 }
 
 type CacheEntries = HashMap<PathBuf, Arc<Result<MeshData, MeshError>>>;
@@ -215,6 +221,7 @@ impl fmt::Debug for MeshCache {
         f.debug_struct("MeshCache")
             .field("entries", &entries)
             .field("options", &self.options)
+            .field("disk", &self.disk)
             .finish()
     }
 }
@@ -230,6 +237,15 @@ impl MeshCache {
         Self {
             entries: Arc::default(),
             options,
+            disk: None,
+        }
+    }
+
+    /// This cache, also reading and keeping meshes in `disk` (across runs).
+    pub fn with_disk_cache(self, disk: DiskCache) -> Self {
+        Self {
+            disk: Some(disk),
+            ..self
         }
     }
 
@@ -240,8 +256,23 @@ impl MeshCache {
         if let Some(entry) = self.lock().get(path) {
             return Arc::clone(entry);
         }
-        let loaded = Arc::new(load_mesh_with(path, &self.options));
+        let loaded = Arc::new(self.load(path));
         Arc::clone(self.lock().entry(path.to_path_buf()).or_insert(loaded))
+    }
+
+    /// The mesh at `path` from the disk cache, else from its file (then kept in the disk cache).
+    fn load(&self, path: &Path) -> Result<MeshData, MeshError> {
+        let Some(disk) = &self.disk else {
+            return load_mesh_with(path, &self.options);
+        };
+        if let Some(mesh) = disk.read(path, &self.options) {
+            return Ok(mesh);
+        }
+        let loaded = load_mesh_with(path, &self.options);
+        if let Ok(mesh) = &loaded {
+            disk.write(path, &self.options, mesh);
+        }
+        loaded
     }
 
     /// Number of paths loaded (or failed) so far.

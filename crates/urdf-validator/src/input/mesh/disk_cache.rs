@@ -1,0 +1,300 @@
+//! A persistent cache of loaded meshes: what the analyses read of a mesh (its convex hull, bounds and
+//! counts) kept on disk between runs, so validating the same robot again does not parse its COLLADA
+//! files and build their hulls again (most of a run's time on mesh-heavy robots).
+//!
+//! An entry is keyed by the mesh file's canonical path, size and modification time, the loader options
+//! and this library's version: editing or replacing a mesh, or upgrading the tool, makes a new entry.
+//! Entries are read defensively (a magic number, the full key, bounded sizes, finite numbers); anything
+//! unexpected is a miss and the mesh is loaded from its file. Writes go to a temporary file renamed into
+//! place, so concurrent runs never see half an entry. Failing to read or write the cache is never an error.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::UNIX_EPOCH;
+
+use super::{MeshData, MeshOptions, UpAxis, UpAxisPolicy};
+
+/// First bytes of every entry.
+const MAGIC: &[u8; 8] = b"UVMESH01";
+
+/// Largest entry read (a hull has at most a few hundred thousand vertices).
+const MAX_ENTRY_BYTES: u64 = 256 * 1024 * 1024;
+
+/// A folder of cached meshes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DiskCache {
+    dir: PathBuf,
+}
+
+impl DiskCache {
+    /// A cache kept in `dir` (created on first write).
+    pub fn at(dir: impl Into<PathBuf>) -> DiskCache {
+        DiskCache { dir: dir.into() }
+    }
+
+    /// The user's cache: `$URDF_VALIDATOR_CACHE_DIR`, else `$XDG_CACHE_HOME/urdf-validator`, else
+    /// `~/.cache/urdf-validator`; `None` when none of them is set.
+    pub fn user_default() -> Option<DiskCache> {
+        let var = |name: &str| std::env::var_os(name).filter(|v| !v.is_empty());
+        let dir = var("URDF_VALIDATOR_CACHE_DIR")
+            .map(PathBuf::from)
+            .or_else(|| var("XDG_CACHE_HOME").map(|d| PathBuf::from(d).join("urdf-validator")))
+            .or_else(|| var("HOME").map(|h| PathBuf::from(h).join(".cache/urdf-validator")))?;
+        Some(DiskCache::at(dir))
+    }
+
+    /// The folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The cached mesh for the file at `path` as it is now, if there is one.
+    pub fn read(&self, path: &Path, options: &MeshOptions) -> Option<MeshData> {
+        let key = key(path, options)?;
+        let file = self.entry_path(&key);
+        if std::fs::metadata(&file).ok()?.len() > MAX_ENTRY_BYTES {
+            return None;
+        }
+        decode(&std::fs::read(file).ok()?, &key)
+    }
+
+    /// Keep `mesh`, loaded from the file at `path`, for later runs (best effort: errors are ignored).
+    pub fn write(&self, path: &Path, options: &MeshOptions, mesh: &MeshData) {
+        let Some(key) = key(path, options) else {
+            return;
+        };
+        let file = self.entry_path(&key);
+        let temporary = file.with_extension(format!("tmp{}", std::process::id()));
+        let written = std::fs::create_dir_all(&self.dir)
+            .and_then(|()| std::fs::File::create(&temporary))
+            .and_then(|mut out| out.write_all(&encode(mesh, &key)))
+            .and_then(|()| std::fs::rename(&temporary, &file));
+        if written.is_err() {
+            let _ = std::fs::remove_file(&temporary);
+        }
+    }
+
+    fn entry_path(&self, key: &str) -> PathBuf {
+        self.dir
+            .join(format!("{:016x}.mesh", fnv1a(key.as_bytes())))
+    }
+}
+
+/// What identifies a mesh file's content and how it is loaded; `None` when the file cannot be examined.
+fn key(path: &Path, options: &MeshOptions) -> Option<String> {
+    let canonical = std::fs::canonicalize(path).ok()?;
+    let meta = std::fs::metadata(&canonical).ok()?;
+    let modified = meta.modified().ok()?.duration_since(UNIX_EPOCH).ok()?;
+    let up_axis = match options.up_axis {
+        UpAxisPolicy::Honour => "honour",
+        UpAxisPolicy::Ignore => "ignore",
+    };
+    Some(format!(
+        "{}\n{}\n{}.{:09}\n{up_axis}\n{}",
+        canonical.display(),
+        meta.len(),
+        modified.as_secs(),
+        modified.subsec_nanos(),
+        crate::VERSION
+    ))
+}
+
+/// 64-bit FNV-1a: a stable file name for a key (the full key is stored in the entry and compared).
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
+        (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// The entry: magic, key, bounds, triangle count, declared up axis, whether the points are the hull,
+/// then the points (the hull's vertices, or every vertex when the hull is degenerate).
+fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
+    let hull_known = !mesh.hull.is_empty();
+    let points = if hull_known {
+        &mesh.hull
+    } else {
+        &mesh.vertices
+    };
+    let mut out = Vec::with_capacity(64 + key.len() + points.len() * 24);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&(key.len() as u64).to_le_bytes());
+    out.extend_from_slice(key.as_bytes());
+    for v in mesh.aabb.0.iter().chain(&mesh.aabb.1) {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out.extend_from_slice(&(mesh.triangles as u64).to_le_bytes());
+    out.push(match mesh.declared_up_axis {
+        None => 0,
+        Some(UpAxis::X) => 1,
+        Some(UpAxis::Y) => 2,
+        Some(UpAxis::Z) => 3,
+    });
+    out.push(u8::from(hull_known));
+    out.extend_from_slice(&(points.len() as u64).to_le_bytes());
+    for p in points {
+        for v in p {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out
+}
+
+/// Reads an entry back; `None` unless it is complete, well-formed and for `key`.
+fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
+    let mut reader = Reader { bytes };
+    if reader.take(MAGIC.len())? != MAGIC {
+        return None;
+    }
+    let key_len = usize::try_from(reader.u64()?).ok()?;
+    if reader.take(key_len)? != key.as_bytes() {
+        return None;
+    }
+    let mut bounds = [0.0; 6];
+    for v in &mut bounds {
+        *v = reader.f64()?;
+    }
+    let triangles = usize::try_from(reader.u64()?).ok()?;
+    let declared_up_axis = match reader.take(1)?[0] {
+        0 => None,
+        1 => Some(UpAxis::X),
+        2 => Some(UpAxis::Y),
+        3 => Some(UpAxis::Z),
+        _ => return None,
+    };
+    let hull_known = match reader.take(1)?[0] {
+        0 => false,
+        1 => true,
+        _ => return None,
+    };
+    let count = usize::try_from(reader.u64()?).ok()?;
+    if count.checked_mul(24)? != reader.bytes.len() {
+        return None;
+    }
+    let mut points = Vec::with_capacity(count);
+    for _ in 0..count {
+        points.push([reader.f64()?, reader.f64()?, reader.f64()?]);
+    }
+    if !points
+        .iter()
+        .flatten()
+        .chain(&bounds)
+        .all(|v| v.is_finite())
+    {
+        return None;
+    }
+    let aabb = (
+        [bounds[0], bounds[1], bounds[2]],
+        [bounds[3], bounds[4], bounds[5]],
+    );
+    // Only what the analyses read of a mesh is kept: with a hull, its vertices stand for the vertices.
+    let (vertices, hull) = if hull_known {
+        (points.clone(), points)
+    } else {
+        (points, Vec::new())
+    };
+    Some(MeshData {
+        vertices,
+        hull,
+        aabb,
+        triangles,
+        declared_up_axis,
+    })
+}
+
+/// A cursor over an entry's bytes.
+struct Reader<'a> {
+    bytes: &'a [u8],
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize) -> Option<&'a [u8]> {
+        if n > self.bytes.len() {
+            return None;
+        }
+        let (head, rest) = self.bytes.split_at(n);
+        self.bytes = rest;
+        Some(head)
+    }
+
+    fn u64(&mut self) -> Option<u64> {
+        Some(u64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    }
+
+    fn f64(&mut self) -> Option<f64> {
+        Some(f64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> MeshData {
+        let corners: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                [
+                    f64::from(i & 1),
+                    f64::from((i >> 1) & 1),
+                    f64::from((i >> 2) & 1),
+                ]
+            })
+            .collect();
+        MeshData {
+            vertices: corners.clone(),
+            hull: corners,
+            aabb: ([0.0; 3], [1.0; 3]),
+            triangles: 12,
+            declared_up_axis: Some(UpAxis::Y),
+        }
+    }
+
+    #[test]
+    fn an_entry_reads_back_for_its_key_only() {
+        let mesh = cube();
+        let bytes = encode(&mesh, "k");
+        let back = decode(&bytes, "k").expect("reads back");
+        assert_eq!(back.hull, mesh.hull);
+        assert_eq!(back.aabb, mesh.aabb);
+        assert_eq!(back.triangles, 12);
+        assert_eq!(back.declared_up_axis, Some(UpAxis::Y));
+        assert!(decode(&bytes, "other").is_none());
+    }
+
+    #[test]
+    fn a_damaged_entry_is_a_miss() {
+        let bytes = encode(&cube(), "k");
+        for cut in [0, 7, 20, bytes.len() - 1] {
+            assert!(decode(&bytes[..cut], "k").is_none(), "cut at {cut}");
+        }
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(decode(&longer, "k").is_none());
+        let mut nan = bytes;
+        let at = nan.len() - 8;
+        nan[at..].copy_from_slice(&f64::NAN.to_le_bytes());
+        assert!(decode(&nan, "k").is_none());
+    }
+
+    #[test]
+    fn a_changed_file_gets_a_new_entry() {
+        let dir = std::env::temp_dir().join(format!("uv-disk-cache-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mesh_file = dir.join("m.stl");
+        std::fs::write(&mesh_file, b"one").unwrap();
+        let cache = DiskCache::at(dir.join("cache"));
+        let options = MeshOptions::default();
+        assert!(cache.read(&mesh_file, &options).is_none());
+        cache.write(&mesh_file, &options, &cube());
+        assert_eq!(
+            cache.read(&mesh_file, &options).map(|m| m.triangles),
+            Some(12)
+        );
+        std::fs::write(&mesh_file, b"changed").unwrap();
+        assert!(
+            cache.read(&mesh_file, &options).is_none(),
+            "size and time changed"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
