@@ -51,14 +51,49 @@ pub struct Hull {
     /// `neighbours[offsets[v]..offsets[v + 1]]` are joined to vertex `v` by an edge; empty: scan.
     offsets: Vec<usize>,
     neighbours: Vec<u32>,
-    /// Per octant of directions (bit k set when component k is positive): the vertex furthest along the
-    /// octant's diagonal, where climbs start.
-    starts: [usize; 8],
+    /// Per cell of a cube map of directions (see [`cube_cell`]): the vertex furthest along the cell's
+    /// centre direction, where climbs start; empty when the hull is scanned.
+    starts: Vec<u32>,
 }
 
-/// The octant of `dir`, as indexed by [`Hull::starts`].
-fn octant(dir: Vector) -> usize {
-    usize::from(dir.x > 0.0) | usize::from(dir.y > 0.0) << 1 | usize::from(dir.z > 0.0) << 2
+/// Cells per cube face side of [`Hull::starts`]: a climb starts within a few edges of its end.
+const CUBE_CELLS: usize = 6;
+
+/// The cube-map cell of `dir`: the face of its largest component (axis and sign), and where `dir` crosses
+/// that face, in `CUBE_CELLS × CUBE_CELLS` cells.
+fn cube_cell(dir: Vector) -> usize {
+    let a = [dir.x, dir.y, dir.z];
+    let abs = a.map(f64::abs);
+    let axis = if abs[0] >= abs[1] && abs[0] >= abs[2] {
+        0
+    } else if abs[1] >= abs[2] {
+        1
+    } else {
+        2
+    };
+    let major = abs[axis];
+    if major.is_nan() || major <= 0.0 {
+        return 0;
+    }
+    let bin = |v: f64| (((v / major + 1.0) * 0.5 * CUBE_CELLS as f64) as usize).min(CUBE_CELLS - 1);
+    let (u, v) = (a[(axis + 1) % 3], a[(axis + 2) % 3]);
+    let face = axis * 2 + usize::from(a[axis] > 0.0);
+    (face * CUBE_CELLS + bin(u)) * CUBE_CELLS + bin(v)
+}
+
+/// The centre direction of cube-map cell `cell` (the inverse of [`cube_cell`]).
+fn cube_direction(cell: usize) -> Vector {
+    let (face, rest) = (
+        cell / (CUBE_CELLS * CUBE_CELLS),
+        cell % (CUBE_CELLS * CUBE_CELLS),
+    );
+    let centre = |bin: usize| (bin as f64 + 0.5) / CUBE_CELLS as f64 * 2.0 - 1.0;
+    let (axis, sign) = (face / 2, if face % 2 == 1 { 1.0 } else { -1.0 });
+    let mut d = [0.0; 3];
+    d[axis] = sign;
+    d[(axis + 1) % 3] = centre(rest / CUBE_CELLS);
+    d[(axis + 2) % 3] = centre(rest % CUBE_CELLS);
+    Vector::new(d[0], d[1], d[2])
 }
 
 /// Below this many vertices a scan is as fast as a climb.
@@ -76,7 +111,7 @@ impl Hull {
             points,
             offsets: Vec::new(),
             neighbours: Vec::new(),
-            starts: [0; 8],
+            starts: Vec::new(),
         }
     }
 
@@ -183,17 +218,21 @@ impl Hull {
             points: vertices,
             offsets,
             neighbours,
-            starts: [0; 8],
+            starts: Vec::new(),
         };
-        hull.starts = std::array::from_fn(|index| {
-            let sign = |bit: usize| if index & bit == 0 { -1.0 } else { 1.0 };
-            hull.support_index(Vector::new(sign(1), sign(2), sign(4)), 0)
-        });
+        // Each cell's start, climbed to from its neighbour's (cells in order are mostly adjacent).
+        let mut previous = 0;
+        hull.starts = (0..6 * CUBE_CELLS * CUBE_CELLS)
+            .map(|cell| {
+                previous = hull.climb(cube_direction(cell), previous);
+                previous as u32
+            })
+            .collect();
         Some(hull)
     }
 
     /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known
-    /// (from the start of `dir`'s octant when `start` is out of range).
+    /// (or from the cube map's start for `dir` when that is further along, or `start` is out of range).
     fn support_index(&self, dir: Vector, start: usize) -> usize {
         if self.offsets.is_empty() {
             let mut best = 0;
@@ -207,11 +246,18 @@ impl Hull {
             }
             return best;
         }
-        let mut vertex = if start < self.points.len() {
-            start
-        } else {
-            self.starts[octant(dir)]
+        // Start from the better of the cube map's vertex for `dir` and `start` (the last query's answer).
+        let mapped = self.starts.get(cube_cell(dir)).map_or(0, |&v| v as usize);
+        let vertex = match self.points.get(start) {
+            Some(p) if p.dot(dir) > self.points[mapped].dot(dir) => start,
+            _ => mapped,
         };
+        self.climb(dir, vertex)
+    }
+
+    /// Steepest ascent along edges from `vertex` to a vertex furthest along `dir` (on a convex hull, a
+    /// local maximum is a global one).
+    fn climb(&self, dir: Vector, mut vertex: usize) -> usize {
         let mut best_dot = self.points[vertex].dot(dir);
         loop {
             let from = vertex;
