@@ -209,3 +209,79 @@ fn pr2_workspace(bencher: divan::Bencher, self_collision: bool) {
         .self_collision_free_fraction
     });
 }
+
+/// The stages of PR2 one by one: parse (XML → Robot), model (tree, mimic order, joint data), assets (every
+/// mesh resolved, read and hulled: a fresh in-memory cache per iteration, no disk cache).
+mod pr2_stages {
+    use super::*;
+    use urdf_validator::assets::{AssetSource, Assets};
+    use urdf_validator::input::mesh::MeshCache;
+
+    const PR2: &str = "pr2/pr2_description/robots/pr2.urdf";
+
+    #[divan::bench]
+    fn parse(bencher: divan::Bencher) {
+        let (path, text) = robot(PR2);
+        bencher.bench(|| parse_urdf(divan::black_box(&text), &path).map(|(r, _)| r.links.len()));
+    }
+
+    #[divan::bench]
+    fn model(bencher: divan::Bencher) {
+        let (path, text) = robot(PR2);
+        let (robot, _) = parse_urdf(&text, &path).expect("parses");
+        bencher.bench(|| {
+            Model::build(divan::black_box(&robot))
+                .0
+                .topological_order
+                .len()
+        });
+    }
+
+    #[divan::bench(sample_count = 10)]
+    fn assets_cold(bencher: divan::Bencher) {
+        let (path, text) = robot(PR2);
+        let (robot, _) = parse_urdf(&text, &path).expect("parses");
+        let options = Options::default();
+        bencher.bench(|| {
+            let meshes = MeshCache::new();
+            let source = AssetSource {
+                urdf_path: &path,
+                resolver: &options.resolver,
+                meshes: &meshes,
+                srdf: None,
+            };
+            Assets::load(&robot, &source).supports.len()
+        });
+    }
+}
+
+/// A chain of `links` revolute joints, a 1 cm box on every link, 2 cm apart, bending by up to 1 rad: the
+/// whole pipeline should cost about linearly more with the links (self-collision uses sweep-and-prune).
+fn box_chain(links: usize) -> String {
+    let body = "<inertial><mass value=\"0.1\"/><inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial>\
+                <collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision>";
+    let mut urdf = String::from("<robot name=\"chain\">");
+    for i in 0..=links {
+        urdf.push_str(&format!("<link name=\"l{i}\">{body}</link>"));
+    }
+    for i in 0..links {
+        urdf.push_str(&format!(
+            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
+             <origin xyz=\"0 0 0.02\"/><axis xyz=\"0 1 0\"/>\
+             <limit lower=\"-1\" upper=\"1\" effort=\"100\" velocity=\"1\"/></joint>",
+            i + 1
+        ));
+    }
+    urdf.push_str("</robot>");
+    urdf
+}
+
+#[divan::bench(args = [100, 1000], sample_count = 5)]
+fn box_chain_pipeline(bencher: divan::Bencher, links: usize) {
+    let text = box_chain(links);
+    let options = Options::default();
+    bencher.bench(|| {
+        validate_text(text.clone(), Path::new("chain.urdf"), &options)
+            .map(|v| v.report.findings.len())
+    });
+}
