@@ -18,7 +18,7 @@ use crate::input::resolve::{PackageResolver, Resolution};
 use crate::input::srdf::{self, Srdf};
 use crate::urdf::robot::{Geometry, Robot};
 
-pub use supports::{link_supports, LinkSupports, Support};
+pub use supports::{link_supports, LinkSupports, MeshPoints, Support};
 
 /// A loaded mesh, or why it could not be loaded.
 pub type LoadedMesh = Arc<Result<MeshData, MeshError>>;
@@ -111,14 +111,20 @@ impl Assets {
         }
     }
 
-    /// Points of a mesh for contact geometry, in the mesh frame before scale: its convex hull, or every
-    /// vertex when the hull is degenerate; `None` when the mesh is unusable.
-    pub fn mesh_points(&self, uri: &str) -> Option<&[[f64; 3]]> {
+    /// Points of a mesh for contact geometry, in the mesh frame before scale: its convex hull (with the
+    /// hull's triangles), or every vertex when the hull is degenerate; `None` when the mesh is unusable.
+    pub fn mesh_points(&self, uri: &str) -> Option<MeshPoints<'_>> {
         let mesh = self.mesh(uri)?.as_ref().as_ref().ok()?;
         Some(if mesh.hull.is_empty() {
-            &mesh.vertices
+            MeshPoints {
+                points: &mesh.vertices,
+                hull_triangles: None,
+            }
         } else {
-            &mesh.hull
+            MeshPoints {
+                points: &mesh.hull,
+                hull_triangles: Some(&mesh.hull_triangles),
+            }
         })
     }
 }

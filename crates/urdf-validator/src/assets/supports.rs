@@ -19,8 +19,16 @@ const RIM_POINTS: usize = 16;
 /// One shape, ready to be placed.
 #[derive(Clone, Debug)]
 pub enum Support {
-    /// A point cloud in the link frame (box corners, mesh hull).
+    /// A point cloud in the link frame (box corners, the vertices of a mesh whose hull is degenerate).
     Points(Vec<Vector3<f64>>),
+    /// A mesh's convex hull in the link frame: its vertices, and the triangles of its surface (indices
+    /// into `points`; empty when unknown).
+    Hull {
+        /// The hull's vertices.
+        points: Vec<Vector3<f64>>,
+        /// Its surface triangles.
+        triangles: Vec<[u32; 3]>,
+    },
     /// A sphere (`length` 0) or capsule (cylinder part of `length` along the local z axis).
     Rounded {
         /// Shape frame in the link frame.
@@ -45,7 +53,7 @@ impl Support {
     /// World points containing the shape's lowest point, for a link placed at `link`.
     pub fn world_points(&self, link: &Isometry3<f64>) -> Vec<Vector3<f64>> {
         match self {
-            Support::Points(points) => points
+            Support::Points(points) | Support::Hull { points, .. } => points
                 .iter()
                 .map(|p| link.transform_point(&Point3::from(*p)).coords)
                 .collect(),
@@ -95,6 +103,15 @@ impl Support {
     }
 }
 
+/// What a mesh contributes to contact geometry, in the mesh frame before scale.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshPoints<'m> {
+    /// The hull's vertices, or every vertex when the hull is degenerate.
+    pub points: &'m [[f64; 3]],
+    /// When `points` is the hull: its surface triangles (possibly empty).
+    pub hull_triangles: Option<&'m [[u32; 3]]>,
+}
+
 /// The shapes of one link (meshes that cannot be loaded are left out; the checks report them).
 #[derive(Clone, Debug, Default)]
 pub struct LinkSupports {
@@ -106,7 +123,7 @@ pub struct LinkSupports {
 /// `mesh_points` gives a mesh URI's hull points in the mesh frame (before scale), `None` when unusable.
 pub fn link_supports<'m>(
     link: &Link,
-    mesh_points: &dyn Fn(&str) -> Option<&'m [[f64; 3]]>,
+    mesh_points: &dyn Fn(&str) -> Option<MeshPoints<'m>>,
 ) -> LinkSupports {
     let shapes: &[Shape] = if link.collisions.is_empty() {
         &link.visuals
@@ -169,8 +186,9 @@ pub fn link_supports<'m>(
                 })
             }
             Geometry::Mesh { filename, scale } if scale.iter().all(|v| v.is_finite()) => {
-                if let Some(points) = mesh_points(&filename.value).filter(|p| !p.is_empty()) {
-                    let scaled = points
+                if let Some(mesh) = mesh_points(&filename.value).filter(|m| !m.points.is_empty()) {
+                    let scaled = mesh
+                        .points
                         .iter()
                         .map(|p| {
                             frame
@@ -182,7 +200,13 @@ pub fn link_supports<'m>(
                                 .coords
                         })
                         .collect();
-                    out.shapes.push(Support::Points(scaled));
+                    out.shapes.push(match mesh.hull_triangles {
+                        Some(triangles) => Support::Hull {
+                            points: scaled,
+                            triangles: triangles.to_vec(),
+                        },
+                        None => Support::Points(scaled),
+                    });
                 }
             }
             _ => {}

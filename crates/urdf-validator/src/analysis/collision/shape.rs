@@ -100,10 +100,16 @@ fn cube_direction(cell: usize) -> Vector {
 const CLIMB_FROM: usize = 16;
 
 impl Hull {
-    /// The hull of `points` (its vertices or more; the support map is the same).
-    pub fn new(points: Vec<Vector>) -> Hull {
+    /// The hull of `points` (its vertices or more; the support map is the same). `triangles`: a
+    /// triangulation of the hull's surface by index into `points` when one is known (the mesh loader
+    /// builds one per mesh file), else parry's quickhull builds it; either is checked before it is used.
+    pub fn new(points: Vec<Vector>, triangles: Option<&[[u32; 3]]>) -> Hull {
         if points.len() >= CLIMB_FROM {
-            if let Some(hull) = Self::triangulated(&points) {
+            let built = match triangles.filter(|t| !t.is_empty()) {
+                Some(triangles) => Self::from_triangles(&points, triangles),
+                None => Self::triangulated(&points),
+            };
+            if let Some(hull) = built {
                 return hull;
             }
         }
@@ -121,9 +127,36 @@ impl Hull {
         let result =
             std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
         let (vertices, triangles) = result.ok()?.ok()?;
+        Self::checked(points, vertices, &triangles)
+    }
+
+    /// [`triangulated`](Self::triangulated) with the triangles given by index into `points`: the points
+    /// no triangle names are left out of the vertices (and checked to be inside).
+    fn from_triangles(points: &[Vector], triangles: &[[u32; 3]]) -> Option<Hull> {
+        let mut slot = vec![u32::MAX; points.len()];
+        let mut vertices = Vec::new();
+        let mut renumbered = Vec::with_capacity(triangles.len());
+        for t in triangles {
+            let mut corner = [0; 3];
+            for (k, &v) in t.iter().enumerate() {
+                let index = slot.get_mut(v as usize)?;
+                if *index == u32::MAX {
+                    *index = vertices.len() as u32;
+                    vertices.push(points[v as usize]);
+                }
+                corner[k] = *index;
+            }
+            renumbered.push(corner);
+        }
+        Self::checked(points, vertices, &renumbered)
+    }
+
+    /// The hull of `vertices` and `triangles` (a triangulation of the hull of `points`) with its edges,
+    /// when the surface is closed and convex and holds every point.
+    fn checked(points: &[Vector], vertices: Vec<Vector>, triangles: &[[u32; 3]]) -> Option<Hull> {
         let n = vertices.len();
         let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 3);
-        for t in &triangles {
+        for t in triangles {
             if t.iter().any(|&v| v as usize >= n) {
                 return None;
             }
@@ -456,7 +489,17 @@ impl ConvexShape {
             Support::Points(points) => {
                 let points: Vec<Vector> =
                     points.iter().map(|p| Vector::new(p.x, p.y, p.z)).collect();
-                (Core::Hull(Hull::new(points)), 0.0, Isometry3::identity())
+                (
+                    Core::Hull(Hull::new(points, None)),
+                    0.0,
+                    Isometry3::identity(),
+                )
+            }
+            Support::Hull { points, triangles } => {
+                let points: Vec<Vector> =
+                    points.iter().map(|p| Vector::new(p.x, p.y, p.z)).collect();
+                let hull = Hull::new(points, Some(triangles));
+                (Core::Hull(hull), 0.0, Isometry3::identity())
             }
             Support::Rounded {
                 frame,

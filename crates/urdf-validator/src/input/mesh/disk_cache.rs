@@ -15,7 +15,7 @@ use std::time::UNIX_EPOCH;
 use super::{MeshData, MeshOptions, UpAxis, UpAxisPolicy};
 
 /// First bytes of every entry.
-const MAGIC: &[u8; 8] = b"UVMESH01";
+const MAGIC: &[u8; 8] = b"UVMESH02";
 
 /// Largest entry read (a hull has at most a few hundred thousand vertices).
 const MAX_ENTRY_BYTES: u64 = 256 * 1024 * 1024;
@@ -107,7 +107,8 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// The entry: magic, key, bounds, triangle count, declared up axis, whether the points are the hull,
-/// then the points (the hull's vertices, or every vertex when the hull is degenerate).
+/// the points (the hull's vertices, or every vertex when the hull is degenerate), then the hull's
+/// triangulation.
 fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
     let hull_known = !mesh.hull.is_empty();
     let points = if hull_known {
@@ -133,6 +134,12 @@ fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
     out.extend_from_slice(&(points.len() as u64).to_le_bytes());
     for p in points {
         for v in p {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out.extend_from_slice(&(mesh.hull_triangles.len() as u64).to_le_bytes());
+    for t in &mesh.hull_triangles {
+        for v in t {
             out.extend_from_slice(&v.to_le_bytes());
         }
     }
@@ -167,12 +174,25 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         _ => return None,
     };
     let count = usize::try_from(reader.u64()?).ok()?;
-    if count.checked_mul(24)? != reader.bytes.len() {
+    if count.checked_mul(24)? > reader.bytes.len() {
         return None;
     }
     let mut points = Vec::with_capacity(count);
     for _ in 0..count {
         points.push([reader.f64()?, reader.f64()?, reader.f64()?]);
+    }
+    let triangle_count = usize::try_from(reader.u64()?).ok()?;
+    if triangle_count.checked_mul(12)? != reader.bytes.len() || (triangle_count > 0 && !hull_known)
+    {
+        return None;
+    }
+    let mut hull_triangles = Vec::with_capacity(triangle_count);
+    for _ in 0..triangle_count {
+        let t = [reader.u32()?, reader.u32()?, reader.u32()?];
+        if t.iter().any(|&v| v as usize >= count) {
+            return None;
+        }
+        hull_triangles.push(t);
     }
     if !points
         .iter()
@@ -195,6 +215,7 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
     Some(MeshData {
         vertices,
         hull,
+        hull_triangles,
         aabb,
         triangles,
         declared_up_axis,
@@ -220,6 +241,10 @@ impl<'a> Reader<'a> {
         Some(u64::from_le_bytes(self.take(8)?.try_into().ok()?))
     }
 
+    fn u32(&mut self) -> Option<u32> {
+        Some(u32::from_le_bytes(self.take(4)?.try_into().ok()?))
+    }
+
     fn f64(&mut self) -> Option<f64> {
         Some(f64::from_le_bytes(self.take(8)?.try_into().ok()?))
     }
@@ -242,6 +267,7 @@ mod tests {
         MeshData {
             vertices: corners.clone(),
             hull: corners,
+            hull_triangles: vec![[0, 1, 2], [1, 3, 2]],
             aabb: ([0.0; 3], [1.0; 3]),
             triangles: 12,
             declared_up_axis: Some(UpAxis::Y),
@@ -254,6 +280,7 @@ mod tests {
         let bytes = encode(&mesh, "k");
         let back = decode(&bytes, "k").expect("reads back");
         assert_eq!(back.hull, mesh.hull);
+        assert_eq!(back.hull_triangles, mesh.hull_triangles);
         assert_eq!(back.aabb, mesh.aabb);
         assert_eq!(back.triangles, 12);
         assert_eq!(back.declared_up_axis, Some(UpAxis::Y));
@@ -269,10 +296,17 @@ mod tests {
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(decode(&longer, "k").is_none());
-        let mut nan = bytes;
-        let at = nan.len() - 8;
-        nan[at..].copy_from_slice(&f64::NAN.to_le_bytes());
+        let mut nan = bytes.clone();
+        let at = nan.len() - 8 - 8 - 2 * 12;
+        nan[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
         assert!(decode(&nan, "k").is_none());
+        let mut out_of_range = bytes;
+        let at = out_of_range.len() - 4;
+        out_of_range[at..].copy_from_slice(&8u32.to_le_bytes());
+        assert!(
+            decode(&out_of_range, "k").is_none(),
+            "a triangle naming no point"
+        );
     }
 
     #[test]

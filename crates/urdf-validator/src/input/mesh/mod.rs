@@ -97,6 +97,10 @@ pub struct MeshData {
     /// On the 883 meshes of the reference robots and the example-robot-data corpus, no vertex lies
     /// outside the hull by more than 1.3e-7 of the mesh's bounding-box diagonal.
     pub hull: Vec<[f64; 3]>,
+    /// A triangulation of the hull's surface (indices into `hull`, by parry's quickhull on the hull
+    /// vertices), so collision shapes can climb along its edges without triangulating each placed copy
+    /// again; empty when it could not be built (consumers then build their own, or scan).
+    pub hull_triangles: Vec<[u32; 3]>,
     /// Axis-aligned bounds (min, max) of `vertices`.
     pub aabb: ([f64; 3], [f64; 3]),
     /// Triangle count as read (STL facets; OBJ `f` polygons as k − 2 triangles; COLLADA primitives of
@@ -351,9 +355,11 @@ fn format_of(path: &Path) -> Result<Format, String> {
 fn finish(raw: RawMesh) -> MeshData {
     let aabb = bounds(&raw.vertices);
     let hull = convex_hull(&raw.vertices, aabb);
+    let hull_triangles = triangulate(&hull);
     MeshData {
         vertices: raw.vertices,
         hull,
+        hull_triangles,
         aabb,
         triangles: raw.triangles,
         declared_up_axis: raw.declared_up_axis,
@@ -1468,6 +1474,38 @@ type HullResult = (Vec<parry3d_f64::math::Vector>, Vec<[u32; 3]>);
 
 /// parry's quickhull, with its known panics on degenerate input (dimforge/parry#49) turned into `None`
 /// as a last resort (the inputs here are whitened and non-flat, so this is not expected to trigger).
+/// The triangles of the hull of `hull` (its vertices), by index into `hull`; empty when quickhull fails or
+/// returns a point it was not given.
+fn triangulate(hull: &[[f64; 3]]) -> Vec<[u32; 3]> {
+    if hull.len() < 4 {
+        return Vec::new();
+    }
+    let points: Vec<parry3d_f64::math::Vector> = hull.iter().map(|&p| to_parry(p)).collect();
+    let Some((vertices, triangles)) = run_hull(&points) else {
+        return Vec::new();
+    };
+    let index: HashMap<[u64; 3], u32> = hull
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (bits(p), i as u32))
+        .collect();
+    let Some(of_vertex) = vertices
+        .iter()
+        .map(|v| index.get(&bits([v.x, v.y, v.z])).copied())
+        .collect::<Option<Vec<u32>>>()
+    else {
+        return Vec::new();
+    };
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| of_vertex.get(v as usize).copied());
+            Some([a?, b?, c?])
+        })
+        .collect::<Option<Vec<_>>>()
+        .unwrap_or_default()
+}
+
 fn run_hull(points: &[parry3d_f64::math::Vector]) -> Option<HullResult> {
     std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points))
         .ok()?
