@@ -27,7 +27,6 @@
 //!   other `_x` attributes do not exist. Nesting is limited to 200 levels, results to 16 MiB / 1M items,
 //!   evaluation to 10M loop steps; no input makes the evaluator panic.
 
-use std::fmt;
 use std::rc::Rc;
 
 mod builtins;
@@ -76,7 +75,8 @@ pub struct Expr {
 }
 
 /// Why an expression could not be parsed or evaluated.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{kind}: {message}")]
 pub struct EvalError {
     /// Python's error class name as Python xacro would report it: `NameError`, `TypeError`, `SyntaxError`,
     /// `ZeroDivisionError`, `KeyError`, `IndexError`, `ValueError`, `AttributeError`, or `XacroException`
@@ -90,13 +90,6 @@ pub struct EvalError {
     pub offset: Option<usize>,
 }
 
-impl fmt::Display for EvalError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.kind, self.message)
-    }
-}
-
-impl std::error::Error for EvalError {}
 
 impl EvalError {
     /// An error of Python class `kind` (e.g. `"ValueError"`) with `message`, without name or offset.

@@ -176,7 +176,8 @@ pub struct MeshOptions {
 }
 
 /// Why a mesh could not be used.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}: {message}", path.display())]
 pub struct MeshError {
     /// The mesh file.
     pub path: PathBuf,
@@ -185,13 +186,6 @@ pub struct MeshError {
     pub message: String,
 }
 
-impl fmt::Display for MeshError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.path.display(), self.message)
-    }
-}
-
-impl std::error::Error for MeshError {}
 
 /// Load a mesh file, choosing the format by extension (case-insensitive): `.stl`, `.obj` or `.dae`,
 /// with the default [`MeshOptions`].
