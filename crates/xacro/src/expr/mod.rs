@@ -90,7 +90,6 @@ pub struct EvalError {
     pub offset: Option<usize>,
 }
 
-
 impl EvalError {
     /// An error of Python class `kind` (e.g. `"ValueError"`) with `message`, without name or offset.
     pub fn new(kind: &'static str, message: impl Into<String>) -> Self {

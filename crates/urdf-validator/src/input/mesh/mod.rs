@@ -186,7 +186,6 @@ pub struct MeshError {
     pub message: String,
 }
 
-
 /// Load a mesh file, choosing the format by extension (case-insensitive): `.stl`, `.obj` or `.dae`,
 /// with the default [`MeshOptions`].
 pub fn load_mesh(path: &Path) -> Result<MeshData, MeshError> {
