@@ -89,13 +89,15 @@ fn key(path: &Path, options: &MeshOptions) -> Option<String> {
         UpAxisPolicy::Honour => "honour",
         UpAxisPolicy::Ignore => "ignore",
     };
+    // The entry format is part of the key: builds with different formats keep separate entries.
     Some(format!(
-        "{}\n{}\n{}.{:09}\n{up_axis}\n{}",
+        "{}\n{}\n{}.{:09}\n{up_axis}\n{}\n{}",
         canonical.display(),
         meta.len(),
         modified.as_secs(),
         modified.subsec_nanos(),
-        crate::VERSION
+        crate::VERSION,
+        String::from_utf8_lossy(MAGIC)
     ))
 }
 
