@@ -137,6 +137,11 @@ pub struct Args {
     #[arg(long)]
     pub no_cache: bool,
 
+    /// Seconds each file may take; a file still running then is reported as not finished (naming the
+    /// stage it was in, exit 2) and a batch goes on with the next file. 0: no limit.
+    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    pub timeout: f64,
+
     /// Colour: auto (a terminal without NO_COLOR set), always, never.
     #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
     pub color: ColorChoice,

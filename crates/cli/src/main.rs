@@ -172,13 +172,30 @@ fn run(args: Args) -> u8 {
         },
         timings: args.timings,
         meshes: mesh_cache(args.no_cache),
+        progress: None,
+    };
+    let timeout = match args.timeout {
+        // Zero, or more seconds than a Duration holds: no limit.
+        t if t >= 0.0 => std::time::Duration::try_from_secs_f64(t)
+            .ok()
+            .filter(|d| !d.is_zero()),
+        t => {
+            errln!("error: --timeout {t}: expected seconds ≥ 0 (0: no limit)");
+            return 2;
+        }
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
     let outcomes: Vec<Outcome> = files
         .par_iter()
         .zip(report_paths.par_iter())
         .map(|(file, report_path)| {
-            outputs::validate_one(file, report_path.as_deref(), &options, args.no_write)
+            outputs::validate_one(
+                file,
+                report_path.as_deref(),
+                &options,
+                args.no_write,
+                timeout,
+            )
         })
         .collect();
     let single_file = paths.len() == 1 && !paths[0].is_dir();
@@ -299,6 +316,7 @@ fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
             .transpose()?,
         orientation_tolerance_deg: tolerance,
         approach_axis: args.approach_axis.as_deref().map(parse_axis).transpose()?,
+        progress: None,
     })
 }
 

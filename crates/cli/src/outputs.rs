@@ -3,9 +3,12 @@
 use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use std::sync::mpsc;
+use std::time::Duration;
 
 use urdf_validator::input::LoadError;
 use urdf_validator::report::Status;
+use urdf_validator::timings::Progress;
 use urdf_validator::{validate, Options, Validation};
 
 /// What happened to one input.
@@ -63,14 +66,56 @@ pub fn report_paths(files: &[PathBuf], output_dir: Option<&Path>) -> Vec<Option<
         .collect()
 }
 
-/// Validate one file and write its report unless `no_write`.
+/// Validate `file`, giving up after `timeout` (`None`: no limit). A run that does not finish in time is
+/// reported as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: its sampling stops
+/// at the next chunk, and anything else it still does ends with it or with the process.
+fn validate_within(
+    file: &Path,
+    options: &Options,
+    timeout: Option<Duration>,
+) -> Result<Validation, LoadError> {
+    let Some(timeout) = timeout else {
+        return validate(file, options);
+    };
+    let progress = Progress::default();
+    let options = Options {
+        progress: Some(progress.clone()),
+        ..options.clone()
+    };
+    let path = file.to_path_buf();
+    let (done, result) = mpsc::channel();
+    let worker = std::thread::Builder::new()
+        .name(format!("validate {}", file.display()))
+        .spawn(move || {
+            let _ = done.send(validate(&path, &options));
+        });
+    if let Err(error) = worker {
+        return Err(LoadError::Io {
+            path: file.to_path_buf(),
+            error,
+        });
+    }
+    result.recv_timeout(timeout).unwrap_or_else(|_| {
+        let stage = progress.running();
+        // Stop the sampling so the threads it holds go to the next files.
+        progress.cancel();
+        Err(LoadError::DidNotFinish {
+            path: file.to_path_buf(),
+            seconds: timeout.as_secs_f64(),
+            stage,
+        })
+    })
+}
+
+/// Validate one file (within `timeout`) and write its report unless `no_write`.
 pub fn validate_one(
     file: &Path,
     report_path: Option<&Path>,
     options: &Options,
     no_write: bool,
+    timeout: Option<Duration>,
 ) -> Outcome {
-    let validation = validate(file, options);
+    let validation = validate_within(file, options, timeout);
     let mut outcome = Outcome {
         file: file.to_path_buf(),
         validation,

@@ -31,6 +31,7 @@ pub mod model;
 pub mod render;
 pub mod report;
 pub mod rng;
+pub mod timings;
 pub mod urdf;
 
 use std::path::Path;
@@ -43,7 +44,8 @@ use input::resolve::PackageResolver;
 use input::source::SourceText;
 use input::{LoadError, Loaded};
 use model::Model;
-use report::{Outcome, Report, Stopwatch};
+use report::{Outcome, Report};
+use timings::{Progress, Stopwatch};
 
 /// This library's version, written into every report.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -71,6 +73,8 @@ pub struct Options {
     pub xacro_args: Vec<(String, String)>,
     /// Record the time of each phase in the report (`timings_ms`).
     pub timings: bool,
+    /// Told each phase as it finishes, so a watchdog can say where a run stands.
+    pub progress: Option<Progress>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -94,7 +98,7 @@ impl Validation {
 
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
-    let mut clock = Stopwatch::start();
+    let mut clock = Stopwatch::reporting_to(options.progress.clone());
     let loaded = Loaded::read(path, &options.xacro_args, &options.resolver)?;
     clock.lap("load");
     run(loaded, options, clock)
@@ -106,7 +110,8 @@ pub fn validate_text(
     path: &Path,
     options: &Options,
 ) -> Result<Validation, LoadError> {
-    run(Loaded::from_text(text, path), options, Stopwatch::start())
+    let clock = Stopwatch::reporting_to(options.progress.clone());
+    run(Loaded::from_text(text, path), options, clock)
 }
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
@@ -124,16 +129,19 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         clock.lap("assets");
         findings.extend(checks::run(&robot, &model, &assets));
         clock.lap("checks");
-        let physics = analysis::analyse(
-            &robot,
-            &model,
-            &analysis_inputs(&assets, options),
-            &mut clock,
-        )
-        .map_err(|message| LoadError::Usage {
-            path: loaded.path.clone(),
-            message,
-        })?;
+        // The workspace sampler stops early when a watchdog cancels the run.
+        let workspace = WorkspaceOptions {
+            progress: options.progress.clone(),
+            ..options.workspace.clone()
+        };
+        let inputs = analysis_inputs(&assets, options, &workspace);
+        let physics =
+            analysis::analyse(&robot, &model, &inputs, &mut clock).map_err(|message| {
+                LoadError::Usage {
+                    path: loaded.path.clone(),
+                    message,
+                }
+            })?;
         findings.extend(physics.findings.iter().cloned());
         Some(physics)
     } else {
@@ -164,11 +172,15 @@ fn asset_source<'a>(path: &'a Path, options: &'a Options) -> AssetSource<'a> {
     }
 }
 
-fn analysis_inputs<'a>(assets: &'a Assets, options: &'a Options) -> analysis::Inputs<'a> {
+fn analysis_inputs<'a>(
+    assets: &'a Assets,
+    options: &'a Options,
+    workspace: &'a WorkspaceOptions,
+) -> analysis::Inputs<'a> {
     analysis::Inputs {
         assets,
         statics: &options.statics,
-        workspace: &options.workspace,
+        workspace,
         overrides: &options.overrides,
     }
 }

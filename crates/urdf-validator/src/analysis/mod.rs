@@ -27,7 +27,7 @@ use crate::diagnostics::Confidence;
 use crate::input::srdf::{srdf_collisions, Srdf, SrdfCollisions};
 use crate::model::kinematics::{forward_kinematics, Data};
 use crate::model::{LinkId, Model};
-use crate::report::Stopwatch;
+use crate::timings::Stopwatch;
 use crate::urdf::robot::Robot;
 use arms::Arm;
 use pose::PoseOptions;

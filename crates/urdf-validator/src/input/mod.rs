@@ -57,6 +57,16 @@ pub enum LoadError {
         /// What is wrong, with suggestions.
         message: String,
     },
+    /// The validation did not finish in the time allowed (`--timeout`).
+    #[error("{}: analysis did not finish within {seconds} s (stage running: {stage}); the rest of the run goes on (raise --timeout, or 0 for none)", path.display())]
+    DidNotFinish {
+        /// The file.
+        path: PathBuf,
+        /// The time allowed.
+        seconds: f64,
+        /// The phase that was running.
+        stage: &'static str,
+    },
     /// The text is not well-formed XML.
     #[error("{}:{line}:{column}: not well-formed XML: {message} (expected a URDF XML document)", path.display())]
     Xml {

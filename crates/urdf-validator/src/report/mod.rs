@@ -6,10 +6,9 @@
 mod build;
 pub mod schema_doc;
 mod timestamp;
-mod timings;
 
+pub use crate::timings::Timings;
 pub use build::{build, Outcome};
-pub use timings::{Stopwatch, Timings};
 
 pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
 pub use crate::analysis::stability::{RaisedContact, StabilitySection};

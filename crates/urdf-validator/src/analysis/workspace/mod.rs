@@ -29,6 +29,7 @@ use crate::input::srdf::SrdfCollisions;
 use crate::model::kinematics::{forward_kinematics_links, Configuration, Data};
 use crate::model::{JointId, LinkId, Model};
 use crate::rng::SplitMix64;
+use crate::timings::Progress;
 use crate::urdf::robot::Robot;
 
 use chain::ArmChain;
@@ -64,6 +65,8 @@ pub struct WorkspaceOptions {
     pub orientation_tolerance_deg: f64,
     /// `--approach-axis` (tip frame); default: towards the fingers, else +z.
     pub approach_axis: Option<Vector3<f64>>,
+    /// When cancelled, sampling stops at the next chunk (the section is then partial).
+    pub progress: Option<Progress>,
 }
 
 impl Default for WorkspaceOptions {
@@ -75,6 +78,7 @@ impl Default for WorkspaceOptions {
             orientation: None,
             orientation_tolerance_deg: 30.0,
             approach_axis: None,
+            progress: None,
         }
     }
 }
@@ -254,7 +258,16 @@ fn chunk_seed(seed: u64, arm: usize, chunk: usize) -> u64 {
 fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usize) -> ArmStats {
     let scene = ctx.scene;
     let start = chunk * CHUNK;
-    let count = CHUNK.min(ctx.options.samples.saturating_sub(start));
+    let cancelled = ctx
+        .options
+        .progress
+        .as_ref()
+        .is_some_and(Progress::is_cancelled);
+    let count = if cancelled {
+        0
+    } else {
+        CHUNK.min(ctx.options.samples.saturating_sub(start))
+    };
     let mut stats = ArmStats::new();
     let mut rng = SplitMix64::new(chunk_seed(ctx.options.seed, arm_index, chunk));
     let mut q = vec![0.0; job.chain.dof()];
