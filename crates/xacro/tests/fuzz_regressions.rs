@@ -205,3 +205,18 @@ fn include_globs_are_not_recursive() {
     .xml;
     assert!(xml.contains("<one/>") && !xml.contains("deeper"), "{xml}");
 }
+
+/// Found by the CI fuzz smoke (`expression`, a 5 s timeout): `[] * 112_12_00000` looped 1.1e10 times to
+/// build an empty list. An empty sequence repeated any number of times is empty, at once.
+#[test]
+fn an_empty_sequence_repeated_a_huge_number_of_times_is_empty_at_once() {
+    let started = std::time::Instant::now();
+    assert_eq!(text("str([] * 112_12_00000)"), "[]");
+    assert_eq!(text("str(() * 10**15)"), "()");
+    assert_eq!(text("str(len('' * 10**15))"), "0");
+    assert!(
+        started.elapsed() < std::time::Duration::from_secs(2),
+        "took {:?}",
+        started.elapsed()
+    );
+}

@@ -321,8 +321,11 @@ fn repeat(seq: &Value, n: i64) -> Result<Value, EvalError> {
         Value::List(v) | Value::Tuple(v) => {
             check_items(v.len().checked_mul(n).ok_or_else(too_large)?)?;
             let mut out = Vec::with_capacity(v.len() * n);
-            for _ in 0..n {
-                out.extend_from_slice(v);
+            // An empty sequence stays empty however large `n` is (`[] * 10**10` must not loop).
+            if !v.is_empty() {
+                for _ in 0..n {
+                    out.extend_from_slice(v);
+                }
             }
             Ok(if matches!(seq, Value::List(_)) {
                 Value::list(out)
