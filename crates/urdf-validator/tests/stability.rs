@@ -235,7 +235,7 @@ fn declared_contacts_are_exact_and_unknown_names_are_errors() {
 }
 
 #[test]
-fn declared_type_wins_and_a_disagreement_is_a_warning() {
+fn declared_type_wins_and_a_disagreement_is_told() {
     let declared = Overrides {
         robot_type: Some(RobotType::Aerial),
         ..Overrides::default()
@@ -246,14 +246,19 @@ fn declared_type_wins_and_a_disagreement_is_a_warning() {
         (Some(RobotType::Aerial), Some(Confidence::Exact))
     );
     assert_eq!(report.robot_type_detected, Some(RobotType::Wheeled));
+    // U730, an INFO: the declaration wins and the verdict does not change.
+    let told: Vec<&str> = report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U730")
+        .map(|f| f.message.as_str())
+        .collect();
     assert!(
-        report
-            .warnings
-            .iter()
+        told.iter()
             .any(|w| w.contains("--robot-type=aerial") && w.contains("wheeled")),
-        "{:?}",
-        report.warnings
+        "{told:?}"
     );
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     let s = report.stability.unwrap();
     assert_eq!(
         s.status,

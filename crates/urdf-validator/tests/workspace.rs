@@ -13,6 +13,7 @@ use urdf_validator::analysis::statics::StaticsOptions;
 use urdf_validator::analysis::workspace::target::{Orientation, Task};
 use urdf_validator::analysis::workspace::WorkspaceOptions;
 use urdf_validator::analysis::Overrides;
+use urdf_validator::diagnostics::Section;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::report::{Confidence, Report, Status, WorkspaceSection};
 use urdf_validator::{validate, validate_text, Options};
@@ -61,7 +62,7 @@ fn standing_arm(root: &str, tip: &str) -> Overrides {
     }
 }
 
-fn workspace_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -> WorkspaceSection {
+fn report_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -> Report {
     let options = Options {
         overrides,
         workspace,
@@ -70,8 +71,22 @@ fn workspace_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -
     validate_text(urdf.to_string(), Path::new("t.urdf"), &options)
         .expect("loads")
         .report
+}
+
+fn workspace_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -> WorkspaceSection {
+    report_of(urdf, overrides, workspace)
         .workspace
         .expect("a robot has a workspace section")
+}
+
+/// The (code, line) of every finding of the task and collision sections.
+fn verdicts(report: &Report) -> Vec<(String, Option<u32>)> {
+    report
+        .findings
+        .iter()
+        .filter(|f| matches!(f.section, Section::Task | Section::Collision) && f.rule != "U601")
+        .map(|f| (f.rule.clone(), f.line))
+        .collect()
 }
 
 #[test]
@@ -131,6 +146,22 @@ fn task_heights_are_reachable_between_the_lowest_and_highest_tip() {
     // Tip heights span [0.2, 1.8] m above the ground.
     let table = run(Task::PickFromTable);
     assert_eq!(table.task_height_reachable, Some(true));
+    let report = |task: Task| {
+        report_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                task: Some(task),
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    assert_eq!(verdicts(&report(Task::PickFromTable)), []);
+    // U720 at the arm's first joint (line 3 of planar_arm).
+    assert_eq!(
+        verdicts(&report(Task::PickFromGround)),
+        [("U720".to_string(), Some(3))]
+    );
     assert_eq!(table.task_target_height_m, Some(0.75));
     // A bolted-down arm cannot tip: the COM check says why it did not run.
     assert_eq!(table.task_com_stable_during_reach, None);
@@ -240,15 +271,27 @@ fn reaching_with_a_heavy_tool_tips_a_light_base_over() {
     // COM x = (10·0.8 + small) / 11.002 ≈ 0.727 m; margin = 0.1 − 0.727 → about −627 mm.
     assert!((-640.0..-600.0).contains(&margin), "margin {margin}");
     assert_eq!(light.status, Status::Fail);
+    let light_report = report_of(
+        &planar_arm(0.5, 0.3, 1.0, 1.0, 10.0),
+        standing_arm("base", "tip"),
+        task.clone(),
+    );
+    assert_eq!(verdicts(&light_report), [("U721".to_string(), Some(3))]);
     // A 1000 kg base keeps it: COM x ≈ 10·0.8/1010 ≈ 7.9 mm, margin ≈ 92 mm.
     let heavy = workspace_of(
         &planar_arm(0.5, 0.3, 1.0, 1000.0, 10.0),
         standing_arm("base", "tip"),
-        task,
+        task.clone(),
     );
     assert_eq!(heavy.task_com_stable_during_reach, Some(true));
     let margin = heavy.task_com_margin_mm.unwrap();
     assert!((88.0..96.0).contains(&margin), "margin {margin}");
+    let heavy_report = report_of(
+        &planar_arm(0.5, 0.3, 1.0, 1000.0, 10.0),
+        standing_arm("base", "tip"),
+        task,
+    );
+    assert_eq!(verdicts(&heavy_report), []);
     let shift = heavy.task_com_shift_estimate_m.unwrap();
     assert!((0.0075..0.0085).contains(&shift), "shift {shift}");
     // Every pose at that height is checked too: the worst is the arm stretched either way, as far out.
@@ -363,6 +406,22 @@ fn orientation_fraction_matches_the_swept_angle() {
     );
     assert_eq!(tight.orientation_reachable, Some(false));
     assert_eq!(tight.status, Status::Warn);
+    let orientation_report = |tolerance: f64| {
+        report_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                orientation: Some(Orientation::TopDown),
+                orientation_tolerance_deg: tolerance,
+                ..WorkspaceOptions::default()
+            },
+        )
+    };
+    assert_eq!(
+        verdicts(&orientation_report(1.0)),
+        [("U723".to_string(), Some(3))]
+    );
+    assert_eq!(verdicts(&orientation_report(30.0)), []);
 }
 
 /// A ball on a rod turning about y over a box base; the ball hits the base when the rod points down far
@@ -403,6 +462,18 @@ fn self_collision_fraction_matches_the_colliding_arc() {
         &["base", "rod"]
     );
     assert_eq!(ws.status, Status::Warn, "{:?}", ws.reason);
+    // U724 at the rod's collision (line 6 of swinging_ball).
+    let report = report_of(
+        &swinging_ball(h, l, r),
+        declared_arm("mount", "rod"),
+        WorkspaceOptions::default(),
+    );
+    assert_eq!(verdicts(&report), [("U724".to_string(), Some(6))]);
+    assert!(report
+        .findings
+        .iter()
+        .any(|f| f.rule == "U724" && f.message.contains("'base' × 'rod'")));
+    assert_eq!(report.overall_status, Status::Warn);
     assert!(ws.self_collision_touching_at_reference.is_empty());
     // Clearance over free poses approaches 0 (the ball grazes the base).
     assert!(ws.self_collision_min_clearance_mm.unwrap() < 5.0);
@@ -666,7 +737,13 @@ fn a_declared_arm_unlike_the_detected_ones_is_warned_about() {
             },
             ..Options::default()
         };
-        validate(&path, &options).unwrap().report.warnings
+        let report = validate(&path, &options).unwrap().report;
+        report
+            .findings
+            .into_iter()
+            .filter(|f| f.rule == "U730")
+            .map(|f| f.message)
+            .collect::<Vec<_>>()
     };
     let wheel = warnings("base_link", "left_wheel_link");
     assert!(

@@ -23,7 +23,7 @@ use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::diagnostics::suggest::did_you_mean;
-use crate::diagnostics::Confidence;
+use crate::diagnostics::{Confidence, Section, Status};
 use crate::input::srdf::{srdf_collisions, Srdf, SrdfCollisions};
 use crate::model::kinematics::{forward_kinematics, Data};
 use crate::model::{LinkId, Model};
@@ -63,9 +63,8 @@ pub struct Physics {
     pub detected: RobotType,
     /// Why.
     pub evidence: String,
-    /// Disagreements between declarations and heuristics.
-    pub warnings: Vec<String>,
-    /// Findings of the analyses (link pairs in contact at the reference pose).
+    /// Findings of the analyses: every verdict that is not PASS, declarations that differ from the
+    /// structure, link pairs in contact at the reference pose.
     pub findings: Vec<Finding>,
 }
 
@@ -148,7 +147,11 @@ pub fn analyse(
         ),
         None => None,
     };
-    let (mut statics, q) = statics::analyse(robot, model, assets.srdf.as_ref(), statics_options)?;
+    let statics::StaticsOutcome {
+        section: mut statics,
+        findings: statics_findings,
+        q,
+    } = statics::analyse(robot, model, assets.srdf.as_ref(), statics_options)?;
     clock.lap("statics");
 
     let reference = pose::resolve(robot, model, None, &PoseOptions::default())?;
@@ -157,15 +160,22 @@ pub fn analyse(
     let classification = classify(robot, model, &data, supports);
     clock.lap("classify");
     let detected = classification.robot_type;
-    let mut warnings = Vec::new();
+    let mut findings = statics_findings;
+    let root_span = model
+        .root
+        .map_or(robot.span, |root| robot.links[root.0].span);
     let (robot_type, confidence) = match overrides.robot_type {
         Some(declared) => {
             if declared != detected {
-                warnings.push(format!(
-                    "User declared --robot-type={}, but the structure suggests {} ({})",
-                    declared.as_str(),
-                    detected.as_str(),
-                    classification.evidence
+                findings.push(Finding::new(
+                    &rules::DECLARATION_DIFFERS,
+                    root_span,
+                    format!(
+                        "User declared --robot-type={}, but the structure suggests {} ({})",
+                        declared.as_str(),
+                        detected.as_str(),
+                        classification.evidence
+                    ),
                 ));
             }
             (declared, Confidence::Exact)
@@ -191,6 +201,7 @@ pub fn analyse(
         declared_contacts.as_deref(),
         com,
     );
+    findings.extend(stability::findings(robot, model, &stability));
     clock.lap("stability");
     if let (Some(ground), Some(com)) = (stability.ground_height, com) {
         statics.com_height_above_ground = Some(com.z - ground);
@@ -218,12 +229,19 @@ pub fn analyse(
                     .iter()
                     .map(|a| format!("{} → {}", link_name(a.base), link_name(a.tip)))
                     .collect();
-                warnings.push(format!(
-                    "User declared the arm {} → {}, but the structure suggests {}",
-                    link_name(arm.base),
-                    link_name(arm.tip),
-                    detected.join(", ")
-                ));
+                findings.push(
+                    Finding::new(
+                        &rules::DECLARATION_DIFFERS,
+                        robot.links[arm.tip.0].span,
+                        format!(
+                            "User declared the arm {} → {}, but the structure suggests {}",
+                            link_name(arm.base),
+                            link_name(arm.tip),
+                            detected.join(", ")
+                        ),
+                    )
+                    .in_section(Section::Workspace),
+                );
             }
         }
         declared
@@ -249,14 +267,23 @@ pub fn analyse(
             (mass, link.and_then(|name| model.link(name)))
         }),
     };
-    let (collision, mut findings) = if arms.is_empty() || robot.links.len() > MAX_COLLISION_LINKS {
-        (None, Vec::new())
+    let collision = if arms.is_empty() || robot.links.len() > MAX_COLLISION_LINKS {
+        None
     } else {
-        let (setup, findings) = collision_setup(robot, model, &reference_data, inputs)?;
-        (Some(setup), findings)
+        let (setup, setup_findings) = collision_setup(robot, model, &reference_data, inputs)?;
+        findings.extend(setup_findings);
+        Some(setup)
     };
     clock.lap("collision_setup");
     let workspace = workspace::analyse(&scene, &arms, collision.as_ref(), inputs.workspace);
+    findings.extend(workspace::findings(
+        robot,
+        model,
+        &arms,
+        &workspace,
+        inputs.workspace,
+        stability.status != Status::NotApplicable,
+    ));
     clock.lap("workspace");
     if let Some(c) = &collision {
         findings.extend(contact_findings(robot, &c.touching));
@@ -269,7 +296,6 @@ pub fn analyse(
         robot_type_confidence: confidence,
         detected,
         evidence: classification.evidence,
-        warnings,
         findings,
     })
 }

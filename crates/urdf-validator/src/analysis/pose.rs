@@ -78,6 +78,9 @@ pub struct ResolvedPose {
     pub q: Configuration,
     /// Clamping, fallbacks, values outside limits.
     pub notes: Vec<String>,
+    /// Why the requested pose could not be made (then the zero pose is used): a requested check that
+    /// could not run.
+    pub unavailable: Option<String>,
 }
 
 /// The zero pose with each joint clamped into its limits.
@@ -108,6 +111,7 @@ pub fn resolve(
     options: &PoseOptions,
 ) -> Result<ResolvedPose, String> {
     let mut notes = Vec::new();
+    let mut unavailable = None;
     let mut q = clamped_zero(robot, model, &mut notes);
     match options.kind {
         PoseKind::Zero | PoseKind::Worst => {}
@@ -139,7 +143,7 @@ pub fn resolve(
                     let mut names: Vec<&str> = states.iter().map(|s| s.name.as_str()).collect();
                     names.sort_unstable();
                     names.dedup();
-                    notes.push(format!(
+                    let why = format!(
                         "SRDF {} has no group_state '{}' (it has: {}); using the zero pose",
                         srdf.display(),
                         options.state,
@@ -148,7 +152,9 @@ pub fn resolve(
                         } else {
                             names.join(", ")
                         }
-                    ));
+                    );
+                    notes.push(why.clone());
+                    unavailable = Some(why);
                 }
                 for state in wanted {
                     for (name, value) in &state.joints {
@@ -169,14 +175,19 @@ pub fn resolve(
                     options.srdf.as_deref().unwrap_or(Path::new("")).display()
                 ))
             }
-            None => notes.push(
-                "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose"
-                    .to_string(),
-            ),
+            None => {
+                let why = "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose";
+                notes.push(why.to_string());
+                unavailable = Some(why.to_string());
+            }
         },
     }
     model.apply_mimic(&mut q);
-    Ok(ResolvedPose { q, notes })
+    Ok(ResolvedPose {
+        q,
+        notes,
+        unavailable,
+    })
 }
 
 fn set_joint(

@@ -4,14 +4,16 @@ use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::input::resolve::Resolution;
 use crate::input::source::Spanned;
-use crate::model::{LinkId, Model};
+use crate::model::kinematics::{forward_kinematics, Data};
+use crate::model::Model;
 use crate::urdf::robot::{Geometry, Robot};
 
 use crate::assets::Assets;
 
 pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
-    for (index, link) in robot.links.iter().enumerate() {
+    let robot_size = joint_extent(model);
+    for link in &robot.links {
         let owner = format!("Link '{}'", link.name.value);
         for shape in link.visuals.iter().chain(&link.collisions) {
             let Some(geometry) = &shape.geometry else {
@@ -28,8 +30,7 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                 match assets.resolution(&filename.value) {
                     None => {}
                     Some(Resolution::Found(_)) => {
-                        let spacing = joint_spacing(robot, model, LinkId(index));
-                        findings.extend(check_mesh(assets, &owner, filename, *scale, spacing));
+                        findings.extend(check_mesh(assets, &owner, filename, *scale, robot_size));
                     }
                     Some(Resolution::NotFound { searched }) => {
                         let looked: Vec<String> =
@@ -108,19 +109,36 @@ fn degenerate(geometry: &Geometry) -> Option<String> {
     }
 }
 
-/// A mesh this many times larger than the spacing of its link's joints is probably in millimetres.
+/// A mesh this many times larger than the whole robot's joint spacing is probably in millimetres (a
+/// millimetre mesh is 1000× too large, so every part over a tenth of the robot's size is caught).
 const MILLIMETRE_RATIO: f64 = 100.0;
 
-/// The largest distance from a link's frame to the joints attaching it (parent and children), metres.
-fn joint_spacing(robot: &Robot, model: &Model, link: LinkId) -> f64 {
-    let parent = model.parent_joint[link.0].into_iter();
-    let children = model.child_joints[link.0].iter().copied();
-    parent
-        .map(|j| &robot.joints[j.0].origin.xyz)
-        .chain(children.map(|j| &robot.joints[j.0].origin.xyz))
-        .map(|xyz| xyz.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .filter(|d| d.is_finite())
-        .fold(0.0, f64::max)
+/// The size of the robot's skeleton: the diagonal of the box holding every link frame at the zero pose,
+/// metres. 0 for a single link (or links all at one point): then there is nothing to compare a mesh with.
+fn joint_extent(model: &Model) -> f64 {
+    let q = vec![0.0; model.joint_data.len()];
+    let mut data = Data::new(model);
+    forward_kinematics(model, &q, &mut data);
+    let mut low = [f64::INFINITY; 3];
+    let mut high = [f64::NEG_INFINITY; 3];
+    for &link in &model.topological_order {
+        let p = data.link_placement[link.0].translation.vector;
+        for i in 0..3 {
+            if p[i].is_finite() {
+                low[i] = low[i].min(p[i]);
+                high[i] = high[i].max(p[i]);
+            }
+        }
+    }
+    let diagonal = (0..3)
+        .map(|i| (high[i] - low[i]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if diagonal.is_finite() {
+        diagonal
+    } else {
+        0.0
+    }
 }
 
 /// A resolved mesh that cannot be loaded, or whose size says it is in millimetres.
@@ -129,7 +147,7 @@ fn check_mesh(
     owner: &str,
     filename: &Spanned<String>,
     scale: [f64; 3],
-    spacing: f64,
+    robot_size: f64,
 ) -> Option<Finding> {
     let loaded = assets.mesh(&filename.value)?;
     let mesh = match loaded.as_ref() {
@@ -149,13 +167,13 @@ fn check_mesh(
     let extent = (0..3)
         .map(|i| (max[i] - min[i]) * scale[i].abs())
         .fold(0.0, f64::max);
-    let reference = spacing.max(0.01);
-    (extent > 1.0 && extent > MILLIMETRE_RATIO * reference).then(|| {
+    let reference = robot_size;
+    (reference > 0.0 && extent > 1.0 && extent > MILLIMETRE_RATIO * reference).then(|| {
         Finding::new(
             &rules::MESH_IN_MILLIMETRES,
             filename.span,
             format!(
-                "{owner}: mesh '{}' is {extent:.1} m across, {:.0}× the {reference:.3} m spacing of the link's joints: it is probably in millimetres",
+                "{owner}: mesh '{}' is {extent:.1} m across, {:.0}× the {reference:.3} m span of the whole robot's joints: it is probably in millimetres",
                 filename.value,
                 extent / reference
             ),

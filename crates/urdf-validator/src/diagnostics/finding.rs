@@ -3,7 +3,8 @@
 use crate::diagnostics::rules::Rule;
 use crate::input::source::Span;
 
-/// How serious a finding is. Ordered: `Info < Warn < Critical`.
+/// How serious a finding is. Ordered: `Info < Warn < Fail < Critical`; the exit code follows the worst
+/// (see [`crate::diagnostics::exit_code`]).
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, schemars::JsonSchema,
 )]
@@ -13,6 +14,9 @@ pub enum Severity {
     Info,
     /// Loads, but simulators or users will be surprised.
     Warn,
+    /// A physics verdict failed: a joint too weak to hold its pose, a robot that tips over, a task out of
+    /// reach, or a check the user asked for that could not run.
+    Fail,
     /// Tools refuse the file or the model is meaningless.
     Critical,
 }
@@ -23,7 +27,48 @@ impl Severity {
         match self {
             Severity::Info => "INFO",
             Severity::Warn => "WARN",
+            Severity::Fail => "FAIL",
             Severity::Critical => "CRITICAL",
+        }
+    }
+}
+
+/// The part of the report a finding belongs to (the report section whose verdict it explains).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Section {
+    /// Structure, syntax, inertial data, meshes: `[SCHEMA]`.
+    Schema,
+    /// Mass, centre of mass and gravity torques: `[STATICS]`.
+    Statics,
+    /// Support polygon and tipping: `[STABILITY]`.
+    Stability,
+    /// Reach of the arms: `[WORKSPACE]`.
+    Workspace,
+    /// Self-collision of the arms.
+    Collision,
+    /// The `--task` height, orientation and the COM during the reach.
+    Task,
+    /// The `--payload-mass` carried by the arm.
+    Payload,
+    /// The simulator cross-check (`--deep`).
+    Deep,
+}
+
+impl Section {
+    /// The JSON value (`statics`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Section::Schema => "schema",
+            Section::Statics => "statics",
+            Section::Stability => "stability",
+            Section::Workspace => "workspace",
+            Section::Collision => "collision",
+            Section::Task => "task",
+            Section::Payload => "payload",
+            Section::Deep => "deep",
         }
     }
 }
@@ -33,6 +78,8 @@ impl Severity {
 pub struct Finding {
     /// The rule that fired.
     pub rule: &'static Rule,
+    /// The report section it belongs to (the rule's, unless the finding says otherwise).
+    pub section: Section,
     /// One sentence naming the element and the problem.
     pub message: String,
     /// Where in the source it is, when it has a place.
@@ -50,6 +97,7 @@ impl Finding {
     ) -> Self {
         Finding {
             rule,
+            section: rule.section,
             message: message.into(),
             span: span.into(),
             help: None,
@@ -59,6 +107,12 @@ impl Finding {
     /// Attach a specific hint.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
+        self
+    }
+
+    /// File the finding under another section than its rule's (a requested check that could not run).
+    pub fn in_section(mut self, section: Section) -> Self {
+        self.section = section;
         self
     }
 

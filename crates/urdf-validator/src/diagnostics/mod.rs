@@ -6,5 +6,5 @@ pub mod rules;
 pub mod suggest;
 mod verdict;
 
-pub use finding::{Finding, Severity};
-pub use verdict::{Confidence, ConfidenceLevel, Status};
+pub use finding::{Finding, Section, Severity};
+pub use verdict::{overall_status, Confidence, ConfidenceLevel, Status};

@@ -2,7 +2,7 @@
 //!
 //! `urdf_validate --explain CODE` and `docs/rules.md` are both generated from [`ALL`].
 
-use crate::diagnostics::finding::Severity;
+use crate::diagnostics::finding::{Section, Severity};
 
 /// One rule: identity, default severity and documentation.
 #[derive(Debug, PartialEq, Eq)]
@@ -13,6 +13,8 @@ pub struct Rule {
     pub name: &'static str,
     /// Default severity.
     pub severity: Severity,
+    /// The report section its findings belong to.
+    pub section: Section,
     /// What the rule checks.
     pub what: &'static str,
     /// Why it matters (which tool refuses or misbehaves).
@@ -22,16 +24,22 @@ pub struct Rule {
 }
 
 macro_rules! rules {
-    ($($ident:ident = $code:literal $name:literal $sev:ident { what: $what:literal, why: $why:literal, fix: $fix:literal $(,)? })*) => {
+    ($($ident:ident = $code:literal $name:literal $sev:ident {
+        $(section: $section:ident,)? what: $what:literal, why: $why:literal, fix: $fix:literal $(,)?
+    })*) => {
         $(
             #[doc = concat!("`", $code, "` ", $name, ": ", $what)]
             pub static $ident: Rule = Rule {
-                code: $code, name: $name, severity: Severity::$sev, what: $what, why: $why, fix: $fix,
+                code: $code, name: $name, severity: Severity::$sev,
+                section: rules!(@section $($section)?),
+                what: $what, why: $why, fix: $fix,
             };
         )*
         /// Every rule, in code order.
         pub static ALL: &[&Rule] = &[$(&$ident),*];
     };
+    (@section) => { Section::Schema };
+    (@section $section:ident) => { Section::$section };
 }
 
 rules! {
@@ -171,12 +179,12 @@ rules! {
         fix: "Declare the real range, or make the joint `fixed`.",
     }
     NON_POSITIVE_EFFORT = "U306" "non-positive-effort" Warn {
-        what: "An actuated joint declares effort ≤ 0.",
-        why: "The motor cannot hold any load; controllers saturate at zero torque and every gravity-torque check fails.",
+        what: "An actuated joint declares effort ≤ 0. Many files write `effort=\"0\"` to mean \"not specified\": that joint's statics is UNKNOWN, not FAIL.",
+        why: "Taken literally the motor cannot hold any load: controllers saturate at zero torque. Taken as a placeholder, nothing says whether the real motor is strong enough.",
         fix: "Declare the actuator's peak or continuous torque (force for prismatic joints).",
     }
     NON_POSITIVE_VELOCITY = "U307" "non-positive-velocity" Warn {
-        what: "An actuated joint declares velocity ≤ 0.",
+        what: "An actuated joint declares velocity ≤ 0 (`velocity=\"0\"` often means \"not specified\").",
         why: "Planners and velocity-limited controllers will not move the joint.",
         fix: "Declare the actuator's maximum speed.",
     }
@@ -246,7 +254,7 @@ rules! {
         fix: "Use positive dimensions in metres.",
     }
     MESH_IN_MILLIMETRES = "U504" "mesh-in-millimetres" Warn {
-        what: "A mesh is hundreds of times larger than the spacing of its link's joints.",
+        what: "A mesh is over 1 m across and a hundred times larger than the whole robot's skeleton (the box holding every link frame at the zero pose). Never on a single link: there is nothing to compare with.",
         why: "The classic CAD-export bug: the mesh is in millimetres, so collisions, contacts and inertia estimates are 1000× too large.",
         fix: "Add `scale=\"0.001 0.001 0.001\"` to the `<mesh>`, or re-export the mesh in metres.",
     }
@@ -256,14 +264,88 @@ rules! {
         fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
     }
     SRDF_PROBLEM = "U602" "srdf-problem" Warn {
+        section: Collision,
         what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` / `<robot name>.srdf` beside the URDF or in `../srdf/`) cannot be read, or one of its `<disable_collisions>`, `<enable_collisions>` or `<disable_default_collisions>` names a link the robot does not have.",
         why: "Its allowed collisions (or that entry) are not applied, so self-collision may report contacts MoveIt would ignore; a stale SRDF also misleads MoveIt itself.",
         fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
     }
     CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
+        section: Collision,
         what: "Two links that are not joined to each other have collision geometry in contact at the zero pose (joints clamped into their limits).",
         why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",
         fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
+    }
+
+    JOINT_UNDERSIZED = "U701" "joint-undersized" Fail {
+        section: Statics,
+        what: "An actuated joint's declared effort is below the gravity torque it must supply to hold the evaluated pose (margin < 1).",
+        why: "The motor cannot hold the robot up: in simulation the joint sags or the controller saturates; on hardware the arm drops.",
+        fix: "Raise `<limit effort>` to at least the torque needed (the finding says how much; 1.5× gives the PASS margin), lighten the links below, or evaluate a pose the robot really holds (`--pose`). A passive spring or counterbalance the URDF does not model is a reason to ignore this joint.",
+    }
+    JOINT_MARGINAL = "U702" "joint-marginal" Warn {
+        section: Statics,
+        what: "An actuated joint's declared effort covers the gravity torque at the evaluated pose, but with less than 1.5× margin.",
+        why: "Nothing is left for acceleration, a payload or friction: the joint will be at its limit in normal use.",
+        fix: "Check the motor data; declare the real peak effort, or reduce the load below the joint.",
+    }
+    JOINT_NOT_ASSESSED = "U703" "joint-not-assessed" Warn {
+        section: Statics,
+        what: "An actuated joint's gravity torque cannot be judged: no link below it declares a mass, no effort is declared (or it is the `effort=\"0\"` placeholder), or the torque is not finite.",
+        why: "The statics verdict for that joint is UNKNOWN: the motor may or may not hold the robot.",
+        fix: "Declare `<inertial>` on the links below the joint and the actuator's `<limit effort>`.",
+    }
+    ROBOT_TIPS_OVER = "U710" "robot-tips-over" Fail {
+        section: Stability,
+        what: "The centre of mass projects outside the support polygon at the evaluated pose: the robot falls over.",
+        why: "In simulation the robot topples as soon as it is spawned; a real one needs a support it does not have.",
+        fix: "Check the masses and origins of the heaviest links (a mis-placed COM is the usual cause), the contact links (`--contact-links`), or the pose (`--pose`).",
+    }
+    STABILITY_NOT_ASSESSED = "U711" "stability-not-assessed" Warn {
+        section: Stability,
+        what: "Stability applies to this robot type but could not be computed: no centre of mass (no declared mass), or no support polygon (fewer than three contact points, or contacts on one line).",
+        why: "Nothing says whether the robot stands: the stability verdict is UNKNOWN.",
+        fix: "Declare masses; name the ground-contact links with `--contact-links`, or declare the robot type (`--robot-type`) when the contacts were guessed wrong.",
+    }
+    TASK_UNREACHABLE = "U720" "task-unreachable" Fail {
+        section: Task,
+        what: "No arm reaches the `--task` height (no sampled tip pose free of self-collision and above the ground is at that height).",
+        why: "The robot cannot do the task it is checked for.",
+        fix: "Check the joint limits of the arm and of the body joints held at `--pose` (a torso lift), or the task height (`--height`).",
+    }
+    TASK_TIPS_OVER = "U721" "task-tips-over" Fail {
+        section: Task,
+        what: "Reaching furthest at the `--task` height (with `--payload-mass` in the hand) moves the centre of mass outside the support polygon.",
+        why: "The robot falls over while doing the task.",
+        fix: "Reduce the reach or payload, widen the base, or add a counterweight low on the base.",
+    }
+    TASK_TIPS_SOMETIMES = "U722" "task-tips-at-some-poses" Warn {
+        section: Task,
+        what: "Some sampled arm poses at the `--task` height put the centre of mass outside the support polygon (the furthest one does not).",
+        why: "The robot is stable reaching one way and falls reaching another (over a short edge of its base).",
+        fix: "Restrict the arm's headings at that height, or widen the base.",
+    }
+    ORIENTATION_RARELY_REACHED = "U723" "orientation-rarely-reached" Warn {
+        section: Task,
+        what: "Fewer than 5% of the sampled poses at the `--task` height meet the `--orientation` within its tolerance.",
+        why: "The hand can reach the height but hardly ever with the requested approach: grasps will be rare or impossible.",
+        fix: "Check the wrist's joint limits and the approach axis (`--approach-axis`), or loosen `--orientation-tolerance`.",
+    }
+    SELF_COLLISION_FREQUENT = "U724" "self-collision-frequent" Warn {
+        section: Collision,
+        what: "Fewer than 95% of the sampled arm poses are free of self-collision.",
+        why: "Planners will reject many poses; oversized collision geometry is a common cause (convex hulls fill concave parts).",
+        fix: "Check the collision geometry of the pair named, and add the pairs that can never collide on the real robot to the SRDF's `<disable_collisions>`.",
+    }
+    DECLARATION_DIFFERS = "U730" "declaration-differs" Info {
+        section: Stability,
+        what: "A declared `--robot-type` or `--arm-root`/`--arm-tip` arm differs from what the structure shows.",
+        why: "The declaration wins, as the spec says; the difference is shown so that a wrong declaration (or a misleading structure) is noticed.",
+        fix: "Nothing if the declaration is right; otherwise correct it.",
+    }
+    REQUESTED_CHECK_NOT_RUN = "U790" "requested-check-not-run" Fail {
+        what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`) could not run on this robot.",
+        why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",
+        fix: "Follow the message: it says what was missing (an arm, a declared mass, a support polygon, an SRDF group state).",
     }
 }
 

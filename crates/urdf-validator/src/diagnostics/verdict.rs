@@ -4,7 +4,27 @@
 use schemars::JsonSchema;
 use serde::Serialize;
 
-/// A check's verdict. Overall = worst of the applicable ones (N/A is excluded).
+use crate::diagnostics::finding::{Finding, Severity};
+use crate::diagnostics::rules;
+
+/// The overall verdict of a report, from its findings alone: FAIL with any CRITICAL or FAIL finding, except
+/// that when the only such findings say a requested check could not run (U790) it is UNKNOWN; WARN with
+/// any WARN finding; else PASS. The exit code is [`Status::exit_code`] of this.
+pub fn overall_status<'a>(findings: impl IntoIterator<Item = &'a Finding>) -> Status {
+    let mut status = Status::Pass;
+    for finding in findings {
+        let this = match finding.severity() {
+            Severity::Info => Status::Pass,
+            Severity::Warn => Status::Warn,
+            Severity::Fail if finding.rule == &rules::REQUESTED_CHECK_NOT_RUN => Status::Unknown,
+            Severity::Fail | Severity::Critical => Status::Fail,
+        };
+        status = status.worst(this);
+    }
+    status
+}
+
+/// A check's verdict. The overall one follows the findings ([`overall_status`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, JsonSchema)]
 pub enum Status {
     /// The check does not apply to this robot category.

@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use anstyle::{AnsiColor, Style};
 
-use crate::diagnostics::finding::Severity;
+use crate::diagnostics::finding::{Section, Severity};
 use crate::report::{
     ArmWorkspace, FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
     Timings, WorkspaceSection,
@@ -52,7 +52,7 @@ fn status_style(status: Status) -> Style {
 
 fn severity_style(severity: Severity) -> Style {
     match severity {
-        Severity::Critical => RED,
+        Severity::Critical | Severity::Fail => RED,
         Severity::Warn => YELLOW,
         Severity::Info => BLUE,
     }
@@ -68,17 +68,30 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     if let Some(statics) = &report.statics {
         statics_section(&mut out, statics, options.verbose);
     }
+    findings_block(
+        &mut out,
+        validation,
+        options,
+        &[Section::Statics, Section::Payload],
+    );
     if let Some(stability) = &report.stability {
         stability_section(&mut out, report, stability);
     }
+    findings_block(&mut out, validation, options, &[Section::Stability]);
     if let Some(workspace) = &report.workspace {
         workspace_section(&mut out, workspace, options.detailed);
     }
-    // Declarations that disagree with the heuristics (they do not change the status).
-    let schema_warnings = report.schema.warnings.len();
-    for warning in report.warnings.iter().skip(schema_warnings) {
-        let _ = writeln!(out, "{}  {warning}", paint(YELLOW, "[WARN]"));
-    }
+    findings_block(
+        &mut out,
+        validation,
+        options,
+        &[
+            Section::Workspace,
+            Section::Task,
+            Section::Collision,
+            Section::Deep,
+        ],
+    );
     let overall = report.overall_status;
     let _ = writeln!(
         out,
@@ -142,11 +155,31 @@ fn schema_section(out: &mut String, validation: &Validation, options: &TextOptio
         _ => format!("{} — {total} issues", paint(RED, "✗ FAIL")),
     };
     let _ = writeln!(out, "{}  {verdict}", paint(BOLD, "[SCHEMA]"));
+    findings_block(out, validation, options, &[Section::Schema]);
+}
 
-    for severity in [Severity::Critical, Severity::Warn, Severity::Info] {
+/// The findings of `sections`, worst first: each with a snippet (INFO only with --verbose), the many of
+/// one rule grouped into one line.
+fn findings_block(
+    out: &mut String,
+    validation: &Validation,
+    options: &TextOptions,
+    sections: &[Section],
+) {
+    let report = &validation.report;
+    for severity in [
+        Severity::Critical,
+        Severity::Fail,
+        Severity::Warn,
+        Severity::Info,
+    ] {
         let mut grouped: Vec<String> = Vec::new();
         let mut by_rule: BTreeMap<(&str, &str), Vec<&FindingReport>> = BTreeMap::new();
-        for finding in report.findings.iter().filter(|f| f.severity == severity) {
+        for finding in report
+            .findings
+            .iter()
+            .filter(|f| f.severity == severity && sections.contains(&f.section))
+        {
             by_rule
                 .entry((finding.rule.as_str(), finding.name.as_str()))
                 .or_default()
@@ -200,6 +233,8 @@ fn plural(severity: Severity, count: usize) -> &'static str {
         (Severity::Info, _) => "notices",
         (Severity::Warn, 1) => "warning",
         (Severity::Warn, _) => "warnings",
+        (Severity::Fail, 1) => "failure",
+        (Severity::Fail, _) => "failures",
         (Severity::Critical, 1) => "error",
         (Severity::Critical, _) => "errors",
     }

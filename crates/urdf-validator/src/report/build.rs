@@ -2,7 +2,7 @@
 //! the schema section and the overall verdict.
 
 use crate::analysis::{mass, Physics};
-use crate::diagnostics::{rules, Finding, Severity};
+use crate::diagnostics::{overall_status, rules, Finding, Section, Severity};
 use crate::input::Loaded;
 use crate::model::Model;
 use crate::report::{FindingReport, Report, SchemaSection, Status};
@@ -51,23 +51,21 @@ pub fn build(outcome: Outcome) -> Report {
         finding_reports.push(report);
         findings.push(finding);
     }
-    let critical_issues = messages(&findings, Severity::Critical);
-    let warnings = messages(&findings, Severity::Warn);
-    let schema_status = if !critical_issues.is_empty() {
+    let schema: Vec<&Finding> = findings
+        .iter()
+        .filter(|f| f.section == Section::Schema)
+        .collect();
+    let schema_critical = messages(schema.iter().copied(), &[Severity::Critical]);
+    let schema_warnings = messages(schema.iter().copied(), &[Severity::Warn]);
+    let schema_status = if !schema_critical.is_empty() {
         Status::Fail
-    } else if !warnings.is_empty() {
+    } else if !schema_warnings.is_empty() {
         Status::Warn
     } else {
         Status::Pass
     };
     let links = mass::link_reports(robot, model);
     let summary = mass::summarize(&links);
-    let overall_status = analyses.as_ref().map_or(schema_status, |a| {
-        schema_status
-            .worst(a.statics.status)
-            .worst(a.stability.status)
-            .worst(a.workspace.status)
-    });
     Report {
         urdf_path: loaded.path.display().to_string(),
         robot_name: robot
@@ -77,24 +75,20 @@ pub fn build(outcome: Outcome) -> Report {
             .unwrap_or_default(),
         timestamp: super::timestamp::now(),
         validator_version: crate::VERSION.to_string(),
-        overall_status,
+        overall_status: overall_status(&findings),
         robot_type: analyses.as_ref().map(|a| a.robot_type),
         robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
         robot_type_detected: analyses.as_ref().map(|a| a.detected),
         robot_type_evidence: analyses.as_ref().map(|a| a.evidence.clone()),
         confidence_level: mass::confidence_level(&summary),
-        critical_issues: critical_issues.clone(),
-        warnings: warnings
-            .iter()
-            .chain(analyses.iter().flat_map(|a| &a.warnings))
-            .cloned()
-            .collect(),
+        critical_issues: messages(&findings, &[Severity::Critical, Severity::Fail]),
+        warnings: messages(&findings, &[Severity::Warn]),
         unknowns: analyses.iter().flat_map(unknowns).collect(),
         schema: SchemaSection {
             status: schema_status,
-            critical_issues,
-            warnings,
-            infos: messages(&findings, Severity::Info),
+            critical_issues: schema_critical,
+            warnings: schema_warnings,
+            infos: messages(schema.iter().copied(), &[Severity::Info]),
         },
         physics: summary,
         links,
@@ -137,10 +131,13 @@ fn unknowns(analyses: &Physics) -> Vec<String> {
         .collect()
 }
 
-fn messages(findings: &[Finding], severity: Severity) -> Vec<String> {
+fn messages<'a>(
+    findings: impl IntoIterator<Item = &'a Finding>,
+    severities: &[Severity],
+) -> Vec<String> {
     findings
-        .iter()
-        .filter(|f| f.severity() == severity)
+        .into_iter()
+        .filter(|f| severities.contains(&f.severity()))
         .map(|f| f.message.clone())
         .collect()
 }
@@ -150,6 +147,7 @@ fn finding_report(finding: &Finding) -> FindingReport {
         rule: finding.rule.code.to_string(),
         name: finding.rule.name.to_string(),
         severity: finding.severity(),
+        section: finding.section,
         message: finding.message.clone(),
         file: None,
         line: None,

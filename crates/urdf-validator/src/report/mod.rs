@@ -19,7 +19,7 @@ pub use crate::diagnostics::{Confidence, ConfidenceLevel, Status};
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use crate::diagnostics::Severity;
+use crate::diagnostics::{Section, Severity};
 
 /// The validation report of one robot: `<stem>_validation.json`.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
@@ -32,7 +32,8 @@ pub struct Report {
     pub timestamp: String,
     /// Version of urdf_validate that wrote this report.
     pub validator_version: String,
-    /// Worst applicable section status.
+    /// The verdict of the findings: FAIL with any CRITICAL or FAIL finding (UNKNOWN when those only say
+    /// that a requested check could not run), WARN with any WARN finding, else PASS. The exit code follows it.
     pub overall_status: Status,
     /// The robot category used for the capability profile (declared with `--robot-type`, else detected).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -48,9 +49,9 @@ pub struct Report {
     pub robot_type_evidence: Option<String>,
     /// Quality of the physics data.
     pub confidence_level: ConfidenceLevel,
-    /// Messages of CRITICAL findings.
+    /// Messages of CRITICAL and FAIL findings, every section.
     pub critical_issues: Vec<String>,
-    /// Messages of WARN findings.
+    /// Messages of WARN findings, every section.
     pub warnings: Vec<String>,
     /// What could not be assessed.
     pub unknowns: Vec<String>,
@@ -79,13 +80,13 @@ pub struct Report {
 /// The `schema` section.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct SchemaSection {
-    /// FAIL with any CRITICAL finding, WARN with any WARN finding, else PASS.
+    /// FAIL with any CRITICAL schema finding, WARN with any WARN schema finding, else PASS.
     pub status: Status,
-    /// Messages of CRITICAL findings.
+    /// Messages of CRITICAL schema findings.
     pub critical_issues: Vec<String>,
-    /// Messages of WARN findings.
+    /// Messages of WARN schema findings.
     pub warnings: Vec<String>,
-    /// Messages of INFO findings.
+    /// Messages of INFO schema findings.
     pub infos: Vec<String>,
 }
 
@@ -96,8 +97,11 @@ pub struct FindingReport {
     pub rule: String,
     /// Rule name, e.g. `inertia-not-positive-definite`.
     pub name: String,
-    /// CRITICAL, WARN or INFO.
+    /// CRITICAL, FAIL, WARN or INFO.
     pub severity: Severity,
+    /// The report section whose verdict it explains: schema, statics, stability, workspace, collision,
+    /// task, payload or deep.
+    pub section: Section,
     /// What is wrong, naming the element.
     pub message: String,
     /// File holding the problem (null when it has no place).

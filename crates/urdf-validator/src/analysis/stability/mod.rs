@@ -14,7 +14,7 @@ use crate::analysis::stability::support_polygon::{
     convex_hull, direction_name, is_polygon, margin, min_width, tipping_angle, Point2,
 };
 use crate::assets::supports::{lowest_points, LinkSupports};
-use crate::diagnostics::{Confidence, Status};
+use crate::diagnostics::{rules, Confidence, Finding, Status};
 use crate::model::kinematics::Data;
 use crate::model::{LinkId, Model};
 use crate::urdf::robot::{Geometry, Robot};
@@ -220,6 +220,42 @@ pub fn analyse(
         section.com_height_ratio_class = Some(ratio_class(ratio).to_string());
     }
     section
+}
+
+/// The findings that explain a stability verdict: FAIL when the robot tips over, WARN when stability
+/// applies but could not be computed. They point at the root link (contacts are named in the message).
+pub fn findings(robot: &Robot, model: &Model, section: &StabilitySection) -> Vec<Finding> {
+    let span = model
+        .root
+        .map_or(robot.span, |root| robot.links[root.0].span);
+    let contacts = if section.contact_links.is_empty() {
+        String::new()
+    } else {
+        format!(" on {}", section.contact_links.join(", "))
+    };
+    match section.status {
+        Status::Fail => vec![Finding::new(
+            &rules::ROBOT_TIPS_OVER,
+            span,
+            format!(
+                "The robot tips over{}: its centre of mass projects {:.1} mm outside the support polygon{contacts}",
+                section
+                    .tip_direction
+                    .as_deref()
+                    .map_or(String::new(), |d| format!(" to the {d}")),
+                -section.margin_mm.unwrap_or(0.0)
+            ),
+        )],
+        Status::Unknown => vec![Finding::new(
+            &rules::STABILITY_NOT_ASSESSED,
+            span,
+            format!(
+                "Stability could not be computed: {}",
+                section.reason.as_deref().unwrap_or("no result")
+            ),
+        )],
+        _ => Vec::new(),
+    }
 }
 
 /// The spec's classes of COM height over support width.

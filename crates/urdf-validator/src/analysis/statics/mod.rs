@@ -10,7 +10,8 @@ use std::collections::BTreeMap;
 
 use crate::analysis::pose::{self, PoseKind, PoseOptions};
 use crate::diagnostics::suggest::did_you_mean;
-use crate::diagnostics::{Confidence, Status};
+use crate::diagnostics::{rules, Confidence, Finding, Section, Status};
+use crate::input::source::Span;
 use crate::input::srdf::Srdf;
 use crate::model::kinematics::{Configuration, LinkMass};
 use crate::model::{JointId, LinkId, Model};
@@ -28,14 +29,25 @@ pub struct StaticsOptions {
     pub payload_link: Option<String>,
 }
 
-/// The statics section and the configuration it was evaluated at (the reference pose for `worst`), or a
-/// usage error (unknown joint or link name, unreadable SRDF).
+/// What statics produced: the section, its findings, and the configuration it was evaluated at.
+pub struct StaticsOutcome {
+    /// The report section.
+    pub section: StaticsSection,
+    /// One finding per joint that fails, is marginal or cannot be judged, and for a requested pose or
+    /// payload that could not be used.
+    pub findings: Vec<Finding>,
+    /// The evaluated configuration (the reference pose for `worst`).
+    pub q: Configuration,
+}
+
+/// The statics section, its findings and the configuration it was evaluated at, or a usage error (unknown
+/// joint or link name, unreadable SRDF).
 pub fn analyse(
     robot: &Robot,
     model: &Model,
     srdf: Option<&Srdf>,
     options: &StaticsOptions,
-) -> Result<(StaticsSection, Configuration), String> {
+) -> Result<StaticsOutcome, String> {
     let resolved = pose::resolve(robot, model, srdf, &options.pose)?;
     let payload_link = match &options.payload_link {
         Some(name) => Some(model.link(name).ok_or_else(|| {
@@ -78,6 +90,7 @@ pub fn analyse(
     });
 
     let mut joints = Vec::new();
+    let mut findings = Vec::new();
     let mut constraints = Vec::new();
     for (j, joint) in robot.joints.iter().enumerate() {
         let info = &model.joint_data[j];
@@ -132,6 +145,17 @@ pub fn analyse(
         let mass_below = data.sums.mass[child.0];
         let unknown_below = data.sums.unknown[child.0];
         let graded = grade(torque, info.effort, mass_below, unknown_below);
+        let at = VerdictContext {
+            joint,
+            prismatic: info.kind == crate::urdf::robot::JointKind::Prismatic,
+            pose: if worst.is_some() {
+                "its worst sampled configuration".to_string()
+            } else {
+                format!("the {} pose", options.pose.kind.as_str())
+            },
+            payload: payload.map(|(link, mass)| (robot.links[link.0].name.value.as_str(), mass)),
+        };
+        findings.extend(joint_finding(&at, &graded, any_mass));
         if let (Some(effort), Status::Pass | Status::Warn | Status::Fail) =
             (info.effort, graded.status)
         {
@@ -171,6 +195,33 @@ pub fn analyse(
     } else {
         capacity_reason
     };
+    if !any_mass && status == Status::Unknown {
+        let assessable = joints.iter().filter(|j| j.mimics.is_none()).count();
+        findings.push(Finding::new(
+            &rules::JOINT_NOT_ASSESSED,
+            robot.span,
+            format!(
+                "No link declares a mass: the gravity torques of {assessable} actuated joint{} cannot be computed (statics UNKNOWN)",
+                if assessable == 1 { "" } else { "s" }
+            ),
+        ));
+    }
+    if let Some(why) = &resolved.unavailable {
+        findings.push(
+            Finding::new(&rules::REQUESTED_CHECK_NOT_RUN, robot.span, why.clone())
+                .in_section(Section::Statics),
+        );
+    }
+    if let (Some(mass), None) = (options.payload_mass, payload) {
+        findings.push(
+            Finding::new(
+                &rules::REQUESTED_CHECK_NOT_RUN,
+                robot.span,
+                format!("--payload-mass {mass}: no link to carry it (no actuated chain; name one with --payload-link)"),
+            )
+            .in_section(Section::Payload),
+        );
+    }
     let heaviest = model
         .topological_order
         .iter()
@@ -211,7 +262,92 @@ pub fn analyse(
         seed: worst.as_ref().map(|_| options.pose.seed),
         joints,
     };
-    Ok((section, resolved.q))
+    Ok(StaticsOutcome {
+        section,
+        findings,
+        q: resolved.q,
+    })
+}
+
+/// Where and how a joint's verdict is told.
+struct VerdictContext<'a> {
+    joint: &'a crate::urdf::robot::Joint,
+    prismatic: bool,
+    /// "the zero pose", "its worst sampled configuration".
+    pose: String,
+    /// Payload link and mass, when one is carried.
+    payload: Option<(&'a str, f64)>,
+}
+
+/// The finding for one graded joint: FAIL below margin 1, WARN below 1.5, WARN when it cannot be judged
+/// (unless no link declares a mass at all: one finding says so for the whole robot).
+fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<Finding> {
+    let joint = at.joint;
+    let name = &joint.name.value;
+    let unit = if at.prismatic { "N" } else { "N·m" };
+    let limit = joint.limit.as_ref();
+    let effort_span: Span = limit
+        .and_then(|l| l.effort.as_ref().map(|e| e.span))
+        .or(limit.map(|l| l.span))
+        .unwrap_or(joint.span);
+    let payload = at.payload.map_or(String::new(), |(link, mass)| {
+        format!(" with the {mass} kg payload at '{link}'")
+    });
+    let torque = graded.torque.map(f64::abs);
+    match (graded.status, torque) {
+        (Status::Fail, Some(torque)) => Some(
+            Finding::new(
+                &rules::JOINT_UNDERSIZED,
+                effort_span,
+                format!(
+                    "Joint '{name}' needs {torque:.2} {unit} to hold {}{payload} against gravity but declares effort {} (margin {:.2}×)",
+                    at.pose,
+                    declared(limit),
+                    graded.margin.unwrap_or(0.0)
+                ),
+            )
+            .with_help(format!(
+                "declare effort ≥ {:.2} {unit} (1.5 × the gravity torque), or lighten the links below '{name}'",
+                torque * PASS_MARGIN
+            )),
+        ),
+        (Status::Warn, Some(torque)) => Some(
+            Finding::new(
+                &rules::JOINT_MARGINAL,
+                effort_span,
+                format!(
+                    "Joint '{name}' needs {torque:.2} {unit} to hold {}{payload}; its effort {} leaves a margin of {:.2}× (< {PASS_MARGIN}×)",
+                    at.pose,
+                    declared(limit),
+                    graded.margin.unwrap_or(0.0)
+                ),
+            )
+            .with_help(format!(
+                "effort ≥ {:.2} {unit} gives the 1.5× margin",
+                torque * PASS_MARGIN
+            )),
+        ),
+        (Status::Unknown, _) if any_mass => {
+            let span = if torque.is_some() {
+                effort_span
+            } else {
+                joint.span
+            };
+            Some(Finding::new(
+                &rules::JOINT_NOT_ASSESSED,
+                span,
+                format!("Joint '{name}': {}", graded.summary),
+            ))
+        }
+        _ => None,
+    }
+}
+
+/// The declared effort as written, or "none".
+fn declared(limit: Option<&crate::urdf::robot::Limit>) -> String {
+    limit
+        .and_then(|l| l.effort.as_ref())
+        .map_or("none".to_string(), |e| e.value.to_string())
 }
 
 /// Independent actuated joints by name.
@@ -273,8 +409,17 @@ fn grade(torque: f64, effort: Option<f64>, mass_below: f64, unknown_below: usize
                     torque.abs()
                 ),
             ),
+            // `effort="0"` is how many files say "not specified".
+            Some(effort) if effort <= 0.0 => (
+                None,
+                Status::Unknown,
+                format!(
+                    "Cannot assess — effort not specified (effort=\"{effort}\"; needs {:.2})",
+                    torque.abs()
+                ),
+            ),
             Some(effort) => {
-                let margin = effort.max(0.0) / torque.abs();
+                let margin = effort / torque.abs();
                 let (status, verdict) = if margin >= PASS_MARGIN {
                     (Status::Pass, format!("OK — margin {margin:.2}×"))
                 } else if margin >= 1.0 {

@@ -12,6 +12,9 @@ pub use section::{body_joints_held, ArmWorkspace, WorkspaceSection};
 
 pub mod chain;
 pub mod target;
+mod verdict;
+
+pub use verdict::findings;
 
 use std::collections::HashMap;
 
