@@ -137,11 +137,11 @@ impl PackageResolver {
         let (package, file) = rest.split_once('/').unwrap_or((rest, ""));
         if package.is_empty() {
             // `package:///abs/path` (empty package name) is not a way to write an absolute path for ROS:
-            // resource_retriever's `Retriever::get` (ros/resource_retriever, ROS 2 branches,
+            // resource_retriever's `Retriever::get` (ros/resource_retriever, branch rolling at c87c432,
             // resource_retriever/src/retriever.cpp) takes the package name up to the first '/' and throws
-            // "Package name must not be empty" when it is empty; ROS 1 (kinetic-devel src/retriever.cpp) asks
-            // `ros::package::getPath("")` and throws "Package [] does not exist". RViz, robot_state_publisher
-            // and MoveIt load meshes through it, so the mesh is not found there: we do not resolve it either.
+            // "Package name must not be empty" when it is empty; ROS 1 (kinetic-devel at 8a83c6b,
+            // src/retriever.cpp) asks `ros::package::getPath("")` and throws "Package [] does not exist".
+            // RViz and MoveIt load meshes through it, so the mesh is not found there: we do not resolve it.
             return Resolution::Unsupported(format!(
                 "package:// URI has an empty package name; ROS's resource_retriever refuses it (\"Package name must not be empty\"): write file://{} for an absolute path",
                 file_part_for_hint(file)
