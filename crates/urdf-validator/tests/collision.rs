@@ -128,7 +128,10 @@ fn joint(name: &str, kind: &str, parent: &str, child: &str, extra: &str) -> Stri
 const LIMITS: &str = r#"<limit lower="-3.14159" upper="3.14159" effort="10" velocity="1"/>"#;
 
 fn robot(parts: &[String]) -> String {
-    format!("<robot name=\"r\">{}</robot>", parts.concat())
+    format!(
+        "<robot name=\"r\" version=\"1.1\">{}</robot>",
+        parts.concat()
+    )
 }
 
 /// base (box 0.2) —j1 (revolute about z)→ hub (sphere 0.01) —fixed, 1 m along x→ far (box 0.2).

@@ -275,6 +275,8 @@ const COVERED: &[&str] = &[
     u504_mesh_in_millimetres::CODE,
     u505_mesh_unreadable::CODE,
     u601_links_in_contact_at_reference::CODE,
+    u011_unsupported_urdf_version::CODE,
+    u012_late_xml_declaration::CODE,
     "U010", // needs a xacro file: xacro_warnings_are_u010_at_the_xacro_tag below
     "U602", // needs an SRDF file: a_broken_or_stale_srdf_is_u602_and_the_rest_runs below
     // Verdict rules: tests/verdicts.rs (statics, stability, requested checks) and tests/workspace.rs
@@ -2940,7 +2942,10 @@ fn unresolvable_uris_are_u501_saying_why() {
     for (uri, why) in [
         ("model://robot/m.stl", "'model'"),
         ("package://pkg", "names no file"),
-        ("package:///m.stl", "no package name"),
+        (
+            "package:///m.stl",
+            "empty package name; ROS's resource_retriever refuses it",
+        ),
         ("", "empty"),
     ] {
         let f = findings(&mesh_robot(uri));
@@ -3144,4 +3149,169 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
     };
     let error = validate(&urdf, &options).expect_err("missing --srdf");
     assert!(error.to_string().contains("missing.srdf"), "{error}");
+}
+
+// -------------------------------------------------------------------------------------------------
+// URDF versions (urdfdom's URDFVersion) and the XML declaration
+// -------------------------------------------------------------------------------------------------
+
+rule_case! {
+    u011_unsupported_urdf_version, "U011",
+    fires: r#"<robot name="r" version="2.0">
+  <link name="base"/>
+</robot>
+"#,
+    at: (1, 26, "2.0"),
+    clean: r#"<robot name="r" version="1.1">
+  <link name="base"/>
+</robot>
+"#,
+}
+
+rule_case! {
+    u012_late_xml_declaration, "U012",
+    fires: "\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    at: (3, 1, "<?xml"),
+    clean: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+}
+
+#[test]
+fn blank_lines_before_the_xml_declaration_keep_every_position() {
+    // Blank lines, spaces and a tab before the declaration, which itself spans two lines and holds a
+    // non-ASCII character: every later finding must still point at its own line and column.
+    let urdf = "\n \t\n<?xml version=\"1.0\"\n   encoding=\"UTF-8\" standalone=\"yes\"?>\n<!-- Ünïcode -->\n<robot name=\"r\">\n  <link name=\"base\">\n    <bogus/>\n  </link>\n  <joint name=\"j\" type=\"hinge\"/>\n</robot>\n";
+    let all = findings(urdf);
+    assert_eq!(
+        positions_of(&all, "U012"),
+        vec![(3, 1)],
+        "{}",
+        describe(&all)
+    );
+    assert_eq!(the_one(&all, "U012").severity, Severity::Warn);
+    assert_eq!(
+        positions_of(&all, "U005"),
+        vec![(8, 5)],
+        "{}",
+        describe(&all)
+    );
+    assert_eq!(text_at(urdf, 8, 5), "<bogus/>");
+    assert_eq!(
+        positions_of(&all, "U007"),
+        vec![(10, 25)],
+        "{}",
+        describe(&all)
+    );
+    assert!(text_at(urdf, 10, 25).starts_with("hinge"));
+    // Without a declaration, leading whitespace was always fine and is not U012.
+    assert_absent(
+        "U012",
+        "\n\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    );
+    // `<?xml-stylesheet ...?>` is a processing instruction, legal after whitespace: no U012.
+    assert_absent(
+        "U012",
+        "\n<?xml-stylesheet href=\"a.css\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    );
+    // Something other than whitespace before the declaration stays an XML error, as in TinyXML2.
+    assert_xml_load_error("<!-- c -->\n<?xml version=\"1.0\"?>\n<robot name=\"r\"/>\n");
+}
+
+#[test]
+fn urdf_version_is_read_as_urdfdom_reads_it() {
+    let doc = |version: &str| {
+        format!("<robot name=\"r\" version=\"{version}\">\n  <link name=\"base\"/>\n</robot>\n")
+    };
+    for (version, why) in [
+        ("foo", "The version attribute should be in the form 'x.y'"),
+        ("1", "The version attribute should be in the form 'x.y'"),
+        ("1.0.0", "The version attribute should be in the form 'x.y'"),
+        (".1", "One of the fields of the version attribute is blank"),
+        ("-1.0", "Version number must be positive"),
+        ("a.c", "Version attribute is not an integer"),
+        ("1.0~pre6", "Extra characters after the version number"),
+        ("2.0", "URDF version 2.0 is not one urdfdom reads"),
+    ] {
+        let all = findings(&doc(version));
+        let hit = the_one(&all, "U011");
+        assert!(hit.message.contains(why), "{version}: {}", hit.message);
+        assert_eq!(hit.severity, Severity::Critical);
+    }
+    for version in ["1.0", "1.1", "1.2", "01.00", " 1.1"] {
+        assert_absent("U011", &doc(version));
+    }
+    // No attribute: 1.0.
+    assert_absent(
+        "U011",
+        "<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    );
+}
+
+/// A link with one visual whose `<origin>` carries `origin` and whose geometry is `shape`.
+fn versioned(version: &str, origin: &str, shape: &str) -> String {
+    format!(
+        "<robot name=\"r\"{version}>\n  <link name=\"base\">\n    <visual>\n      <origin {origin}/>\n      <geometry>{shape}</geometry>\n    </visual>\n  </link>\n</robot>\n"
+    )
+}
+
+#[test]
+fn quat_xyzw_follows_the_declared_version() {
+    let quat = r#"quat_xyzw="0 0 0.7071 0.7071""#;
+    let sphere = r#"<sphere radius="0.1"/>"#;
+    // 1.0 (declared or by default): urdfdom ignores quat_xyzw with a warning; we say so (U006), not U011.
+    for version in ["", r#" version="1.0""#] {
+        let all = findings(&versioned(version, quat, sphere));
+        assert_eq!(
+            positions_of(&all, "U006"),
+            vec![(4, 15)],
+            "{}",
+            describe(&all)
+        );
+        assert!(the_one(&all, "U006").message.contains("ignores"));
+        assert!(with_code(&all, "U011").is_empty(), "{}", describe(&all));
+    }
+    // 1.1: read, no finding.
+    let all = findings(&versioned(r#" version="1.1""#, quat, sphere));
+    assert!(with_code(&all, "U006").is_empty(), "{}", describe(&all));
+    assert!(with_code(&all, "U011").is_empty(), "{}", describe(&all));
+    // 1.1 with rpy too: urdfdom refuses the file.
+    let urdf = versioned(
+        r#" version="1.1""#,
+        &format!(r#"rpy="0 0 0" {quat}"#),
+        sphere,
+    );
+    let all = findings(&urdf);
+    assert_eq!(
+        positions_of(&all, "U011"),
+        vec![(4, 27)],
+        "{}",
+        describe(&all)
+    );
+    assert!(text_at(&urdf, 4, 27).starts_with("quat_xyzw"));
+    // Not four numbers: urdfdom's Vector4 refuses it.
+    let all = findings(&versioned(
+        r#" version="1.1""#,
+        r#"quat_xyzw="0 0 1""#,
+        sphere,
+    ));
+    assert_eq!(with_code(&all, "U003").len(), 1, "{}", describe(&all));
+}
+
+#[test]
+fn a_capsule_needs_version_1_1() {
+    let capsule = r#"<capsule radius="0.1" length="0.5"/>"#;
+    for version in ["", r#" version="1.0""#] {
+        let urdf = versioned(version, r#"xyz="0 0 0""#, capsule);
+        let all = findings(&urdf);
+        let at = positions_of(&all, "U011");
+        assert_eq!(at.len(), 1, "{}", describe(&all));
+        assert!(text_at(&urdf, at[0].0, at[0].1).starts_with("<capsule"));
+    }
+    assert_absent(
+        "U011",
+        &versioned(r#" version="1.1""#, r#"xyz="0 0 0""#, capsule),
+    );
+    assert_absent(
+        "U011",
+        &versioned(r#" version="1.2""#, r#"xyz="0 0 0""#, capsule),
+    );
 }

@@ -296,3 +296,60 @@ fn arm_declarations_are_validated() {
     let error = check("chasis", "wheel_0").unwrap_err().to_string();
     assert!(error.contains("did you mean 'chassis'"), "{error}");
 }
+
+/// Three capsule feet (radius 0.05, length 0.2) at the corners of an equilateral triangle of circumradius
+/// 0.3, each hanging 0.05 m below the body origin; `rpy` orients them (upright along z, or lying).
+fn tripod_on_capsules(rpy: &str) -> String {
+    let radius = 0.3;
+    let mut urdf = format!(
+        r#"<robot name="tripod" version="1.1"><link name="body">{}</link>"#,
+        inertial(10.0, [0.0, 0.0, 0.5])
+    );
+    for i in 0..3 {
+        let angle = std::f64::consts::TAU * i as f64 / 3.0;
+        urdf.push_str(&format!(
+            r#"<joint name="leg_{i}" type="fixed"><parent link="body"/><child link="foot_{i}"/><origin xyz="{} {} 0.05"/></joint>
+<link name="foot_{i}">{}<collision><origin rpy="{rpy}"/><geometry><capsule radius="0.05" length="0.2"/></geometry></collision></link>"#,
+            radius * angle.cos(),
+            radius * angle.sin(),
+            inertial(0.1, [0.0; 3])
+        ));
+    }
+    urdf + "</robot>"
+}
+
+#[test]
+fn capsule_feet_touch_at_their_rounded_ends() {
+    // Upright: the lowest point is the bottom of the lower cap, 0.05 − 0.1 − 0.05 = −0.1.
+    let report = report(&tripod_on_capsules("0 0 0"));
+    assert!(
+        report.findings.iter().all(|f| f.rule != "U011"),
+        "capsules in a 1.1 file are fine"
+    );
+    let s = report.stability.unwrap();
+    assert_eq!(s.contact_links.len(), 3, "{:?}", s.contact_links);
+    assert!(
+        (s.ground_height.unwrap() + 0.1).abs() < 1e-9,
+        "{:?}",
+        s.ground_height
+    );
+    assert!(
+        (s.margin_mm.unwrap() - 150.0).abs() < 1e-6,
+        "{:?}",
+        s.margin_mm
+    );
+    // Lying along x: the lowest points are the whole bottom line of the cylinder part, at 0.05 − 0.05 = 0;
+    // the support hull grows by the half-length on each foot, so the margin is at least the point-foot one.
+    let s = report_with(
+        &tripod_on_capsules("0 1.5707963267948966 0"),
+        Overrides::default(),
+    )
+    .stability
+    .unwrap();
+    assert!(
+        s.ground_height.unwrap().abs() < 1e-9,
+        "{:?}",
+        s.ground_height
+    );
+    assert!(s.margin_mm.unwrap() >= 150.0 - 1e-6, "{:?}", s.margin_mm);
+}

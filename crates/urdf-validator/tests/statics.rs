@@ -390,3 +390,58 @@ fn reference_robots_match_the_spec_where_the_physics_agrees() {
         (Status::Pass, Some("RF_HAA"))
     );
 }
+
+/// The pendulum of [`pendulum`] with `origin` on its joint, in a file declaring `version`.
+fn tilted_pendulum(version: &str, origin: &str) -> String {
+    pendulum(2.0, 0.5, 1.0, 30.0)
+        .replacen(
+            "<robot name=\"pendulum\">",
+            &format!("<robot name=\"pendulum\"{version}>"),
+            1,
+        )
+        .replacen(
+            "<axis xyz=\"0 1 0\"/>",
+            &format!("<axis xyz=\"0 1 0\"/>{origin}"),
+            1,
+        )
+}
+
+#[test]
+fn a_joint_quat_xyzw_turning_the_axis_vertical_leaves_no_gravity_torque() {
+    // Rx(+90°) maps the joint's y axis to the world's z axis: the arm swings in a horizontal plane and
+    // gravity no longer turns it. The mass stays at x = 0.5 (Rx keeps x).
+    let v11 = r#" version="1.1""#;
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    let vertical = statics(&tilted_pendulum(
+        v11,
+        &format!(r#"<origin quat_xyzw="{half} 0 0 {half}"/>"#),
+    ));
+    assert!(
+        torque(&vertical, "shoulder").abs() < 1e-12,
+        "{}",
+        torque(&vertical, "shoulder")
+    );
+    assert_eq!(
+        vertical.full_body_com.map(|c| (c[0] * 1e12).round() / 1e12),
+        Some(0.5)
+    );
+    // The same rotation as rpy agrees, and urdfdom normalises a quaternion that is not unit.
+    let rpy = statics(&tilted_pendulum(
+        v11,
+        r#"<origin rpy="1.5707963267948966 0 0"/>"#,
+    ));
+    assert!(torque(&rpy, "shoulder").abs() < 1e-12);
+    let unnormalised = statics(&tilted_pendulum(v11, r#"<origin quat_xyzw="3 0 0 3"/>"#));
+    assert!(torque(&unnormalised, "shoulder").abs() < 1e-12);
+    // A zero quaternion is the identity for urdfdom (Rotation::normalize): the horizontal axis again.
+    let zero = statics(&tilted_pendulum(v11, r#"<origin quat_xyzw="0 0 0 0"/>"#));
+    assert!((torque(&zero, "shoulder") + 2.0 * G * 0.5).abs() < 1e-12);
+    // In a 1.0 file urdfdom ignores quat_xyzw: the axis stays horizontal and the torque is m·g·x.
+    for version in ["", r#" version="1.0""#] {
+        let ignored = statics(&tilted_pendulum(
+            version,
+            &format!(r#"<origin quat_xyzw="{half} 0 0 {half}"/>"#),
+        ));
+        assert!((torque(&ignored, "shoulder") + 2.0 * G * 0.5).abs() < 1e-12);
+    }
+}

@@ -140,8 +140,12 @@ pub fn link_supports<'m>(
         let marker = match &geometry.value {
             Geometry::Box { size } => size.iter().all(|v| *v <= MARKER_SIZE),
             Geometry::Sphere { radius } => 2.0 * radius <= MARKER_SIZE,
-            Geometry::Cylinder { radius, length } | Geometry::Capsule { radius, length } => {
+            Geometry::Cylinder { radius, length } => {
                 2.0 * radius <= MARKER_SIZE && *length <= MARKER_SIZE
+            }
+            // A capsule's `length` is its cylindrical part: the caps add a radius at each end.
+            Geometry::Capsule { radius, length } => {
+                2.0 * radius <= MARKER_SIZE && length + 2.0 * radius <= MARKER_SIZE
             }
             Geometry::Mesh { .. } => false,
         };
@@ -256,6 +260,22 @@ mod tests {
         assert!(lowest.abs() < 1e-12);
         assert_eq!(points.len(), 2, "one point per rim edge");
         assert!(points.iter().all(|p| (p.x).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_capsule_is_a_marker_only_when_its_whole_length_is() {
+        let supports = |shape: &str| {
+            let urdf = format!(
+                "<robot name=\"r\" version=\"1.1\"><link name=\"l\"><collision><geometry>{shape}</geometry></collision></link></robot>"
+            );
+            let (robot, _) =
+                crate::urdf::parse_urdf(&urdf, std::path::Path::new("t.urdf")).unwrap();
+            link_supports(&robot.links[0], &|_| None).shapes.len()
+        };
+        // 1 mm of cylinder plus two 0.5 mm caps: 2 mm long, a body.
+        assert_eq!(supports(r#"<capsule radius="0.0005" length="0.001"/>"#), 1);
+        assert_eq!(supports(r#"<capsule radius="0.0002" length="0.0005"/>"#), 0);
+        assert_eq!(supports(r#"<cylinder radius="0.0005" length="0.001"/>"#), 0);
     }
 
     #[test]

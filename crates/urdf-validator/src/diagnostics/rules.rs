@@ -93,6 +93,16 @@ rules! {
         why: "Python xacro prints the same warning; the expanded URDF may not be what the author meant.",
         fix: "Follow the message; it names the xacro file, line and column.",
     }
+    UNSUPPORTED_URDF_VERSION = "U011" "unsupported-urdf-version" Critical {
+        what: "`<robot version>` is malformed or names a URDF version urdfdom does not read (it reads 1.0, the default, 1.1 and 1.2), or the file uses URDF 1.1 syntax in a way its version makes urdfdom refuse: a `<capsule>` in a version 1.0 file, an `<origin>` giving both `rpy` and `quat_xyzw`.",
+        why: "urdfdom, the parser behind robot_state_publisher, RViz and MoveIt, refuses the whole file (`Invalid 'version' specified`, `Could not parse visual element`, `Both rpy and quat_xyzw orientations are defined`). urdfdom before 5.1 (ROS 2 Jazzy and older) reads only version 1.0.",
+        fix: "Write `version=\"1.0\"` (or drop the attribute), `\"1.1\"` or `\"1.2\"` as `major.minor`; declare `version=\"1.1\"` to use capsules and `quat_xyzw`; give each `<origin>` either `rpy` or `quat_xyzw`, not both.",
+    }
+    LATE_XML_DECLARATION = "U012" "late-xml-declaration" Warn {
+        what: "Whitespace (often blank lines left by a generator or a template) comes before the `<?xml ...?>` declaration.",
+        why: "urdfdom (TinyXML2) skips it and loads the file, but XML requires the declaration to be the very first bytes: Python's xml and lxml (xacro, urdf_parser_py, yourdfpy), and most other XML tools refuse the file.",
+        fix: "Delete everything before `<?xml`, or drop the declaration.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

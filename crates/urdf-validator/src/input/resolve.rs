@@ -136,7 +136,16 @@ impl PackageResolver {
     fn resolve_package(&self, rest: &str, urdf_dir: &Path) -> Resolution {
         let (package, file) = rest.split_once('/').unwrap_or((rest, ""));
         if package.is_empty() {
-            return Resolution::Unsupported("package:// URI has no package name".to_string());
+            // `package:///abs/path` (empty package name) is not a way to write an absolute path for ROS:
+            // resource_retriever's `Retriever::get` (ros/resource_retriever, branch rolling at c87c432,
+            // resource_retriever/src/retriever.cpp) takes the package name up to the first '/' and throws
+            // "Package name must not be empty" when it is empty; ROS 1 (kinetic-devel at 8a83c6b,
+            // src/retriever.cpp) asks `ros::package::getPath("")` and throws "Package [] does not exist".
+            // RViz and MoveIt load meshes through it, so the mesh is not found there: we do not resolve it.
+            return Resolution::Unsupported(format!(
+                "package:// URI has an empty package name; ROS's resource_retriever refuses it (\"Package name must not be empty\"): write file://{} for an absolute path",
+                file_part_for_hint(file)
+            ));
         }
         if !valid_package_name(package) {
             return Resolution::Unsupported(format!("'{package}' is not a valid package name"));
@@ -229,6 +238,11 @@ fn split_scheme(uri: &str) -> Option<(&str, &str)> {
     let first_ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic());
     let rest_ok = chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
     (first_ok && rest_ok).then_some((scheme, rest))
+}
+
+/// The path of a `package:///path` URI as an absolute path, for the `file://` hint.
+fn file_part_for_hint(file: &str) -> String {
+    format!("/{}", file.trim_start_matches('/'))
 }
 
 /// Resolve the part of a `file://` URI after the scheme.
@@ -730,6 +744,27 @@ mod tests {
                 ))
             );
         }
+    }
+
+    #[test]
+    fn empty_package_name_is_refused_as_resource_retriever_does() {
+        // Even when the absolute path exists: resource_retriever throws "Package name must not be empty".
+        let t = TempTree::new();
+        let mesh = t.file("meshes/a.stl");
+        let uri = format!("package://{}", mesh.display());
+        assert!(uri.starts_with("package:///"), "{uri}");
+        let got = empty_resolver().resolve(&uri, &t.dir("x"));
+        let Resolution::Unsupported(why) = got else {
+            panic!("{uri}: expected Unsupported, got {got:?}");
+        };
+        assert!(why.contains("empty package name"), "{why}");
+        assert!(why.contains("resource_retriever"), "{why}");
+        assert!(why.contains(&format!("file://{}", mesh.display())), "{why}");
+        // The file:// spelling the message suggests resolves.
+        assert_eq!(
+            empty_resolver().resolve(&format!("file://{}", mesh.display()), &t.dir("x")),
+            Resolution::Found(mesh)
+        );
     }
 
     #[test]

@@ -33,14 +33,28 @@ fn finite(value: f64) -> f64 {
     }
 }
 
-/// The rigid transform of a URDF `<origin>`: rotation `Rz(yaw)·Ry(pitch)·Rx(roll)`, then translation.
+/// The rigid transform of a URDF `<origin>`: rotation `Rz(yaw)·Ry(pitch)·Rx(roll)` (or the `quat_xyzw`
+/// quaternion when given), then translation.
 pub fn pose_isometry(pose: &Pose) -> Isometry3<f64> {
     let [x, y, z] = pose.xyz.map(finite);
-    let [roll, pitch, yaw] = pose.rpy.map(finite);
-    Isometry3::from_parts(
-        Translation3::new(x, y, z),
-        UnitQuaternion::from_euler_angles(roll, pitch, yaw),
-    )
+    let rotation = match pose.quat_xyzw {
+        Some(q) => quaternion_xyzw(q),
+        None => {
+            let [roll, pitch, yaw] = pose.rpy.map(finite);
+            UnitQuaternion::from_euler_angles(roll, pitch, yaw)
+        }
+    };
+    Isometry3::from_parts(Translation3::new(x, y, z), rotation)
+}
+
+/// A `quat_xyzw` as urdfdom_headers' `Rotation::initQuaternion` reads it: normalised, and the identity when
+/// its norm is zero (`Rotation::normalize`); non-finite components (already reported) give the identity too.
+pub fn quaternion_xyzw([x, y, z, w]: [f64; 4]) -> UnitQuaternion<f64> {
+    let squared_norm = x * x + y * y + z * z + w * w;
+    if !(squared_norm.is_finite() && squared_norm > 0.0) {
+        return UnitQuaternion::identity();
+    }
+    UnitQuaternion::new_normalize(nalgebra::Quaternion::new(w, x, y, z))
 }
 
 impl JointData {

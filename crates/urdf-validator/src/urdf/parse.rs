@@ -21,6 +21,22 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<(Robot, Vec<Finding>), Load
         nodes_limit: MAX_NODES,
         ..Default::default()
     };
+    let mut early = Vec::new();
+    let late = late_declaration(text);
+    let text = match &late {
+        Some((blanked, declaration)) => {
+            early.push(
+                Finding::new(
+                    &rules::LATE_XML_DECLARATION,
+                    *declaration,
+                    "whitespace before the <?xml ...?> declaration: urdfdom accepts it, strict XML parsers (xacro, Python's xml, lxml) refuse the file",
+                )
+                .with_help("delete everything before `<?xml`"),
+            );
+            blanked.as_str()
+        }
+        None => text,
+    };
     let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
         let pos = e.pos();
         LoadError::Xml {
@@ -30,10 +46,94 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<(Robot, Vec<Finding>), Load
             message: e.to_string(),
         }
     })?;
-    let mut parser = Parser::default();
+    let mut parser = Parser {
+        findings: early,
+        ..Parser::default()
+    };
     let robot = parser.robot(doc.root_element());
     Ok((robot, parser.findings))
 }
+
+/// XML whitespace (the `S` production).
+fn is_xml_space(c: char) -> bool {
+    matches!(c, ' ' | '\t' | '\r' | '\n')
+}
+
+/// When whitespace comes before the `<?xml ...?>` declaration, which XML forbids but TinyXML2 (urdfdom)
+/// skips (`XMLDocument::Parse` calls `SkipWhiteSpace` before anything else): the text with the declaration
+/// overwritten by spaces — every other byte, and so every line and column, unchanged — and the
+/// declaration's span. roxmltree then reads the document as whitespace before the root element.
+fn late_declaration(text: &str) -> Option<(String, Span)> {
+    let body = text.trim_start_matches(is_xml_space);
+    let start = text.len() - body.len();
+    if start == 0 {
+        return None;
+    }
+    let after = body.strip_prefix("<?xml")?;
+    if !after.starts_with(|c: char| is_xml_space(c) || c == '?') {
+        return None; // `<?xml-stylesheet ...?>` and the like are processing instructions.
+    }
+    let end = start + "<?xml".len() + after.find("?>")? + "?>".len();
+    let mut blanked = String::with_capacity(text.len());
+    blanked.push_str(text.get(..start)?);
+    for c in text.get(start..end)?.chars() {
+        if c == '\n' || c == '\r' {
+            blanked.push(c);
+        } else {
+            // As many spaces as the character has bytes: byte offsets stay put.
+            blanked.extend(std::iter::repeat_n(' ', c.len_utf8()));
+        }
+    }
+    blanked.push_str(text.get(end..)?);
+    Some((blanked, Span::from_range(start..end)))
+}
+
+/// `<robot version>` as urdfdom's `urdf_export_helpers::URDFVersion` reads it: exactly two `.`-separated
+/// fields, each read by `strtol` (leading whitespace and a sign allowed, nothing after the digits, not
+/// negative) and truncated to 32 bits. The error is urdfdom's message.
+pub fn urdf_version(text: &str) -> Result<(u32, u32), &'static str> {
+    // urdf::split_string: no empty field after a trailing separator.
+    let mut fields: Vec<&str> = text.split('.').collect();
+    if fields.last() == Some(&"") {
+        fields.pop();
+    }
+    let [major, minor] = fields[..] else {
+        return Err("The version attribute should be in the form 'x.y'");
+    };
+    Ok((version_field(major)?, version_field(minor)?))
+}
+
+fn version_field(field: &str) -> Result<u32, &'static str> {
+    if field.is_empty() {
+        return Err("One of the fields of the version attribute is blank");
+    }
+    // strtol: C isspace, then an optional sign, then decimal digits (saturating at the 64-bit LONG range).
+    let body = field.trim_start_matches([' ', '\t', '\n', '\x0b', '\x0c', '\r']);
+    let (negative, digits) = match body.as_bytes().first() {
+        Some(b'-') => (true, &body[1..]),
+        Some(b'+') => (false, &body[1..]),
+        _ => (false, body),
+    };
+    let count = digits.bytes().take_while(u8::is_ascii_digit).count();
+    if count == 0 {
+        return Err("Version attribute is not an integer");
+    }
+    if count < digits.len() {
+        return Err("Extra characters after the version number");
+    }
+    let magnitude = digits.bytes().fold(0i64, |acc, d| {
+        acc.saturating_mul(10).saturating_add(i64::from(d - b'0'))
+    });
+    if negative && magnitude > 0 {
+        return Err("Version number must be positive");
+    }
+    // urdfdom returns the `long` as uint32_t: truncation, as C++ does.
+    Ok(magnitude as u32)
+}
+
+/// The URDF versions urdfdom reads: 1.0 (the default), 1.1 (urdfdom 5.1: `quat_xyzw`, capsules) and 1.2
+/// (urdfdom 6.0: acceleration, deceleration and jerk limits).
+const SUPPORTED_VERSIONS: [(u32, u32); 3] = [(1, 0), (1, 1), (1, 2)];
 
 fn span(node: Node) -> Span {
     Span::from_range(node.range())
@@ -56,6 +156,9 @@ fn is_xacro(node: Node) -> bool {
 #[derive(Default)]
 struct Parser {
     findings: Vec<Finding>,
+    /// The declared URDF version's minor number (major is 1), which decides what urdfdom reads:
+    /// `quat_xyzw` and `<capsule>` need 1.1.
+    minor: u32,
 }
 
 impl Parser {
@@ -220,6 +323,7 @@ impl Parser {
         }
         robot.name = self.required_string(root, "name", "robot");
         self.check_attributes(root, &["name", "version"], "robot");
+        self.version(root);
         for node in elements(root) {
             let tag = node.tag_name();
             if tag.namespace().is_some() {
@@ -244,18 +348,80 @@ impl Parser {
         robot
     }
 
+    /// Read `<robot version>` as urdfdom does; an unreadable or unsupported version is U011 and the rest of
+    /// the file is read with the newest syntax, so one wrong attribute does not cascade.
+    fn version(&mut self, root: Node) {
+        let Some(attr) = root.attribute_node("version") else {
+            return; // urdfdom: no attribute means 1.0.
+        };
+        let at = Span::from_range(attr.range_value());
+        let problem = match urdf_version(attr.value()) {
+            Ok((major, minor)) if SUPPORTED_VERSIONS.contains(&(major, minor)) => {
+                self.minor = minor;
+                return;
+            }
+            Ok((major, minor)) => format!(
+                "URDF version {major}.{minor} is not one urdfdom reads (1.0, 1.1, 1.2); it refuses the file"
+            ),
+            Err(why) => format!("urdfdom cannot read this version: {why}; it refuses the file"),
+        };
+        self.minor = SUPPORTED_VERSIONS.iter().map(|v| v.1).max().unwrap_or(0);
+        self.push(
+            Finding::new(
+                &rules::UNSUPPORTED_URDF_VERSION,
+                at,
+                format!("robot: version=\"{}\": {problem}", attr.value()),
+            )
+            .with_help("write version=\"1.0\" (or drop it), \"1.1\" or \"1.2\""),
+        );
+    }
+
+    /// An `<origin>` as urdfdom's `parsePoseInternal` reads it. From URDF 1.1 `quat_xyzw` gives the rotation
+    /// and may not be combined with `rpy`; in a 1.0 file urdfdom ignores it (with a warning).
     fn pose(&mut self, node: Option<Node>, owner: &str) -> Pose {
         let Some(node) = node else {
             return Pose::default();
         };
-        self.check_attributes(node, &["xyz", "rpy"], owner);
+        self.check_attributes(node, &["xyz", "rpy", "quat_xyzw"], owner);
+        let xyz = self
+            .numbers::<3>(node, "xyz", owner)
+            .map_or([0.0; 3], |s| s.value);
+        let rpy = self.numbers::<3>(node, "rpy", owner);
+        let quat_xyzw = match node.attribute_node("quat_xyzw") {
+            None => None,
+            Some(attr) if self.minor < 1 => {
+                self.push(
+                    Finding::new(
+                        &rules::UNKNOWN_ATTRIBUTE,
+                        Span::from_range(attr.range_qname()),
+                        format!(
+                            "{owner}: quat_xyzw is URDF 1.1 and this file is version 1.0: urdfdom ignores it, so the origin is not rotated by it"
+                        ),
+                    )
+                    .with_help("add version=\"1.1\" to <robot> (urdfdom 5.1 or later), or write the rotation as rpy"),
+                );
+                None
+            }
+            Some(attr) => {
+                if rpy.is_some() {
+                    self.push(
+                        Finding::new(
+                            &rules::UNSUPPORTED_URDF_VERSION,
+                            Span::from_range(attr.range_qname()),
+                            format!(
+                                "{owner}: <origin> gives both rpy and quat_xyzw; urdfdom refuses the file"
+                            ),
+                        )
+                        .with_help("keep one of the two (quat_xyzw is used here)"),
+                    );
+                }
+                self.numbers::<4>(node, "quat_xyzw", owner).map(|s| s.value)
+            }
+        };
         Pose {
-            xyz: self
-                .numbers::<3>(node, "xyz", owner)
-                .map_or([0.0; 3], |s| s.value),
-            rpy: self
-                .numbers::<3>(node, "rpy", owner)
-                .map_or([0.0; 3], |s| s.value),
+            xyz,
+            rpy: rpy.map_or([0.0; 3], |s| s.value),
+            quat_xyzw,
             span: Some(span(node)),
         }
     }
@@ -410,6 +576,18 @@ impl Parser {
                 if shape.has_tag_name("cylinder") {
                     Geometry::Cylinder { radius, length }
                 } else {
+                    if self.minor < 1 {
+                        self.push(
+                            Finding::new(
+                                &rules::UNSUPPORTED_URDF_VERSION,
+                                at,
+                                format!(
+                                    "{owner}: <capsule> is URDF 1.1 and this file is version 1.0: urdfdom refuses the file"
+                                ),
+                            )
+                            .with_help("add version=\"1.1\" to <robot> (urdfdom 5.1 or later)"),
+                        );
+                    }
                     Geometry::Capsule { radius, length }
                 }
             }
@@ -432,7 +610,7 @@ impl Parser {
                     &rules::MISSING_GEOMETRY,
                     at,
                     format!(
-                        "{owner}: <{}> is not a URDF shape (box, cylinder, sphere, mesh)",
+                        "{owner}: <{}> is not a URDF shape (box, cylinder, sphere, mesh, capsule)",
                         shape.tag_name().name()
                     ),
                 ));

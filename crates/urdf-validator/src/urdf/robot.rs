@@ -26,13 +26,16 @@ pub struct Robot {
     pub ros2_control: Vec<Ros2Control>,
 }
 
-/// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians).
+/// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians), or `xyz` + `quat_xyzw` (URDF 1.1).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Pose {
     /// Translation in metres.
     pub xyz: [f64; 3],
     /// Roll, pitch, yaw about fixed x, y, z.
     pub rpy: [f64; 3],
+    /// `quat_xyzw` as written (x, y, z, w; not normalised), when the file's URDF version lets urdfdom read
+    /// it (1.1 and later). When present it is the rotation and `rpy` is not used.
+    pub quat_xyzw: Option<[f64; 4]>,
     /// The `<origin>` element, when written.
     pub span: Option<Span>,
 }
