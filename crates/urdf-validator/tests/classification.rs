@@ -527,6 +527,14 @@ fn an_object_is_checked_as_an_object() {
         assert_eq!(workspace.status, Status::NotApplicable, "{name}");
         assert!(workspace.arms.is_empty(), "{name}");
         assert!(
+            workspace
+                .reason
+                .as_deref()
+                .is_some_and(|r| r.contains("'object' has no movable joint")),
+            "{name}: {:?}",
+            workspace.reason
+        );
+        assert!(
             report.warnings.is_empty() && report.critical_issues.is_empty(),
             "{name}: a sound object ends without WARN or FAIL: {:?}",
             report.warnings
