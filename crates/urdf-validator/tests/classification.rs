@@ -394,14 +394,15 @@ fn reference_robots_stand_as_the_spec_says() {
 }
 
 /// Real robots from public description repositories, outside the example-robot-data corpus
-/// (`tests/data/robots40`, sources and licenses in its `SOURCES.md`), with the type each one is. Meshes
-/// are left out: classification works from the URDF text alone. Less obvious ones: the Minitaur and the
-/// Vision 60 stand upside down at the zero pose and write each leg as two chains from two motors to one
-/// foot (a five-bar loop); the Spirit 40 lies flat on its stretched legs; the Mini Cheetah's joints are
-/// all continuous; the Go2-W has wheels for feet; Cassie walks on two legs without arms; the G1 dual-arm
-/// model is an upper body on a fixed pelvis and the Dex3 a hand (fixed-base mechanisms, as in the
-/// corpus table); the Crazyflie models (`gpd_*`) and the PyBullet quadrotor have no movable joint but
-/// rotors; the racecar steers its front wheels.
+/// (`tests/data/robots40`, sources and licenses in its `SOURCES.md`), with the type each one is.
+/// Meshes are left out: classification works from the URDF text alone. Less obvious ones: the
+/// Minitaur and the Vision 60 stand upside down at the zero pose and write each leg as two chains
+/// from two motors to one foot (a five-bar loop); the Spirit 40 lies flat on its stretched legs;
+/// the Mini Cheetah's joints are all continuous; the Go2-W has wheels for feet; Cassie walks on two
+/// legs without arms, Kraby on six; the G1 dual-arm model is an upper body on a fixed pelvis and
+/// the Dex3 a hand (fixed-base mechanisms, as in the corpus table); the Crazyflie models (`gpd_*`)
+/// and the PyBullet quadrotor have no movable joint but rotors; the racecar steers its front
+/// wheels.
 const ROBOTS40: &[(&str, RobotType)] = &[
     ("drake_cassie_v2", RobotType::Legged),
     ("drake_folding_table", RobotType::Object),
@@ -409,6 +410,7 @@ const ROBOTS40: &[(&str, RobotType)] = &[
     ("gpd_cf2x", RobotType::Aerial),
     ("gpd_racer", RobotType::Aerial),
     ("kinova_j2n6s300", RobotType::ArmOnly),
+    ("kraby_hexapod", RobotType::Legged),
     ("kinova_m1n4s200", RobotType::ArmOnly),
     ("omx_f", RobotType::ArmOnly),
     ("omy_f3m", RobotType::ArmOnly),
