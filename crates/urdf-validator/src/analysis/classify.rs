@@ -5,8 +5,9 @@
 //!   rotors (a drone modelled with fixed propellers).
 //! - **Legs**: chains of ≥ 2 limb joints from the body to a link on the ground that lift the body off it;
 //!   else four or more jointed chains from the main body all on the ground (a quadruped lying on its
-//!   legs); else leg names (a model not standing on z); else four similar chains at the four corners of
-//!   the body (legs stretched out flat). Two chains to one foot are one (five-bar) leg.
+//!   legs); else four or more similar chains at the four corners of the body, whatever the pose (legs
+//!   stretched out flat or pointing up); else leg names (a model lying on its side). Two chains to one
+//!   foot are one (five-bar) leg.
 //! - **Wheels**: round links (cylinder, sphere, capsule, a mesh round about its axle, or a wheel name) on
 //!   the ground, turned by a continuous joint, carrying nothing that moves. Steered by a limited
 //!   vertical joint and no arm: a `ground_vehicle` (a car).
@@ -530,26 +531,25 @@ fn limbs_at_corners(
     lowest: &[Option<f64>],
     welded: &[bool],
 ) -> Option<Vec<Leg>> {
-    let mut groups: Vec<(LinkId, usize, Vec<Leg>)> = Vec::new();
+    let mut groups: Vec<(usize, Vec<Leg>)> = Vec::new();
     for &l in in_tree {
         let chain = chains[l];
         let Some(top) = chain.top else { continue };
         if !model.child_joints[l].is_empty() || chain.limb_joints < 2 || !welded[chain.body.0] {
             continue;
         }
-        match groups
-            .iter_mut()
-            .find(|(body, n, _)| *body == chain.body && *n == chain.limb_joints)
-        {
-            Some((_, _, group)) => add_leg(group, lowest, top, LinkId(l)),
+        // The main body may branch in several links (the Minitaur's two side rails): one group per
+        // chain length.
+        match groups.iter_mut().find(|(n, _)| *n == chain.limb_joints) {
+            Some((_, group)) => add_leg(group, lowest, top, LinkId(l)),
             None => {
                 let mut group = Vec::new();
                 add_leg(&mut group, lowest, top, LinkId(l));
-                groups.push((chain.body, chain.limb_joints, group));
+                groups.push((chain.limb_joints, group));
             }
         }
     }
-    groups.into_iter().find_map(|(_, _, group)| {
+    groups.into_iter().find_map(|(_, group)| {
         if group.len() < 4 {
             return None;
         }
@@ -750,6 +750,16 @@ pub fn classify(
             legs = group;
         }
     }
+    // Legs stretched out flat or pointing up at the zero pose (the Spirit 40 lies on its legs, the
+    // Minitaur stands on its head): four or more similar jointed chains leaving the body at its four
+    // corners, in one horizontal plane.
+    let mut folded = false;
+    if legs.len() < 2 {
+        if let Some(corners) = limbs_at_corners(model, data, &chains, &in_tree, &lowest, &welded) {
+            legs = corners;
+            folded = true;
+        }
+    }
     // A model that is not z-up (lying on its side) shows no legs by height: fall back to leg names.
     let mut by_name = false;
     if legs.len() < 2 {
@@ -757,15 +767,6 @@ pub fn classify(
         if named.len() >= 2 {
             legs = named;
             by_name = true;
-        }
-    }
-    // Legs stretched out flat at the zero pose, the body on the ground (the Spirit 40): four or more
-    // similar jointed chains leaving the body at its four corners, in one horizontal plane.
-    let mut folded = false;
-    if legs.len() < 2 {
-        if let Some(corners) = limbs_at_corners(model, data, &chains, &in_tree, &lowest, &welded) {
-            legs = corners;
-            folded = true;
         }
     }
     let legs = merge_closed_loops(legs, data, supports);
@@ -823,7 +824,7 @@ pub fn classify(
     let named = if by_name {
         " (found by name: the model does not stand on z)"
     } else if folded {
-        " (at the corners of the body, stretched out flat at the zero pose)"
+        " (at the corners of the body; the zero pose does not stand on them)"
     } else {
         ""
     };
