@@ -217,6 +217,8 @@ pub enum RobotTypeArg {
     ArmOnly,
     /// Flies.
     Aerial,
+    /// Nothing moves (a table, a tray, a mug): no stability or workspace to check.
+    Object,
     /// Anything else.
     Unknown,
 }
@@ -232,6 +234,7 @@ impl From<RobotTypeArg> for urdf_validator::analysis::classify::RobotType {
             RobotTypeArg::Humanoid => RobotType::Humanoid,
             RobotTypeArg::ArmOnly => RobotType::ArmOnly,
             RobotTypeArg::Aerial => RobotType::Aerial,
+            RobotTypeArg::Object => RobotType::Object,
             RobotTypeArg::Unknown => RobotType::Unknown,
         }
     }

@@ -7,6 +7,7 @@ mod common;
 use urdf_validator::analysis::classify::RobotType;
 use urdf_validator::analysis::pose::{PoseKind, PoseOptions};
 use urdf_validator::analysis::statics::StaticsOptions;
+use urdf_validator::analysis::workspace::WorkspaceOptions;
 use urdf_validator::analysis::Overrides;
 use urdf_validator::report::{Report, Status};
 use urdf_validator::{validate, Options};
@@ -390,4 +391,274 @@ fn reference_robots_stand_as_the_spec_says() {
         drone.findings.iter().all(|f| f.rule != "U730"),
         "the structure agrees: rotors, nothing on the ground"
     );
+}
+
+/// Real robots from public description repositories, outside the example-robot-data corpus
+/// (`tests/data/robots40`, sources and licenses in its `SOURCES.md`), with the type each one is.
+/// Meshes are left out: classification works from the URDF text alone. Less obvious ones: the
+/// Minitaur and the Vision 60 stand upside down at the zero pose and write each leg as two chains
+/// from two motors to one foot (a five-bar loop); the Spirit 40 lies flat on its stretched legs;
+/// the Mini Cheetah's joints are all continuous; the Go2-W has wheels for feet; Cassie walks on two
+/// legs without arms, Kraby on six; the G1 dual-arm model is an upper body on a fixed pelvis and
+/// the Dex3 a hand (fixed-base mechanisms, as in the corpus table); the Crazyflie models (`gpd_*`)
+/// and the PyBullet quadrotor have no movable joint but rotors; the racecar steers its front
+/// wheels.
+const ROBOTS40: &[(&str, RobotType)] = &[
+    ("drake_cassie_v2", RobotType::Legged),
+    ("drake_folding_table", RobotType::Object),
+    ("drake_open_top_box", RobotType::Object),
+    ("gpd_cf2x", RobotType::Aerial),
+    ("gpd_racer", RobotType::Aerial),
+    ("kinova_j2n6s300", RobotType::ArmOnly),
+    ("kraby_hexapod", RobotType::Legged),
+    ("kinova_m1n4s200", RobotType::ArmOnly),
+    ("omx_f", RobotType::ArmOnly),
+    ("omy_f3m", RobotType::ArmOnly),
+    ("open_manipulator_x", RobotType::ArmOnly),
+    ("pb_duck", RobotType::Object),
+    ("pb_husky", RobotType::Wheeled),
+    ("pb_jenga", RobotType::Object),
+    ("pb_kuka_iiwa", RobotType::ArmOnly),
+    ("pb_kuka_lwr", RobotType::ArmOnly),
+    ("pb_mini_cheetah", RobotType::Quadruped),
+    ("pb_minitaur", RobotType::Quadruped),
+    ("pb_mug", RobotType::Object),
+    ("pb_nao", RobotType::Humanoid),
+    ("pb_plate", RobotType::Object),
+    ("pb_quadrotor", RobotType::Aerial),
+    ("pb_r2d2", RobotType::Wheeled),
+    ("pb_racecar", RobotType::GroundVehicle),
+    ("pb_spirit40", RobotType::Quadruped),
+    ("pb_table", RobotType::Object),
+    ("pb_table_square", RobotType::Object),
+    ("pb_traybox", RobotType::Object),
+    ("pb_vision60", RobotType::Quadruped),
+    ("pb_widowx", RobotType::ArmOnly),
+    ("pb_xarm6_gripper", RobotType::ArmOnly),
+    ("rotors_firefly", RobotType::Aerial),
+    ("rotors_hummingbird", RobotType::Aerial),
+    ("rotors_pelican", RobotType::Aerial),
+    ("turtlebot3_waffle_pi", RobotType::Wheeled),
+    ("unitree_a2", RobotType::Quadruped),
+    ("unitree_aliengo", RobotType::Quadruped),
+    ("unitree_b2", RobotType::Quadruped),
+    ("unitree_dex3_1_r", RobotType::ArmOnly),
+    ("unitree_g1_dual_arm", RobotType::ArmOnly),
+    ("unitree_go2w", RobotType::Quadruped),
+    ("unitree_h1", RobotType::Humanoid),
+    ("unitree_h1_2_handless", RobotType::Humanoid),
+    ("unitree_h2", RobotType::Humanoid),
+    ("unitree_r1", RobotType::Humanoid),
+    ("ur20", RobotType::ArmOnly),
+    ("ur5e", RobotType::ArmOnly),
+];
+
+fn robots40() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/robots40")
+}
+
+/// Few workspace samples: these tests are about the type, not the reach.
+fn quick() -> Options {
+    Options {
+        workspace: WorkspaceOptions {
+            samples: 16,
+            ..WorkspaceOptions::default()
+        },
+        ..Options::default()
+    }
+}
+
+#[test]
+fn robots40_get_their_types() {
+    let dir = robots40();
+    let files = common::urdfs_below(&dir);
+    let mut listed: Vec<String> = ROBOTS40.iter().map(|(n, _)| format!("{n}.urdf")).collect();
+    listed.sort();
+    let found: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(found, listed, "the table covers every file of robots40");
+    let kinds: std::collections::BTreeSet<&str> =
+        ROBOTS40.iter().map(|(_, kind)| kind.as_str()).collect();
+    assert_eq!(kinds.len(), 8, "every category but unknown: {kinds:?}");
+
+    let options = quick();
+    let mut table = vec![format!(
+        "{:24} {:15} {:15} evidence",
+        "robot", "expected", "detected"
+    )];
+    let mut wrong = 0;
+    for (name, expected) in ROBOTS40 {
+        let got = report(&dir.join(format!("{name}.urdf")), &options);
+        let detected = got.robot_type.map_or("none", |t| t.as_str());
+        let mark = if got.robot_type == Some(*expected) {
+            " "
+        } else {
+            wrong += 1;
+            "✗"
+        };
+        table.push(format!(
+            "{mark}{name:23} {:15} {detected:15} {}",
+            expected.as_str(),
+            got.robot_type_evidence.unwrap_or_default()
+        ));
+    }
+    assert!(wrong == 0, "{wrong} wrong:\n{}", table.join("\n"));
+}
+
+#[test]
+fn an_object_is_checked_as_an_object() {
+    let options = quick();
+    for name in ["pb_table", "pb_traybox", "pb_mug", "drake_folding_table"] {
+        let report = report(&robots40().join(format!("{name}.urdf")), &options);
+        assert_eq!(report.robot_type, Some(RobotType::Object), "{name}");
+        let stability = report.stability.unwrap();
+        assert_eq!(stability.status, Status::NotApplicable, "{name}");
+        assert!(
+            stability
+                .reason
+                .as_deref()
+                .is_some_and(|r| r.contains("no movable joint")),
+            "{name}: {:?}",
+            stability.reason
+        );
+        let statics = report.statics.unwrap();
+        assert!(statics.joints.is_empty(), "{name}");
+        let workspace = report.workspace.unwrap();
+        assert_eq!(workspace.status, Status::NotApplicable, "{name}");
+        assert!(workspace.arms.is_empty(), "{name}");
+        assert!(
+            workspace
+                .reason
+                .as_deref()
+                .is_some_and(|r| r.contains("'object' has no movable joint")),
+            "{name}: {:?}",
+            workspace.reason
+        );
+        assert!(
+            report.warnings.is_empty() && report.critical_issues.is_empty(),
+            "{name}: a sound object ends without WARN or FAIL: {:?}",
+            report.warnings
+        );
+        assert_eq!(report.overall_status, Status::Pass, "{name}");
+    }
+    // Declared, it is exact and agrees with the structure.
+    let declared = Options {
+        overrides: Overrides {
+            robot_type: Some(RobotType::Object),
+            ..Overrides::default()
+        },
+        ..quick()
+    };
+    let table = report(&robots40().join("pb_table.urdf"), &declared);
+    assert!(table.warnings.is_empty(), "{:?}", table.warnings);
+    assert_eq!(RobotType::parse("object"), Some(RobotType::Object));
+}
+
+fn detected(urdf: &str) -> (Option<RobotType>, Option<String>) {
+    let report =
+        urdf_validator::validate_text(urdf.to_string(), std::path::Path::new("t.urdf"), &quick())
+            .unwrap()
+            .report;
+    (report.robot_type, report.robot_type_evidence)
+}
+
+const INERTIAL: &str = r#"<inertial><mass value="0.2"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>"#;
+
+/// A small desk arm on a base plate: three revolute joints, a two-finger gripper, and each motor's rotor
+/// drawn as a link of its own (named `*_rotor`) inside the arm.
+fn small_arm_with_rotor_named_motors() -> String {
+    let link = |name: &str, geometry: &str| {
+        format!(
+            r#"<link name="{name}">{INERTIAL}<collision><geometry>{geometry}</geometry></collision></link>"#
+        )
+    };
+    let joint = |name: &str, kind: &str, parent: &str, child: &str, xyz: &str, axis: &str| {
+        format!(
+            r#"<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/><origin xyz="{xyz}"/><axis xyz="{axis}"/><limit lower="-1" upper="1" effort="5" velocity="1"/></joint>"#
+        )
+    };
+    let mut urdf = String::from(r#"<robot name="desk_arm">"#);
+    urdf += &link("base", r#"<box size="0.1 0.1 0.02"/>"#);
+    let mut parent = "base".to_string();
+    for i in 1..=3 {
+        let child = format!("link{i}");
+        urdf += &link(&child, r#"<box size="0.03 0.03 0.1"/>"#);
+        let axis = if i == 1 { "0 0 1" } else { "0 1 0" };
+        urdf += &joint(
+            &format!("joint{i}"),
+            "revolute",
+            &parent,
+            &child,
+            "0 0 0.06",
+            axis,
+        );
+        let rotor = format!("link{i}_rotor");
+        urdf += &link(&rotor, r#"<cylinder radius="0.01" length="0.01"/>"#);
+        urdf += &joint(
+            &format!("{rotor}_joint"),
+            "fixed",
+            &child,
+            &rotor,
+            "0 0 0",
+            "0 0 1",
+        );
+        parent = child;
+    }
+    urdf += &link("hand", r#"<box size="0.04 0.06 0.02"/>"#);
+    urdf += &joint("hand_joint", "fixed", &parent, "hand", "0 0 0.06", "0 0 1");
+    for (side, y) in [("left", "0.02"), ("right", "-0.02")] {
+        let finger = format!("{side}_finger");
+        urdf += &link(&finger, r#"<box size="0.01 0.01 0.03"/>"#);
+        urdf += &joint(
+            &format!("{finger}_joint"),
+            "prismatic",
+            "hand",
+            &finger,
+            &format!("0 {y} 0.02"),
+            "0 1 0",
+        );
+    }
+    urdf + "</robot>"
+}
+
+#[test]
+fn motors_named_rotor_inside_an_arm_do_not_make_a_drone() {
+    // Before: any rotor name with no legs or wheels made the robot aerial.
+    let (kind, evidence) = detected(&small_arm_with_rotor_named_motors());
+    assert_eq!(kind, Some(RobotType::ArmOnly), "{evidence:?}");
+}
+
+/// Four unnamed propeller discs (cylinders 20 times wider than thick, vertical axes) on continuous joints
+/// above a body standing on fixed skids.
+fn drone_with_unnamed_discs() -> String {
+    let mut urdf = format!(
+        r#"<robot name="x4"><link name="body">{INERTIAL}<collision><geometry><box size="0.2 0.2 0.05"/></geometry></collision></link><link name="skids">{INERTIAL}<collision><geometry><box size="0.3 0.2 0.01"/></geometry></collision></link><joint name="skids_joint" type="fixed"><parent link="body"/><child link="skids"/><origin xyz="0 0 -0.1"/></joint>"#
+    );
+    for (i, (x, y)) in [(0.2, 0.2), (0.2, -0.2), (-0.2, 0.2), (-0.2, -0.2)]
+        .iter()
+        .enumerate()
+    {
+        urdf += &format!(
+            r#"<link name="m{i}">{INERTIAL}<collision><geometry><cylinder radius="0.1" length="0.01"/></geometry></collision></link><joint name="j{i}" type="continuous"><parent link="body"/><child link="m{i}"/><origin xyz="{x} {y} 0.05"/><axis xyz="0 0 1"/></joint>"#
+        );
+    }
+    urdf + "</robot>"
+}
+
+#[test]
+fn rotors_are_found_by_their_shape() {
+    // Before: no rotor name, so four spinning discs on a body resting on the ground were "a fixed-base
+    // mechanism".
+    let (kind, evidence) = detected(&drone_with_unnamed_discs());
+    assert_eq!(kind, Some(RobotType::Aerial), "{evidence:?}");
+    assert!(evidence.unwrap().contains("4 rotor disc"));
+    // The same discs standing on edge (the cylinders' axes horizontal) are not rotors.
+    let tilted = drone_with_unnamed_discs().replace(
+        r#"<collision><geometry><cylinder"#,
+        r#"<collision><origin rpy="1.5708 0 0"/><geometry><cylinder"#,
+    );
+    let (kind, evidence) = detected(&tilted);
+    assert_ne!(kind, Some(RobotType::Aerial), "{evidence:?}");
 }

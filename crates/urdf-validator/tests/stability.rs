@@ -193,7 +193,14 @@ fn tripod_on_three_spheres_has_the_triangle_inradius_as_margin() {
         ));
     }
     urdf.push_str("</robot>");
-    let report = report(&urdf);
+    // Nothing moves, so the structure says `object` and stability is N/A; declared a robot of unknown
+    // type, it stands on its lowest geometry: the three feet.
+    assert_eq!(report(&urdf).robot_type, Some(RobotType::Object));
+    let declared = Overrides {
+        robot_type: Some(RobotType::Unknown),
+        ..Overrides::default()
+    };
+    let report = report_with(&urdf, declared);
     let s = report.stability.unwrap();
     assert_eq!(s.contact_links.len(), 3);
     // Equilateral triangle with circumradius R: inradius R/2, and the COM sits on the centroid.

@@ -53,6 +53,9 @@ pub fn not_applicable_reason(robot_type: RobotType) -> Option<String> {
             "robot type 'arm_only' is a fixed-base arm: no ground contact to tip over".to_string(),
         ),
         RobotType::Aerial => Some("robot type 'aerial' has no ground contact".to_string()),
+        RobotType::Object => Some(
+            "robot type 'object' has no movable joint: nothing to tip over actively".to_string(),
+        ),
         _ => None,
     }
 }

@@ -9,7 +9,7 @@ use crate::diagnostics::{Confidence, Status};
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct StabilitySection {
     /// PASS when the COM projects inside the support polygon, FAIL outside, UNKNOWN when there is no
-    /// polygon or no COM, N/A for fixed-base and aerial robots.
+    /// polygon or no COM, N/A for fixed-base, aerial and object (nothing moves) descriptions.
     pub status: Status,
     /// True when the COM projects inside the polygon.
     pub stable: Option<bool>,

@@ -459,10 +459,14 @@ pub fn analyse(
 ) -> WorkspaceSection {
     let model = scene.model;
     if arms.is_empty() {
-        let reason = format!(
-            "not applicable — no arm chain detected (robot type '{}'); declare one with --arm-root/--arm-tip",
-            scene.robot_type.as_str()
-        );
+        let reason = if scene.robot_type == RobotType::Object {
+            "not applicable — robot type 'object' has no movable joint, so no arm chain".to_string()
+        } else {
+            format!(
+                "not applicable — no arm chain detected (robot type '{}'); declare one with --arm-root/--arm-tip",
+                scene.robot_type.as_str()
+            )
+        };
         return not_applicable(options, reason);
     }
     if options.samples == 0 {
