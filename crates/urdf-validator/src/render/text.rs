@@ -714,13 +714,14 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
             "{indent}{touching} link pair(s) already in contact at the zero pose: not checked (U601)"
         );
     }
-    if let (Some(reason), true) = (&workspace.reason, workspace.status != Status::Pass) {
+    // The verdict line; why it is not PASS is told by the findings listed below the section.
+    if workspace.status != Status::Pass {
         let _ = writeln!(
             out,
             "{indent}{}",
             paint(
                 status_style(workspace.status),
-                &format!("{} — {reason}", workspace.status.label())
+                &format!("{} — why: the findings below", workspace.status.label())
             )
         );
     }
