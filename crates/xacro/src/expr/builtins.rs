@@ -295,7 +295,11 @@ pub(crate) fn int_arg(v: &Value) -> Result<i64, EvalError> {
 pub(crate) fn iterate(v: &Value) -> Result<Vec<Value>, EvalError> {
     match v {
         Value::List(items) | Value::Tuple(items) => Ok(items.to_vec()),
-        Value::Str(s) => Ok(s.chars().map(|c| Value::from(c.to_string())).collect()),
+        Value::Str(s) => {
+            // One item per character: a long string is a long list (and one allocation per item).
+            check_items(s.chars().count())?;
+            Ok(s.chars().map(|c| Value::from(c.to_string())).collect())
+        }
         Value::Dict(items) => Ok(items.iter().map(|(k, _)| k.clone()).collect()),
         other => Err(type_err(format!(
             "'{}' object is not iterable",
