@@ -3,16 +3,17 @@
 # ../shared/robots (URDF_VALIDATOR_SHARED_ROBOTS) to docs/report-pr2.png, the README's picture. Fails when
 # the page logs a console message or the screenshot is missing or nearly blank.
 #   bash scripts/html-screenshot.sh [ROBOT.urdf [OUT.png]]
-# Environment: URDF_VALIDATOR_CHROMIUM (the browser), SHOT_WIDTH / SHOT_HEIGHT (window size, 1280x2000).
+# Environment: URDF_VALIDATOR_CHROMIUM (the browser), SHOT_WIDTH / SHOT_HEIGHT (window size, 1280x2830: down to the first arm).
 # The test crates/urdf-validator/tests/html_browser.rs makes the same checks in `cargo test`.
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 robots="${URDF_VALIDATOR_SHARED_ROBOTS:-$repo_root/../shared/robots}"
+robots="$(cd "$robots" 2>/dev/null && pwd || echo "$robots")"
 urdf="${1:-$robots/pr2/pr2_description/robots/pr2.urdf}"
 png="${2:-$repo_root/docs/report-pr2.png}"
 width="${SHOT_WIDTH:-1280}"
-height="${SHOT_HEIGHT:-2000}"
+height="${SHOT_HEIGHT:-2830}"
 
 browser="${URDF_VALIDATOR_CHROMIUM:-}"
 if [[ -z "$browser" ]]; then

@@ -195,9 +195,9 @@ fn hero(out: &mut String, report: &Report) {
     );
     if let (Some(detected), Some(declared)) = (report.robot_type_detected, report.robot_type) {
         if detected != declared {
-            let _ = write!(
+            let _ = writeln!(
                 out,
-                "<p class=\"note\">Declared as <b>{}</b>; the structure looks <b>{}</b>{}.</p>\n",
+                "<p class=\"note\">Declared as <b>{}</b>; the structure looks <b>{}</b>{}.</p>",
                 escape(declared.as_str()),
                 escape(detected.as_str()),
                 report
@@ -236,15 +236,16 @@ fn summary_cards(out: &mut String, report: &Report) {
         ),
     );
     if let Some(statics) = &report.statics {
-        let main = match (statics.total_mass, statics.com_height_above_ground) {
-            (Some(mass), Some(h)) => format!("{mass:.1} kg · COM {h:.2} m up"),
-            (Some(mass), None) => format!("{mass:.2} kg"),
-            _ => "mass unknown".to_string(),
-        };
-        let detail = statics.weakest_joint_name.as_deref().map_or_else(
+        let main = statics
+            .total_mass
+            .map_or("mass unknown".to_string(), |mass| format!("{mass:.1} kg"));
+        let mut detail = statics
+            .com_height_above_ground
+            .map_or(String::new(), |h| format!("COM {h:.2} m up · "));
+        detail.push_str(&statics.weakest_joint_name.as_deref().map_or_else(
             || format!("pose {}", statics.pose),
-            |w| format!("weakest joint: {w}"),
-        );
+            |w| format!("weakest: {w}"),
+        ));
         card(out, "Statics", "#statics", statics.status, &main, &detail);
     }
     if let Some(stability) = &report.stability {
@@ -825,7 +826,7 @@ fn stability_panel(out: &mut String, report: &Report, stability: &StabilitySecti
         out.push_str("</section>\n");
         return;
     };
-    out.push_str("<div class=\"plot-row\">\n<figure class=\"figure\">");
+    out.push_str("<div class=\"plot-row\">\n<figure class=\"figure wide\">");
     let (w, h) = (560.0, 440.0);
     let frame = Frame::equal(bounds.padded(0.12, 0.05), 64.0, 16.0, w - 84.0, h - 64.0);
     svg_open(
@@ -1168,7 +1169,7 @@ fn torque_chart(out: &mut String, joints: &[&JointStatics]) {
         let name = shorten(&joint.name, 30);
         let torque_text = match torque {
             Some(t) if t < NEGLIGIBLE => "negligible".to_string(),
-            Some(t) => format!("{}", sig(t)),
+            Some(t) => sig(t),
             None => "?".to_string(),
         };
         let effort_text = effort.map_or("no limit".to_string(), sig);
@@ -1371,10 +1372,24 @@ fn workspace_panel(out: &mut String, report: &Report, workspace: &WorkspaceSecti
         );
         out.push_str("</div></div>\n");
     }
+    let stride = workspace
+        .samples
+        .div_ceil(crate::analysis::workspace::MAX_TIP_SAMPLES)
+        .max(1);
+    let which = if stride == 1 {
+        "every sampled pose".to_string()
+    } else {
+        format!("one sampled pose in {stride}")
+    };
     let _ = writeln!(
         out,
-        "<p class=\"key\">Dots: tip positions of every {}th sampled pose (at most 400 per arm), in the root frame; the outline is their convex hull; grey dots are the other arms.</p>",
-        workspace.samples.div_ceil(crate::analysis::workspace::MAX_TIP_SAMPLES).max(1)
+        "<p class=\"key\">Dots: the tip of {which} (at most {} per arm), in the root frame; the outline is their convex hull{}.</p>",
+        crate::analysis::workspace::MAX_TIP_SAMPLES,
+        if arms.len() > 1 {
+            "; grey dots are the other arms"
+        } else {
+            ""
+        }
     );
     out.push_str("</section>\n");
 }
@@ -1539,7 +1554,7 @@ code,pre,.path{font-family:ui-monospace,SFMono-Regular,"SF Mono",Menlo,Consolas,
 .filters input:not(:checked)+.chip{background:transparent;color:var(--muted);border-color:var(--border);text-decoration:line-through}
 .filters input:focus-visible+.chip{outline:2px solid var(--info);outline-offset:2px}
 body:has(#show-critical:not(:checked)) tr.sev-critical,body:has(#show-fail:not(:checked)) tr.sev-fail,body:has(#show-warn:not(:checked)) tr.sev-warn,body:has(#show-info:not(:checked)) tr.sev-info{display:none}
-.table-wrap{overflow:auto;max-height:620px;border:1px solid var(--border);border-radius:10px}
+.table-wrap{overflow:auto;max-height:470px;border:1px solid var(--border);border-radius:10px}
 table.findings{width:100%;border-collapse:collapse;font-size:13px}
 .findings th{text-align:left;font-size:11px;text-transform:uppercase;letter-spacing:.06em;color:var(--muted);border-bottom:1px solid var(--border);padding:6px 8px;position:sticky;top:0;background:var(--card)}
 .findings td{border-bottom:1px solid var(--border);padding:7px 8px;vertical-align:top}
@@ -1552,6 +1567,7 @@ table.findings{width:100%;border-collapse:collapse;font-size:13px}
 .findings .loc{white-space:nowrap;font-family:ui-monospace,SFMono-Regular,Menlo,Consolas,monospace;font-size:12px}
 .plot-row{display:flex;flex-wrap:wrap;gap:18px;align-items:flex-start}
 .figure{margin:0;flex:1 1 380px;min-width:0}
+.figure.wide{flex:0 1 560px}
 .figure figcaption{color:var(--muted);font-size:12px;margin-top:4px}
 .figure figcaption.view-title{color:var(--fg);font-weight:600;font-size:13px;margin:0 0 4px}
 svg.plot{width:100%;height:auto;display:block;font-family:system-ui,-apple-system,"Segoe UI",Roboto,Arial,sans-serif}
@@ -1579,7 +1595,7 @@ svg .margin-label{font-size:12px;font-weight:700;paint-order:stroke;stroke:var(-
 svg .margin-label.pass{fill:var(--pass)}svg .margin-label.fail{fill:var(--fail)}svg .margin-label.warn,svg .margin-label.unknown,svg .margin-label.na{fill:var(--na)}
 svg .stripe{fill:var(--soft);opacity:.6}
 svg .track{fill:var(--soft)}
-svg .zone-warn{fill:var(--warn);opacity:.16}
+svg .zone-warn{fill:var(--warn);opacity:.24}
 svg .bar.pass{fill:var(--pass)}svg .bar.warn{fill:var(--warn)}svg .bar.fail{fill:var(--fail)}svg .bar.unknown{fill:var(--unknown)}svg .bar.na{fill:var(--na)}
 svg .limit{stroke:var(--fg);stroke-width:2.2}
 svg .jname{fill:var(--fg);font-size:12px}
