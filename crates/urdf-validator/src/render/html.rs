@@ -924,7 +924,11 @@ fn stability_panel(out: &mut String, report: &Report, stability: &StabilitySecti
             y = n(y),
         );
     }
-    out.push_str("</svg>\n<figcaption>Support polygon seen from above (root frame), the centre of mass projected on the ground, and the margin to the nearest edge.</figcaption></figure>\n");
+    out.push_str(if com.is_some() {
+        "</svg>\n<figcaption>Support polygon seen from above (root frame), the centre of mass projected on the ground, and the margin to the nearest edge.</figcaption></figure>\n"
+    } else {
+        "</svg>\n<figcaption>Support polygon seen from above (root frame); the centre of mass is unknown (no declared mass).</figcaption></figure>\n"
+    });
     // Legend: numbered contacts, raised contacts.
     out.push_str("<div class=\"legend\">\n");
     if !contacts.is_empty() {
@@ -952,7 +956,12 @@ fn stability_panel(out: &mut String, report: &Report, stability: &StabilitySecti
         }
         out.push_str("</ul>\n");
     }
-    out.push_str("<p class=\"key\"><span class=\"key-com\"></span> centre of mass <span class=\"key-origin\">+</span> root origin</p>\n</div>\n</div>\n</section>\n");
+    if com.is_some() {
+        out.push_str("<p class=\"key\"><span class=\"key-com\"></span> centre of mass <span class=\"key-origin\">+</span> root origin</p>\n");
+    } else {
+        out.push_str("<p class=\"key\"><span class=\"key-origin\">+</span> root origin</p>\n");
+    }
+    out.push_str("</div>\n</div>\n</section>\n");
 }
 
 /// Order of statuses in the torque chart: the ones to act on first.
