@@ -657,6 +657,9 @@ fn sampling_is_reproducible_and_independent_of_threads() {
     };
     assert_eq!(key(&many), key(&one));
     assert_eq!(key(&many), key(&again));
+    // The plotted tip samples too: the same points, in the same order.
+    assert_eq!(many.arms[0].tip_samples, one.arms[0].tip_samples);
+    assert_eq!(many.arms[0].tip_samples, again.arms[0].tip_samples);
     let other_seed = workspace_of(
         &urdf,
         declared_arm("base", "tip"),
@@ -667,6 +670,52 @@ fn sampling_is_reproducible_and_independent_of_threads() {
         },
     );
     assert_ne!(other_seed.max_reach, many.max_reach);
+}
+
+#[test]
+fn tip_samples_are_every_kth_sample_at_most_400_rounded_to_the_mm() {
+    let (l1, l2, h) = (0.5, 0.3, 1.0);
+    let urdf = planar_arm(l1, l2, h, 10.0, 0.1);
+    for (samples, expected) in [(30_000, 400), (5000, 385), (100, 100), (1, 1)] {
+        let ws = workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                samples,
+                ..WorkspaceOptions::default()
+            },
+        );
+        let tips = &ws.arms[0].tip_samples;
+        // k = ⌈samples / 400⌉: 75 → 400 points, 13 → ⌈5000 / 13⌉ = 385, 1 → every sample.
+        assert_eq!(tips.len(), expected, "{samples} samples");
+        for p in tips {
+            for v in p {
+                assert_eq!(
+                    *v,
+                    (v * 1000.0).round() / 1000.0,
+                    "not rounded to the mm: {p:?}"
+                );
+            }
+            // The tip lies within reach of the shoulder (at height h above the root).
+            let reach = (p[0] * p[0] + p[1] * p[1] + (p[2] - h) * (p[2] - h)).sqrt();
+            assert!(reach <= l1 + l2 + 1e-3, "{p:?} is beyond reach");
+        }
+    }
+    // Every k-th of the full run: the first points of 5,000 samples (k = 13) are not those of 30,000
+    // (k = 75), but the first point (sample 0) is.
+    let first = |samples| {
+        workspace_of(
+            &urdf,
+            declared_arm("base", "tip"),
+            WorkspaceOptions {
+                samples,
+                ..WorkspaceOptions::default()
+            },
+        )
+        .arms[0]
+            .tip_samples[0]
+    };
+    assert_eq!(first(30_000), first(5000));
 }
 
 #[test]

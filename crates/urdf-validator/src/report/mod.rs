@@ -11,7 +11,7 @@ pub use crate::timings::Timings;
 pub use build::{build, Outcome};
 
 pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
-pub use crate::analysis::stability::{RaisedContact, StabilitySection};
+pub use crate::analysis::stability::{ContactPoint, RaisedContact, StabilitySection};
 pub use crate::analysis::statics::{JointStatics, StaticsSection};
 pub use crate::analysis::workspace::{body_joints_held, ArmWorkspace, WorkspaceSection};
 pub use crate::diagnostics::{Confidence, ConfidenceLevel, Status};

@@ -5,7 +5,7 @@
 mod section;
 pub(crate) mod support_polygon;
 
-pub use section::{RaisedContact, StabilitySection};
+pub use section::{ContactPoint, RaisedContact, StabilitySection};
 
 use nalgebra::Vector3;
 
@@ -114,6 +114,7 @@ pub fn analyse(
         },
         contact_source: None,
         contact_links: Vec::new(),
+        contact_points: Vec::new(),
         support_polygon: Vec::new(),
         ground_height: None,
         com_height: None,
@@ -180,11 +181,18 @@ pub fn analyse(
             }
             continue;
         }
-        points.extend(
-            pts.iter()
-                .filter(|p| p.z - ground <= SUPPORT_TOLERANCE)
-                .map(|p| [p.x, p.y]),
-        );
+        let supporting: Vec<Point2> = pts
+            .iter()
+            .filter(|p| p.z - ground <= SUPPORT_TOLERANCE)
+            .map(|p| [p.x, p.y])
+            .collect();
+        if let Some(position) = mean_mm(&supporting) {
+            section.contact_points.push(ContactPoint {
+                link: name.clone(),
+                position,
+            });
+        }
+        points.extend(supporting);
         section.contact_links.push(name);
     }
     let hull = convex_hull(&points);
@@ -259,6 +267,19 @@ pub fn findings(robot: &Robot, model: &Model, section: &StabilitySection) -> Vec
         )],
         _ => Vec::new(),
     }
+}
+
+/// The mean of `points`, rounded to the millimetre (`None` for no points).
+fn mean_mm(points: &[Point2]) -> Option<Point2> {
+    if points.is_empty() {
+        return None;
+    }
+    let n = points.len() as f64;
+    let mm = |v: f64| (v * 1000.0).round() / 1000.0;
+    let sum = points
+        .iter()
+        .fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+    Some([mm(sum[0] / n), mm(sum[1] / n)])
 }
 
 /// The spec's classes of COM height over support width.

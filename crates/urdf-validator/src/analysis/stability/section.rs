@@ -31,6 +31,9 @@ pub struct StabilitySection {
     pub contact_source: Option<String>,
     /// Links touching the ground (supporting).
     pub contact_links: Vec<String>,
+    /// Where each supporting link touches the ground: the mean of its supporting points, in the order of
+    /// `contact_links` (for plots; the polygon is built from every point, not from these).
+    pub contact_points: Vec<ContactPoint>,
     /// Counter-clockwise support polygon in the root frame's ground plane, metres.
     pub support_polygon: Vec<[f64; 2]>,
     /// Height of the ground (the lowest contact) in the root frame, metres.
@@ -41,6 +44,16 @@ pub struct StabilitySection {
     pub raised_contacts: Vec<RaisedContact>,
     /// Why the status is UNKNOWN or N/A.
     pub reason: Option<String>,
+}
+
+/// Where one supporting link touches the ground.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct ContactPoint {
+    /// The link.
+    pub link: String,
+    /// The mean of its supporting points in the root frame's ground plane, metres, rounded to the
+    /// millimetre.
+    pub position: [f64; 2],
 }
 
 /// A contact candidate that does not reach the ground.

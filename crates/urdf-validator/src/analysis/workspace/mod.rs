@@ -52,6 +52,19 @@ const MAX_BAND_POSES: usize = 4096;
 pub const ORIENTATION_PASS_FRACTION: f64 = 0.05;
 /// Fraction of samples that must be free of self-collision.
 pub const COLLISION_FREE_PASS_FRACTION: f64 = 0.95;
+/// The most tip positions per arm kept in the report ([`ArmWorkspace::tip_samples`]) for plots.
+pub const MAX_TIP_SAMPLES: usize = 400;
+
+/// Every how many samples a tip position is kept so that at most [`MAX_TIP_SAMPLES`] are.
+fn tip_stride(samples: usize) -> usize {
+    samples.div_ceil(MAX_TIP_SAMPLES).max(1)
+}
+
+/// A position rounded to the millimetre (the report's plots need no more, and the JSON stays small).
+fn round_mm(p: &Vector3<f64>) -> [f64; 3] {
+    let mm = |v: f64| (v * 1000.0).round() / 1000.0;
+    [mm(p.x), mm(p.y), mm(p.z)]
+}
 
 /// What the workspace analysis is asked.
 #[derive(Clone, Debug)]
@@ -177,6 +190,8 @@ struct ArmStats {
     min_clearance: Option<(f64, (LinkId, LinkId))>,
     /// Per pair, the colliding samples where it was the first contact found.
     colliding: HashMap<(LinkId, LinkId), usize>,
+    /// Every [`tip_stride`]-th sample's tip position: (sample index, position rounded to the mm).
+    tips: Vec<(usize, [f64; 3])>,
 }
 
 impl ArmStats {
@@ -197,6 +212,7 @@ impl ArmStats {
             collision_free: 0,
             min_clearance: None,
             colliding: HashMap::new(),
+            tips: Vec::new(),
         }
     }
 
@@ -239,6 +255,8 @@ impl ArmStats {
         for (pair, count) in other.colliding {
             *self.colliding.entry(pair).or_default() += count;
         }
+        self.tips.extend(other.tips);
+        self.tips.sort_unstable_by_key(|(index, _)| *index);
         self
     }
 }
@@ -287,6 +305,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     };
     let target_height = ctx.options.task.map(|t| scene.ground + t.height());
     let shoulder = job.chain.shoulder;
+    let stride = tip_stride(ctx.options.samples);
     for i in 0..count {
         for (value, (_, lo, hi)) in q.iter_mut().zip(&job.chain.sampled) {
             *value = rng.uniform(*lo, *hi);
@@ -301,6 +320,9 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         let offset = p - shoulder;
         let horizontal = offset.x.hypot(offset.y);
         stats.samples += 1;
+        if (start + i) % stride == 0 {
+            stats.tips.push((start + i, round_mm(&p)));
+        }
         stats.max_reach = stats.max_reach.max(offset.norm());
         stats.max_height = stats.max_height.max(p.z - scene.ground);
         stats.min_height = stats.min_height.min(p.z - scene.ground);
@@ -586,6 +608,7 @@ fn summarize(
             self_collision_min_clearance_mm: checked
                 .then(|| stats.min_clearance.map(|c| c.0 * 1000.0))
                 .flatten(),
+            tip_samples: stats.tips.iter().map(|(_, p)| *p).collect(),
         });
     }
     let max = |f: fn(&ArmWorkspace) -> f64| arms.iter().map(f).reduce(f64::max);

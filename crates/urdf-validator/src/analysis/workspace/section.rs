@@ -138,4 +138,9 @@ pub struct ArmWorkspace {
     pub self_collision_free_fraction: Option<f64>,
     /// Smallest clearance over this arm's collision-free samples, mm.
     pub self_collision_min_clearance_mm: Option<f64>,
+    /// Tip positions of a deterministic subset of the samples, for plots of the reach envelope: every
+    /// k-th sample (k = ⌈samples / 400⌉, sample indices 0, k, 2k, …), at most 400, in sample order,
+    /// whether or not the pose is free of self-collision; root frame, metres, rounded to the millimetre.
+    /// The same seed gives the same points on any number of threads.
+    pub tip_samples: Vec<[f64; 3]>,
 }
