@@ -359,7 +359,16 @@ fn describe_error(path: &Path, text: &str, error: &toml::de::Error) -> String {
             format!("{line}:{column}: ")
         })
         .unwrap_or_default();
-    let mut out = format!("{}:{at}invalid configuration: {message}", path.display());
+    let key = error
+        .span()
+        .and_then(|span| key_at(text, span.start))
+        .filter(|key| !message.contains(&format!("`{key}`")))
+        .map(|key| format!("key `{key}`: "))
+        .unwrap_or_default();
+    let mut out = format!(
+        "{}:{at}invalid configuration: {key}{message}",
+        path.display()
+    );
     if let Some(unknown) = message
         .strip_prefix("unknown field `")
         .and_then(|rest| rest.split('`').next())
@@ -370,6 +379,37 @@ fn describe_error(path: &Path, text: &str, error: &toml::de::Error) -> String {
         ));
     }
     out
+}
+
+/// The dotted key whose value holds byte `at` (`samples`, `severity.U201`), from the `key =` on its line
+/// and the table header above it (`[tool.urdf-validate]` left out).
+fn key_at(text: &str, at: usize) -> Option<String> {
+    let before = text.get(..at)?;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = text.get(line_start..)?.lines().next()?;
+    let (key, _) = line.split_once('=')?;
+    let key = key.trim().trim_matches('"');
+    if key.is_empty() || key.starts_with('[') {
+        return None;
+    }
+    let header = before
+        .get(..line_start)?
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(|l| l.trim_matches(|c| c == '[' || c == ']').trim().to_string())
+        .map(|h| {
+            h.strip_prefix("tool.urdf-validate")
+                .map(|rest| rest.trim_start_matches('.').to_string())
+                .unwrap_or(h)
+        })
+        .unwrap_or_default();
+    Some(if header.is_empty() {
+        key.to_string()
+    } else {
+        format!("{header}.{key}")
+    })
 }
 
 /// 1-based (line, column) of byte `at` of `text`.
@@ -611,6 +651,21 @@ mod tests {
             "{message}"
         );
         assert!(message.contains("did you mean 'select'?"), "{message}");
+    }
+
+    #[test]
+    fn type_errors_name_the_key() {
+        let text = "[tool.urdf-validate]\nsamples = \"many\"\n\n[tool.urdf-validate.severity]\nU201 = \"loud\"\n";
+        let error = toml::from_str::<Pyproject>(text).map(|_| ()).unwrap_err();
+        let message = describe_error(Path::new("pyproject.toml"), text, &error);
+        assert!(
+            message.starts_with("pyproject.toml:2:11: invalid configuration: key `samples`: "),
+            "{message}"
+        );
+        assert_eq!(
+            key_at(text, text.find("\"loud").unwrap_or(0)).as_deref(),
+            Some("severity.U201")
+        );
     }
 
     #[test]

@@ -392,8 +392,8 @@ fn a_malformed_config_is_an_error_naming_file_line_and_key() {
     // TOML syntax errors, wrong types and bad values are located too.
     for (config, line, what) in [
         ("ignore = [\"U105\"\n\n", 1, ""),
-        ("samples = \"many\"\n", 1, "samples"),
-        ("[severity]\nU201 = \"loud\"\n", 2, "loud"),
+        ("samples = \"many\"\n", 1, "key `samples`"),
+        ("[severity]\nU201 = \"loud\"\n", 2, "key `severity.U201`"),
         (
             "seed = 1\nrobot-type = \"wheeld\"\n",
             2,
