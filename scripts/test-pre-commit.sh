@@ -6,8 +6,8 @@
 #
 # Usage: bash scripts/test-pre-commit.sh            (builds target/debug/urdf_validate first)
 #        URDF_VALIDATE_BIN=/path/to/urdf_validate bash scripts/test-pre-commit.sh
-#        TEST_CARGO_HOOK=1 bash scripts/test-pre-commit.sh   (also the urdf-validate-cargo hook: a release
-#                                                           build in pre-commit's clone, several minutes)
+#        TEST_CARGO_HOOK=1 bash scripts/test-pre-commit.sh   (also the urdf-validate-cargo hook, built in
+#            pre-commit's clone with the dev profile into this checkout's target/: several minutes)
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -93,7 +93,15 @@ try_hook urdf-validate 0 'urdf-validate\.+Passed' macros.xacro
 sed -i '/urdf-validate: ignore/d' silenced.urdf
 try_hook urdf-validate 1 'exit code: 1' silenced.urdf
 if [[ "${TEST_CARGO_HOOK:-0}" == 1 ]]; then
-    try_hook urdf-validate-cargo 1 'exit code: 2' broken.urdf
+    # PATH must not provide urdf_validate: the hook builds its own.
+    (
+        export PATH="${PATH#"$bin_dir:"}"
+        export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo_root/target}"
+        export URDF_VALIDATE_HOOK_PROFILE=dev
+        try_hook urdf-validate-cargo 1 'exit code: 2' broken.urdf
+        try_hook urdf-validate-cargo 0 'Passed' good.urdf
+        [[ "$failures" -eq 0 ]]
+    ) || failures=$((failures + 1))
 fi
 
 if [[ "$failures" -gt 0 ]]; then
