@@ -260,3 +260,21 @@ fn comments_in_xacro_sources_suppress_expanded_findings() {
     assert!(!codes(&report).contains(&"U801"), "{:?}", codes(&report));
     assert_ne!(report.overall_status, Status::Warn, "{:?}", report.findings);
 }
+
+#[test]
+fn no_inline_turns_the_comments_off() {
+    let urdf = WARNING.replace(
+        "  <link name=\"arm\"/>",
+        "  <!-- urdf-validate: ignore U201 U1O5 -->\n  <link name=\"arm\"/>",
+    );
+    let report = report_with(
+        &urdf,
+        Settings {
+            no_inline: true,
+            ..Settings::default()
+        },
+    );
+    assert_eq!(report.overall_status, Status::Warn);
+    assert!(codes(&report).contains(&"U201"));
+    assert!(!codes(&report).contains(&"U802"), "comments are not read at all");
+}
