@@ -276,5 +276,8 @@ fn no_inline_turns_the_comments_off() {
     );
     assert_eq!(report.overall_status, Status::Warn);
     assert!(codes(&report).contains(&"U201"));
-    assert!(!codes(&report).contains(&"U802"), "comments are not read at all");
+    assert!(
+        !codes(&report).contains(&"U802"),
+        "comments are not read at all"
+    );
 }
