@@ -8,7 +8,7 @@ use clap::{Parser, ValueEnum};
 ///
 /// Writes `<name>_validation.json` beside each input (or in --output-dir). Exit code: 0 PASS, 1 WARN,
 /// 2 FAIL, UNKNOWN or unreadable input.
-#[derive(Debug, Parser)]
+#[derive(Clone, Debug, Parser)]
 #[command(name = "urdf_validate", version, about, long_about)]
 pub struct Args {
     /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>
@@ -19,6 +19,11 @@ pub struct Args {
     /// A xacro argument (repeatable): NAME=VALUE or NAME:=VALUE, as `name:=value` on the command line does.
     #[arg(long, value_name = "NAME=VALUE")]
     pub xacro_arg: Vec<String>,
+
+    /// Leave out named .xacro files that build no robot (macro libraries), as directory inputs do: for
+    /// hooks that pass every changed file (pre-commit). Exit 0 when nothing else is left.
+    #[arg(long)]
+    pub skip_xacro_libraries: bool,
 
     /// Print the expanded URDF of each xacro input and exit (a stand-in for the `xacro` command).
     #[arg(long)]
@@ -149,6 +154,35 @@ pub struct Args {
     /// Threads (default: one per core): files validated in parallel, and the workspace sampling of each.
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+
+    /// Only these rules report (codes, names, code prefixes such as U2, or ALL; comma-separated):
+    /// replaces `select` of the configuration file.
+    #[arg(long, value_name = "CODES", value_delimiter = ',')]
+    pub select: Option<Vec<String>>,
+
+    /// These rules never report (codes, names or prefixes; comma-separated): added to `ignore` of the
+    /// configuration file. Ignored findings leave the status and the exit code.
+    #[arg(long, value_name = "CODES", value_delimiter = ',')]
+    pub ignore: Vec<String>,
+
+    /// Use this configuration file (urdf-validate.toml, or a pyproject.toml with [tool.urdf-validate])
+    /// for every input, instead of the nearest one found from each input's folder upwards.
+    #[arg(long, value_name = "FILE", conflicts_with = "no_config")]
+    pub config: Option<PathBuf>,
+
+    /// Read no configuration file.
+    #[arg(long)]
+    pub no_config: bool,
+
+    /// Print the settings in effect (for the first input, else the current folder) and where each came
+    /// from (file:line, command line or default), then exit.
+    #[arg(long)]
+    pub show_config: bool,
+
+    /// Also list the findings that the configuration or inline `urdf-validate: ignore` comments
+    /// suppress (marked as suppressed; `suppressed` in the JSON). They still do not count.
+    #[arg(long)]
+    pub show_suppressed: bool,
 
     /// Explain a rule (code such as U205, or name) and exit.
     #[arg(long, value_name = "CODE")]

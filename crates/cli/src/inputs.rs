@@ -33,11 +33,12 @@ pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
     Ok((name.to_string(), value.to_string()))
 }
 
-/// Files named directly are kept as given; directories contribute every `*.urdf` below them and every
+/// Files named directly are kept as given (with `skip_libraries`, a named `*.xacro` that builds no robot,
+/// a macro library, is left out, as in directories); directories contribute every `*.urdf` below them and every
 /// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted; hidden folders and
 /// files ignored by `.gitignore` are skipped. Inputs that
 /// do not exist come back as error lines.
-pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
+pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<String>) {
     let mut files = Vec::new();
     let mut errors = Vec::new();
     for input in inputs {
@@ -52,7 +53,14 @@ pub fn expand(inputs: &[PathBuf]) -> (Vec<PathBuf>, Vec<String>) {
                 ));
             }
         } else if input.exists() {
-            files.push(input.clone());
+            let library = skip_libraries
+                && input
+                    .extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("xacro"))
+                && !is_robot_xacro(input);
+            if !library {
+                files.push(input.clone());
+            }
         } else {
             errors.push(format!(
                 "{}: no such file or directory (expected a URDF file or a directory)",

@@ -23,13 +23,17 @@ macro_rules! errln {
 }
 
 mod args;
+mod config;
 mod inputs;
 mod outputs;
+mod progress;
 
+use std::collections::HashMap;
 use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use rayon::prelude::*;
 use urdf_validator::analysis::pose::PoseOptions;
 use urdf_validator::analysis::statics::StaticsOptions;
@@ -46,16 +50,20 @@ use args::{Args, ColorChoice, Format};
 use outputs::Outcome;
 
 fn main() -> ExitCode {
-    let args = Args::parse();
+    let matches = Args::command().get_matches();
+    let args = match Args::from_arg_matches(&matches) {
+        Ok(args) => args,
+        Err(error) => error.exit(),
+    };
     match args.color {
         ColorChoice::Auto => {}
         ColorChoice::Always => anstream::ColorChoice::Always.write_global(),
         ColorChoice::Never => anstream::ColorChoice::Never.write_global(),
     }
-    ExitCode::from(run(args))
+    ExitCode::from(run(args, &matches))
 }
 
-fn run(args: Args) -> u8 {
+fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     if let Some(code) = &args.explain {
         return explain(code);
     }
@@ -86,6 +94,9 @@ fn run(args: Args) -> u8 {
         out!("{}", urdf_validator::report::json_schema());
         return 0;
     }
+    if args.show_config {
+        return show_config(&args, matches);
+    }
     if args.inputs.is_empty() {
         errln!(
             "error: no input given (expected one or more URDF or xacro files or directories; see --help)"
@@ -98,13 +109,10 @@ fn run(args: Args) -> u8 {
             .num_threads(jobs)
             .build_global();
     }
-    let workspace = match workspace_options(&args) {
-        Ok(workspace) => workspace,
-        Err(message) => {
-            errln!("error: {message}");
-            return 2;
-        }
-    };
+    if let Err(message) = workspace_options(&args) {
+        errln!("error: {message}");
+        return 2;
+    }
     if args.arm_root.len() != args.arm_tip.len() {
         errln!(
             "error: {} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
@@ -123,7 +131,11 @@ fn run(args: Args) -> u8 {
             }
         }
     }
-    let (files, input_errors) = inputs::expand(&paths);
+    let (files, input_errors) = inputs::expand(&paths, args.skip_xacro_libraries);
+    if files.is_empty() && input_errors.is_empty() && args.skip_xacro_libraries {
+        // Only macro libraries were named (a pre-commit run on changed library files): nothing to do.
+        return 0;
+    }
     if files.is_empty() && input_errors.is_empty() {
         errln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
         return 2;
@@ -144,36 +156,36 @@ fn run(args: Args) -> u8 {
         }
         return expand_only(&files, &input_errors, &xacro_args, &resolver);
     }
-    let options = Options {
-        workspace,
-        xacro_args,
-        resolver,
-        statics: StaticsOptions {
-            pose: PoseOptions {
-                kind: args.pose.into(),
-                joint_angles: args.joint_angles.clone(),
-                srdf: args.srdf.clone(),
-                state: args.state.clone(),
-                samples: args.samples,
-                seed: args.seed,
-            },
-            payload_mass: args.payload_mass,
-            payload_link: args.payload_link.clone(),
-        },
-        overrides: Overrides {
-            robot_type: args.robot_type.map(Into::into),
-            contact_links: args.contact_links.clone(),
-            arms: args
-                .arm_root
-                .iter()
-                .cloned()
-                .zip(args.arm_tip.iter().cloned())
-                .collect(),
-        },
-        timings: args.timings,
-        meshes: mesh_cache(args.no_cache),
-        progress: None,
-    };
+    // One set of options per configuration file (the nearest to each input, unless named or turned off).
+    let meshes = mesh_cache(args.no_cache);
+    let config_of: Vec<Option<PathBuf>> = configs_of(&args, &files);
+    let mut groups: Vec<(Option<PathBuf>, Options)> = Vec::new();
+    for path in &config_of {
+        if groups.iter().any(|(p, _)| p == path) {
+            continue;
+        }
+        let effective = match config::load(path.as_deref(), &args, matches) {
+            Ok(effective) => effective,
+            Err(message) => {
+                errln!("error: {message}");
+                return 2;
+            }
+        };
+        let mut group_args = args.clone();
+        effective.apply_to(&mut group_args);
+        match options_for(&group_args, effective.settings, &xacro_args, &meshes) {
+            Ok(options) => groups.push((path.clone(), options)),
+            Err(message) => {
+                errln!(
+                    "error: {message}{}",
+                    path.as_ref()
+                        .map(|p| format!(" (with the settings of {})", p.display()))
+                        .unwrap_or_default()
+                );
+                return 2;
+            }
+        }
+    }
     let timeout = match args.timeout {
         // Zero, or more seconds than a Duration holds: no limit.
         t if t >= 0.0 => std::time::Duration::try_from_secs_f64(t)
@@ -185,19 +197,31 @@ fn run(args: Args) -> u8 {
         }
     };
     let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
+    let progress = progress::Bar::for_batch(files.len());
     let outcomes: Vec<Outcome> = files
         .par_iter()
         .zip(report_paths.par_iter())
-        .map(|(file, report_path)| {
-            outputs::validate_one(
-                file,
-                report_path.as_deref(),
-                &options,
-                args.no_write,
-                timeout,
-            )
+        .zip(config_of.par_iter())
+        .map(|((file, report_path), config)| {
+            let options = groups
+                .iter()
+                .find(|(p, _)| p == config)
+                .map(|(_, options)| options);
+            let outcome = match options {
+                Some(options) => outputs::validate_one(
+                    file,
+                    report_path.as_deref(),
+                    options,
+                    args.no_write,
+                    timeout,
+                ),
+                None => outputs::Outcome::not_configured(file),
+            };
+            progress.tick(file);
+            outcome
         })
         .collect();
+    progress.finish();
     let single_file = paths.len() == 1 && !paths[0].is_dir();
     print_outcomes(&args, single_file, &outcomes, &input_errors);
     let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
@@ -279,6 +303,91 @@ fn print_outcomes(args: &Args, single_file: bool, outcomes: &[Outcome], input_er
             }
         }
     }
+}
+
+/// The configuration file of each input: `--config` for all, none with `--no-config`, else the nearest
+/// found from the input's folder upwards.
+fn configs_of(args: &Args, files: &[PathBuf]) -> Vec<Option<PathBuf>> {
+    if args.no_config {
+        return vec![None; files.len()];
+    }
+    if let Some(path) = &args.config {
+        return vec![Some(path.clone()); files.len()];
+    }
+    let mut by_dir: HashMap<PathBuf, Option<PathBuf>> = HashMap::new();
+    files
+        .iter()
+        .map(|file| {
+            let dir = file.parent().unwrap_or(Path::new("")).to_path_buf();
+            by_dir
+                .entry(dir)
+                .or_insert_with(|| config::discover(file))
+                .clone()
+        })
+        .collect()
+}
+
+/// `--show-config`: the settings for the first input (else the current folder), with their origins.
+fn show_config(args: &Args, matches: &clap::ArgMatches) -> u8 {
+    let (paths, _) = inputs::split_xacro_args(&args.inputs);
+    let anchor = paths.first().cloned().unwrap_or_else(|| PathBuf::from("."));
+    let path = if args.no_config {
+        None
+    } else if let Some(path) = &args.config {
+        Some(path.clone())
+    } else {
+        config::discover(&anchor)
+    };
+    match config::load(path.as_deref(), args, matches) {
+        Ok(effective) => {
+            out!("{}", effective.show());
+            0
+        }
+        Err(message) => {
+            errln!("error: {message}");
+            2
+        }
+    }
+}
+
+/// The library options from the flags (already merged with a configuration file) and `settings`.
+fn options_for(
+    args: &Args,
+    settings: urdf_validator::diagnostics::Settings,
+    xacro_args: &[(String, String)],
+    meshes: &MeshCache,
+) -> Result<Options, String> {
+    Ok(Options {
+        workspace: workspace_options(args)?,
+        xacro_args: xacro_args.to_vec(),
+        resolver: PackageResolver::from_env(args.package_path.clone()),
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                kind: args.pose.into(),
+                joint_angles: args.joint_angles.clone(),
+                srdf: args.srdf.clone(),
+                state: args.state.clone(),
+                samples: args.samples,
+                seed: args.seed,
+            },
+            payload_mass: args.payload_mass,
+            payload_link: args.payload_link.clone(),
+        },
+        overrides: Overrides {
+            robot_type: args.robot_type.map(Into::into),
+            contact_links: args.contact_links.clone(),
+            arms: args
+                .arm_root
+                .iter()
+                .cloned()
+                .zip(args.arm_tip.iter().cloned())
+                .collect(),
+        },
+        timings: args.timings,
+        meshes: meshes.clone(),
+        progress: None,
+        settings,
+    })
 }
 
 /// The run's mesh cache: in memory, and on disk unless `--no-cache` (or no cache folder is known).

@@ -24,6 +24,19 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// An input whose options could not be set up (never expected: every configuration is read first).
+    pub fn not_configured(file: &Path) -> Outcome {
+        Outcome {
+            file: file.to_path_buf(),
+            validation: Err(LoadError::Usage {
+                path: file.to_path_buf(),
+                message: "no settings for this file".to_string(),
+            }),
+            written: None,
+            write_error: None,
+        }
+    }
+
     /// 0 PASS, 1 WARN, 2 FAIL / UNKNOWN / unreadable / report not written.
     pub fn exit_code(&self) -> u8 {
         match (&self.validation, &self.write_error) {

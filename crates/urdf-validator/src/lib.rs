@@ -75,6 +75,9 @@ pub struct Options {
     pub timings: bool,
     /// Told each phase as it finishes, so a watchdog can say where a run stands.
     pub progress: Option<Progress>,
+    /// Rule selection, severity overrides and suppressions, applied when the report is built
+    /// (`urdf-validate.toml`, `--select`, `--ignore`, `--show-suppressed`).
+    pub settings: diagnostics::Settings,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -153,6 +156,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         model: &model,
         findings,
         analyses,
+        settings: &options.settings,
     });
     clock.lap("report");
     let report = Report {

@@ -293,6 +293,9 @@ const COVERED: &[&str] = &[
     "U724",
     "U730",
     "U790",
+    // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
+    u801_unused_suppression::CODE,
+    u802_unknown_rule_code::CODE,
 ];
 
 #[test]
@@ -3314,4 +3317,18 @@ fn a_capsule_needs_version_1_1() {
         "U011",
         &versioned(r#" version="1.2""#, r#"xyz="0 0 0""#, capsule),
     );
+}
+
+rule_case! {
+    u801_unused_suppression, "U801",
+    fires: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+    at: (2, 30, "U105"),
+    clean: "<robot name=\"r\">\n  <!-- a plain comment: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+}
+
+rule_case! {
+    u802_unknown_rule_code, "U802",
+    fires: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U1O5 -->\n  <link name=\"base\"/>\n</robot>\n",
+    at: (2, 30, "U1O5"),
+    clean: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
 }

@@ -86,6 +86,8 @@ pub struct Finding {
     pub span: Option<Span>,
     /// What to do about this occurrence, when more specific than the rule's doc.
     pub help: Option<String>,
+    /// The severity when the settings override the rule's default (`[severity]` in the configuration).
+    pub severity_override: Option<Severity>,
 }
 
 impl Finding {
@@ -101,6 +103,7 @@ impl Finding {
             message: message.into(),
             span: span.into(),
             help: None,
+            severity_override: None,
         }
     }
 
@@ -116,8 +119,8 @@ impl Finding {
         self
     }
 
-    /// The severity (the rule's default).
+    /// The severity: the rule's default unless the settings override it.
     pub fn severity(&self) -> Severity {
-        self.rule.severity
+        self.severity_override.unwrap_or(self.rule.severity)
     }
 }

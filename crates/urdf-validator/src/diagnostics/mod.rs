@@ -2,9 +2,12 @@
 //! verdict vocabulary ([`Status`], [`Confidence`]). Shared by all stages; it imports none of them.
 
 pub mod finding;
+pub mod inline;
 pub mod rules;
+pub mod settings;
 pub mod suggest;
 mod verdict;
 
 pub use finding::{Finding, Section, Severity};
+pub use settings::Settings;
 pub use verdict::{overall_status, Confidence, ConfidenceLevel, Status};

@@ -357,6 +357,16 @@ rules! {
         why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",
         fix: "Follow the message: it says what was missing (an arm, a declared mass, a support polygon, an SRDF group state).",
     }
+    UNUSED_SUPPRESSION = "U801" "unused-suppression" Info {
+        what: "An inline `<!-- urdf-validate: ignore CODE -->` (or `ignore-file`) comment names a rule that has no finding there to suppress (or a rule the configuration does not enable).",
+        why: "A stale suppression hides the next real finding of that rule at that place; like ruff's unused-noqa, it is reported so it can be removed.",
+        fix: "Remove the code from the comment (or the whole comment); check that it sits on the line before the element the finding points at, or on that element's line.",
+    }
+    UNKNOWN_RULE_CODE = "U802" "unknown-rule-code" Warn {
+        what: "A rule code or name in `select`, `ignore`, `per-file-ignores`, `[severity]`, `--select`/`--ignore` or a suppression comment names no rule (or a suppression comment's directive is neither `ignore` nor `ignore-file`).",
+        why: "The setting silently does nothing: the rule meant to be silenced still reports, or the one meant to be enabled never runs.",
+        fix: "Use a code or name from `urdf_validate --list-rules` (the message suggests the closest one).",
+    }
 }
 
 /// Look a rule up by code (`U205`, any case) or name (`inertia-not-positive-definite`).

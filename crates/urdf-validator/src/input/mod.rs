@@ -197,6 +197,15 @@ impl Loaded {
         }
     }
 
+    /// The files the user edits, as (path as findings name it, text): the URDF, or the xacro sources
+    /// (entry file first).
+    pub fn source_texts(&self) -> Vec<(String, &str)> {
+        match &self.origin {
+            Origin::Urdf(source) => vec![(source.path().display().to_string(), source.text())],
+            Origin::Xacro(expanded) => expanded.source_texts(),
+        }
+    }
+
     /// The source texts findings point into (for snippets).
     pub fn into_sources(self) -> Vec<SourceText> {
         match self.origin {

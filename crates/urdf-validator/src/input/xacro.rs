@@ -100,6 +100,15 @@ impl Expanded {
             .collect()
     }
 
+    /// The xacro sources read (entry file first), as (path, text), without copying them.
+    pub fn source_texts(&self) -> Vec<(String, &str)> {
+        self.expansion
+            .sources
+            .iter()
+            .map(|s| (s.path.display().to_string(), s.text.as_str()))
+            .collect()
+    }
+
     /// Warnings of the expansion, with where they are.
     pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
         self.expansion

@@ -92,6 +92,7 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
             Section::Deep,
         ],
     );
+    suppressed_block(&mut out, report);
     let overall = report.overall_status;
     let _ = writeln!(
         out,
@@ -224,6 +225,41 @@ fn findings_block(
                 grouped.join(" + ")
             );
         }
+    }
+}
+
+/// `--show-suppressed`: the findings that do not count, each marked with what suppressed it.
+fn suppressed_block(out: &mut String, report: &Report) {
+    if report.suppressed.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        out,
+        "{}  {} finding(s) suppressed (not counted in the status or the exit code)",
+        paint(BOLD, "[SUPPRESSED]"),
+        report.suppressed.len()
+    );
+    for suppressed in &report.suppressed {
+        let finding = &suppressed.finding;
+        let padded = format!("{:<11}", format!("[{}]", finding.severity.label()));
+        let at = match (&finding.file, finding.line, finding.column) {
+            (Some(file), Some(line), Some(column)) => format!("{file}:{line}:{column} "),
+            _ => String::new(),
+        };
+        let _ = writeln!(
+            out,
+            "  {}{} {}",
+            paint(DIM, &padded),
+            paint(DIM, "suppressed:"),
+            finding.message
+        );
+        let _ = writeln!(
+            out,
+            "     {} {at}{}  {}",
+            paint(CYAN, "-->"),
+            paint(DIM, &format!("{} {}", finding.rule, finding.name)),
+            paint(DIM, &format!("by {}", suppressed.suppressed_by))
+        );
     }
 }
 

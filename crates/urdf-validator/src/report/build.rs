@@ -2,10 +2,10 @@
 //! the schema section and the overall verdict.
 
 use crate::analysis::{mass, Physics};
-use crate::diagnostics::{overall_status, rules, Finding, Section, Severity};
+use crate::diagnostics::{overall_status, rules, Finding, Section, Settings, Severity};
 use crate::input::Loaded;
 use crate::model::Model;
-use crate::report::{FindingReport, Report, SchemaSection, Status};
+use crate::report::{filter, FindingReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
 
 /// What the stages produced for one robot.
@@ -20,6 +20,8 @@ pub struct Outcome<'a> {
     pub findings: Vec<Finding>,
     /// The analyses' sections (`None` when the file is not a robot).
     pub analyses: Option<Physics>,
+    /// Rule selection, severity overrides and suppressions.
+    pub settings: &'a Settings,
 }
 
 /// The report of one robot.
@@ -28,17 +30,18 @@ pub fn build(outcome: Outcome) -> Report {
         loaded,
         robot,
         model,
-        mut findings,
+        findings,
         analyses,
+        settings,
     } = outcome;
-    let mut finding_reports: Vec<FindingReport> = findings
-        .iter()
+    let mut pairs: Vec<(Finding, FindingReport)> = findings
+        .into_iter()
         .map(|finding| {
-            let mut report = finding_report(finding);
+            let mut report = finding_report(&finding);
             if let Some(at) = finding.span.and_then(|span| loaded.locate(span)) {
                 report.place(at);
             }
-            report
+            (finding, report)
         })
         .collect();
     // Expander warnings are located in the xacro sources already (not in the expanded text).
@@ -48,9 +51,11 @@ pub fn build(outcome: Outcome) -> Report {
         if let Some(at) = location {
             report.place(at);
         }
-        finding_reports.push(report);
-        findings.push(finding);
+        pairs.push((finding, report));
     }
+    let filtered = filter::apply(pairs, settings, &loaded.path, &loaded.source_texts());
+    let (findings, finding_reports): (Vec<Finding>, Vec<FindingReport>) =
+        filtered.kept.into_iter().unzip();
     let schema: Vec<&Finding> = findings
         .iter()
         .filter(|f| f.section == Section::Schema)
@@ -96,6 +101,7 @@ pub fn build(outcome: Outcome) -> Report {
         workspace: analyses.as_ref().map(|a| a.workspace.clone()),
         stability: analyses.map(|a| a.stability),
         findings: finding_reports,
+        suppressed: filtered.suppressed,
         timings_ms: None,
     }
 }
@@ -142,7 +148,8 @@ fn messages<'a>(
         .collect()
 }
 
-fn finding_report(finding: &Finding) -> FindingReport {
+/// The report of a finding, not yet positioned.
+pub(super) fn finding_report(finding: &Finding) -> FindingReport {
     FindingReport {
         rule: finding.rule.code.to_string(),
         name: finding.rule.name.to_string(),

@@ -4,11 +4,13 @@
 //! implemented yet (statics, stability, workspace) are absent, never filled with placeholders.
 
 mod build;
+pub mod filter;
 pub mod schema_doc;
 mod timestamp;
 
 pub use crate::timings::Timings;
 pub use build::{build, Outcome};
+pub use filter::SuppressedFinding;
 
 pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
 pub use crate::analysis::stability::{ContactPoint, RaisedContact, StabilitySection};
@@ -70,8 +72,13 @@ pub struct Report {
     /// Reach, task, orientation and self-collision of every arm (absent when the file is not a robot).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub workspace: Option<WorkspaceSection>,
-    /// Every finding with its rule and source position.
+    /// Every finding with its rule and source position (suppressed findings are not among them).
     pub findings: Vec<FindingReport>,
+    /// Findings suppressed by the configuration (`select`, `ignore`, `per-file-ignores`) or an inline
+    /// `<!-- urdf-validate: ignore ... -->` comment, each saying what suppressed it. They do not count
+    /// towards any status or the exit code. Present only with `--show-suppressed`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub suppressed: Vec<SuppressedFinding>,
     /// Milliseconds per pipeline phase (`--timings` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub timings_ms: Option<Timings>,

@@ -1,0 +1,679 @@
+//! Configuration files: `urdf-validate.toml`, or `[tool.urdf-validate]` in `pyproject.toml`, found next to
+//! each input or in a parent folder (the nearest wins), or named with `--config`. The library applies the
+//! resulting [`Settings`]; this module only finds, parses and merges them with the flags.
+//!
+//! ```toml
+//! select = ["ALL"]
+//! ignore = ["U105", "massless-geometry"]
+//! robot-type = "wheeled"
+//! samples = 10000
+//! package-path = ["../deps"]          # relative to this file
+//!
+//! [per-file-ignores]
+//! "legacy/**/*.urdf" = ["U201"]
+//!
+//! [severity]
+//! U201 = "info"
+//! ```
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use clap::parser::ValueSource;
+use clap::{ArgMatches, ValueEnum};
+use serde::Deserialize;
+use toml::Spanned;
+use urdf_validator::diagnostics::settings::{
+    Origin, PerFileIgnore, Selector, Settings, SeverityOverride,
+};
+use urdf_validator::diagnostics::suggest::did_you_mean;
+use urdf_validator::diagnostics::Severity;
+
+use crate::args::{Args, RobotTypeArg};
+
+/// The dedicated configuration file name.
+pub const CONFIG_FILE: &str = "urdf-validate.toml";
+/// Python projects' configuration file (`[tool.urdf-validate]`).
+pub const PYPROJECT: &str = "pyproject.toml";
+
+/// The keys of a configuration table, for suggestions.
+const KEYS: &[&str] = &[
+    "select",
+    "ignore",
+    "per-file-ignores",
+    "severity",
+    "robot-type",
+    "payload-mass",
+    "payload-link",
+    "samples",
+    "seed",
+    "package-path",
+    "contact-links",
+];
+
+/// The configuration table as written.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+struct Raw {
+    select: Option<Vec<Spanned<String>>>,
+    ignore: Option<Vec<Spanned<String>>>,
+    per_file_ignores: Option<BTreeMap<Spanned<String>, Vec<Spanned<String>>>>,
+    severity: Option<BTreeMap<Spanned<String>, Spanned<SeverityName>>>,
+    robot_type: Option<Spanned<String>>,
+    payload_mass: Option<Spanned<f64>>,
+    payload_link: Option<Spanned<String>>,
+    samples: Option<Spanned<usize>>,
+    seed: Option<Spanned<u64>>,
+    package_path: Option<Vec<Spanned<String>>>,
+    contact_links: Option<Spanned<Vec<String>>>,
+}
+
+/// `[severity]` values.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum SeverityName {
+    #[serde(alias = "INFO")]
+    Info,
+    #[serde(alias = "WARN", alias = "warning")]
+    Warn,
+    #[serde(alias = "FAIL")]
+    Fail,
+    #[serde(alias = "CRITICAL")]
+    Critical,
+}
+
+impl From<SeverityName> for Severity {
+    fn from(name: SeverityName) -> Self {
+        match name {
+            SeverityName::Info => Severity::Info,
+            SeverityName::Warn => Severity::Warn,
+            SeverityName::Fail => Severity::Fail,
+            SeverityName::Critical => Severity::Critical,
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+struct Pyproject {
+    tool: Option<Tool>,
+}
+
+#[derive(Debug, Deserialize)]
+struct Tool {
+    #[serde(rename = "urdf-validate")]
+    urdf_validate: Option<Raw>,
+}
+
+/// A value and where it came from.
+#[derive(Clone, Debug)]
+pub struct Setting<T> {
+    /// The value.
+    pub value: T,
+    /// Where it came from.
+    pub origin: Origin,
+}
+
+impl<T> Setting<T> {
+    fn default(value: T) -> Self {
+        Setting {
+            value,
+            origin: Origin::Default,
+        }
+    }
+}
+
+/// What a run uses for the files sharing one configuration: the file's settings merged with the flags
+/// (flags win; `--ignore` and `--package-path` add to the file's).
+#[derive(Clone, Debug)]
+pub struct Effective {
+    /// The configuration file read, if any.
+    pub file: Option<PathBuf>,
+    /// Rule selection and severities, for the library.
+    pub settings: Settings,
+    /// `robot-type`.
+    pub robot_type: Setting<Option<RobotTypeArg>>,
+    /// `payload-mass`.
+    pub payload_mass: Setting<Option<f64>>,
+    /// `payload-link`.
+    pub payload_link: Setting<Option<String>>,
+    /// `samples`.
+    pub samples: Setting<usize>,
+    /// `seed`.
+    pub seed: Setting<u64>,
+    /// `package-path`, each folder with its origin (the flags' first).
+    pub package_path: Vec<Setting<PathBuf>>,
+    /// `contact-links`.
+    pub contact_links: Setting<Option<Vec<String>>>,
+}
+
+impl Effective {
+    /// Copy the merged values into the flags the rest of the program reads.
+    pub fn apply_to(&self, args: &mut Args) {
+        args.robot_type = self.robot_type.value;
+        args.payload_mass = self.payload_mass.value;
+        args.payload_link = self.payload_link.value.clone();
+        args.samples = self.samples.value;
+        args.seed = self.seed.value;
+        args.package_path = self.package_path.iter().map(|p| p.value.clone()).collect();
+        args.contact_links = self.contact_links.value.clone();
+    }
+
+    /// The `--show-config` text.
+    pub fn show(&self) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "# configuration file: {}",
+            self.file
+                .as_ref()
+                .map_or_else(|| "none".to_string(), |p| p.display().to_string())
+        );
+        let selectors = |list: &[Selector]| -> String {
+            let items: Vec<String> = list.iter().map(|s| format!("{:?}", s.text)).collect();
+            format!("[{}]", items.join(", "))
+        };
+        let origins = |list: &[Selector]| -> String {
+            let mut seen: Vec<String> = Vec::new();
+            for s in list {
+                let o = s.origin.to_string();
+                if !seen.contains(&o) {
+                    seen.push(o);
+                }
+            }
+            if seen.is_empty() {
+                "default".to_string()
+            } else {
+                seen.join(", ")
+            }
+        };
+        let mut line = |key: &str, value: String, origin: String| {
+            let _ = writeln!(out, "{key:<17} = {value:<40} # {origin}");
+        };
+        match &self.settings.select {
+            Some(select) => line("select", selectors(select), origins(select)),
+            None => line("select", "[\"ALL\"]".into(), "default".into()),
+        }
+        line(
+            "ignore",
+            selectors(&self.settings.ignore),
+            origins(&self.settings.ignore),
+        );
+        if self.settings.per_file_ignores.is_empty() {
+            line("per-file-ignores", "{}".into(), "default".into());
+        }
+        for p in &self.settings.per_file_ignores {
+            line(
+                &format!("per-file-ignores.{:?}", p.pattern),
+                selectors(&p.rules),
+                p.origin.to_string(),
+            );
+        }
+        if self.settings.severity.is_empty() {
+            line("severity", "{}".into(), "default".into());
+        }
+        for o in &self.settings.severity {
+            line(
+                &format!("severity.{}", o.rule.text),
+                format!("{:?}", o.severity.label().to_ascii_lowercase()),
+                o.rule.origin.to_string(),
+            );
+        }
+        let opt = |v: Option<String>| v.unwrap_or_else(|| "(none)".to_string());
+        line(
+            "robot-type",
+            opt(self
+                .robot_type
+                .value
+                .and_then(|t| t.to_possible_value())
+                .map(|v| format!("{:?}", v.get_name()))),
+            self.robot_type.origin.to_string(),
+        );
+        line(
+            "payload-mass",
+            opt(self.payload_mass.value.map(|m| m.to_string())),
+            self.payload_mass.origin.to_string(),
+        );
+        line(
+            "payload-link",
+            opt(self.payload_link.value.as_ref().map(|l| format!("{l:?}"))),
+            self.payload_link.origin.to_string(),
+        );
+        line(
+            "samples",
+            self.samples.value.to_string(),
+            self.samples.origin.to_string(),
+        );
+        line(
+            "seed",
+            self.seed.value.to_string(),
+            self.seed.origin.to_string(),
+        );
+        let paths: Vec<String> = self
+            .package_path
+            .iter()
+            .map(|p| format!("{:?}", p.value.display().to_string()))
+            .collect();
+        let mut path_origins: Vec<String> = Vec::new();
+        for p in &self.package_path {
+            let o = p.origin.to_string();
+            if !path_origins.contains(&o) {
+                path_origins.push(o);
+            }
+        }
+        line(
+            "package-path",
+            format!("[{}]", paths.join(", ")),
+            if path_origins.is_empty() {
+                "default".to_string()
+            } else {
+                path_origins.join(", ")
+            },
+        );
+        line(
+            "contact-links",
+            opt(self.contact_links.value.as_ref().map(|l| format!("{l:?}"))),
+            self.contact_links.origin.to_string(),
+        );
+        line(
+            "show-suppressed",
+            self.settings.show_suppressed.to_string(),
+            if self.settings.show_suppressed {
+                "command line".to_string()
+            } else {
+                "default".to_string()
+            },
+        );
+        out
+    }
+}
+
+/// The configuration file governing `input`: `urdf-validate.toml`, else a `pyproject.toml` with a
+/// `[tool.urdf-validate]` table, in the input's folder or the nearest parent holding one.
+pub fn discover(input: &Path) -> Option<PathBuf> {
+    let absolute = std::path::absolute(input).unwrap_or_else(|_| input.to_path_buf());
+    let start = if absolute.is_dir() {
+        absolute.as_path()
+    } else {
+        absolute.parent()?
+    };
+    for dir in start.ancestors() {
+        let dedicated = dir.join(CONFIG_FILE);
+        if dedicated.is_file() {
+            return Some(dedicated);
+        }
+        let pyproject = dir.join(PYPROJECT);
+        if pyproject.is_file()
+            && std::fs::read_to_string(&pyproject).is_ok_and(|t| has_tool_table(&t))
+        {
+            return Some(pyproject);
+        }
+    }
+    None
+}
+
+/// True when a `pyproject.toml` text has a `[tool.urdf-validate]` table (or sub-table).
+fn has_tool_table(text: &str) -> bool {
+    text.lines().any(|line| {
+        let line = line.trim();
+        line.starts_with("[tool.urdf-validate]")
+            || line.starts_with("[tool.urdf-validate.")
+            || line.starts_with("[tool.\"urdf-validate\"")
+    }) || toml::from_str::<Pyproject>(text)
+        .ok()
+        .and_then(|p| p.tool)
+        .and_then(|t| t.urdf_validate)
+        .is_some()
+}
+
+/// Read and check the configuration file at `path`, merged with the flags.
+pub fn load(path: Option<&Path>, args: &Args, matches: &ArgMatches) -> Result<Effective, String> {
+    let raw = match path {
+        Some(path) => read(path)?,
+        None => Raw::default(),
+    };
+    merge(path, raw, args, matches)
+}
+
+/// The configuration table of the file at `path`.
+fn read(path: &Path) -> Result<Raw, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| format!("{}: cannot read configuration: {error}", path.display()))?;
+    let is_pyproject = path.file_name().is_some_and(|n| n == PYPROJECT);
+    let parsed = if is_pyproject {
+        toml::from_str::<Pyproject>(&text)
+            .map(|p| p.tool.and_then(|t| t.urdf_validate).unwrap_or_default())
+    } else {
+        toml::from_str::<Raw>(&text)
+    };
+    parsed.map_err(|error| describe_error(path, &text, &error))
+}
+
+/// `path:line:column: message (did you mean ...)` for a TOML or schema error.
+fn describe_error(path: &Path, text: &str, error: &toml::de::Error) -> String {
+    let message = error.message().trim_end().to_string();
+    let at = error
+        .span()
+        .map(|span| {
+            let (line, column) = line_col(text, span.start);
+            format!("{line}:{column}: ")
+        })
+        .unwrap_or_default();
+    let key = error
+        .span()
+        .and_then(|span| key_at(text, span.start))
+        .filter(|key| !message.contains(&format!("`{key}`")))
+        .map(|key| format!("key `{key}`: "))
+        .unwrap_or_default();
+    let mut out = format!(
+        "{}:{at}invalid configuration: {key}{message}",
+        path.display()
+    );
+    if let Some(unknown) = message
+        .strip_prefix("unknown field `")
+        .and_then(|rest| rest.split('`').next())
+    {
+        out.push_str(&format!(
+            " ({})",
+            did_you_mean(unknown, KEYS.iter().copied())
+        ));
+    }
+    out
+}
+
+/// The dotted key whose value holds byte `at` (`samples`, `severity.U201`), from the `key =` on its line
+/// and the table header above it (`[tool.urdf-validate]` left out).
+fn key_at(text: &str, at: usize) -> Option<String> {
+    let before = text.get(..at)?;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = text.get(line_start..)?.lines().next()?;
+    let (key, _) = line.split_once('=')?;
+    let key = key.trim().trim_matches('"');
+    if key.is_empty() || key.starts_with('[') {
+        return None;
+    }
+    let header = before
+        .get(..line_start)?
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(|l| l.trim_matches(|c| c == '[' || c == ']').trim().to_string())
+        .map(|h| {
+            h.strip_prefix("tool.urdf-validate")
+                .map(|rest| rest.trim_start_matches('.').to_string())
+                .unwrap_or(h)
+        })
+        .unwrap_or_default();
+    Some(if header.is_empty() {
+        key.to_string()
+    } else {
+        format!("{header}.{key}")
+    })
+}
+
+/// 1-based (line, column) of byte `at` of `text`.
+fn line_col(text: &str, at: usize) -> (u32, u32) {
+    let before = text.get(..at).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    let column = before.get(start..).map_or(0, |s| s.chars().count()) + 1;
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(column).unwrap_or(u32::MAX),
+    )
+}
+
+/// Merge the file's table with the flags (flags given on the command line win).
+fn merge(
+    path: Option<&Path>,
+    raw: Raw,
+    args: &Args,
+    matches: &ArgMatches,
+) -> Result<Effective, String> {
+    let text = match path {
+        Some(p) => std::fs::read_to_string(p).unwrap_or_default(),
+        None => String::new(),
+    };
+    let origin_at = |span: std::ops::Range<usize>| -> Origin {
+        match path {
+            Some(p) => {
+                let (line, column) = line_col(&text, span.start);
+                Origin::File {
+                    path: p.to_path_buf(),
+                    line,
+                    column,
+                }
+            }
+            None => Origin::Default,
+        }
+    };
+    // String spans include the quotes: point at the text inside them.
+    let inner = |s: &Spanned<String>| -> Origin {
+        let span = s.span();
+        origin_at(span.start.saturating_add(1)..span.end)
+    };
+    let error_at = |span: std::ops::Range<usize>, message: String| -> String {
+        match path {
+            Some(p) => {
+                let (line, column) = line_col(&text, span.start);
+                format!(
+                    "{}:{line}:{column}: invalid configuration: {message}",
+                    p.display()
+                )
+            }
+            None => message,
+        }
+    };
+    let from_cli = |id: &str| matches.value_source(id) == Some(ValueSource::CommandLine);
+    let selectors = |list: &[Spanned<String>]| -> Vec<Selector> {
+        list.iter()
+            .map(|s| Selector::new(s.get_ref().clone(), inner(s)))
+            .collect()
+    };
+    let cli_selectors = |list: &[String]| -> Vec<Selector> {
+        list.iter()
+            .filter(|s| !s.trim().is_empty())
+            .map(|s| Selector::new(s.clone(), Origin::CommandLine))
+            .collect()
+    };
+
+    let mut settings = Settings {
+        base_dir: path.and_then(Path::parent).map(Path::to_path_buf),
+        show_suppressed: args.show_suppressed,
+        ..Settings::default()
+    };
+    settings.select = match (&args.select, &raw.select) {
+        (Some(cli), _) => Some(cli_selectors(cli)),
+        (None, Some(file)) => Some(selectors(file)),
+        (None, None) => None,
+    };
+    settings.ignore = raw.ignore.as_deref().map(selectors).unwrap_or_default();
+    settings.ignore.extend(cli_selectors(&args.ignore));
+    for (pattern, codes) in raw.per_file_ignores.unwrap_or_default() {
+        let entry = PerFileIgnore::new(
+            pattern.get_ref().clone(),
+            selectors(&codes),
+            inner(&pattern),
+        )
+        .map_err(|message| error_at(pattern.span(), format!("per-file-ignores: {message}")))?;
+        settings.per_file_ignores.push(entry);
+    }
+    for (rule, severity) in raw.severity.unwrap_or_default() {
+        settings.severity.push(SeverityOverride {
+            rule: Selector::new(rule.get_ref().clone(), inner(&rule)),
+            severity: (*severity.get_ref()).into(),
+        });
+    }
+
+    let robot_type = if from_cli("robot_type") {
+        Setting {
+            value: args.robot_type,
+            origin: Origin::CommandLine,
+        }
+    } else if let Some(name) = &raw.robot_type {
+        let value = RobotTypeArg::from_str(name.get_ref(), true).map_err(|_| {
+            let names: Vec<String> = RobotTypeArg::value_variants()
+                .iter()
+                .filter_map(|v| v.to_possible_value())
+                .map(|v| v.get_name().to_string())
+                .collect();
+            error_at(
+                name.span(),
+                format!(
+                    "robot-type '{}' is not one of {} ({})",
+                    name.get_ref(),
+                    names.join(", "),
+                    did_you_mean(name.get_ref(), names.iter().map(String::as_str))
+                ),
+            )
+        })?;
+        Setting {
+            value: Some(value),
+            origin: inner(name),
+        }
+    } else {
+        Setting::default(None)
+    };
+    let payload_mass = match (&raw.payload_mass, from_cli("payload_mass")) {
+        (_, true) => Setting {
+            value: args.payload_mass,
+            origin: Origin::CommandLine,
+        },
+        (Some(mass), false) => {
+            let value = *mass.get_ref();
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(error_at(
+                    mass.span(),
+                    format!("payload-mass must be a finite number of kg ≥ 0, not {value}"),
+                ));
+            }
+            Setting {
+                value: Some(value),
+                origin: origin_at(mass.span()),
+            }
+        }
+        (None, false) => Setting::default(None),
+    };
+    let payload_link = match (&raw.payload_link, from_cli("payload_link")) {
+        (_, true) => Setting {
+            value: args.payload_link.clone(),
+            origin: Origin::CommandLine,
+        },
+        (Some(link), false) => Setting {
+            value: Some(link.get_ref().clone()),
+            origin: inner(link),
+        },
+        (None, false) => Setting::default(None),
+    };
+    let samples = match (&raw.samples, from_cli("samples")) {
+        (_, true) => Setting {
+            value: args.samples,
+            origin: Origin::CommandLine,
+        },
+        (Some(samples), false) => {
+            if *samples.get_ref() == 0 {
+                return Err(error_at(
+                    samples.span(),
+                    "samples must be at least 1".into(),
+                ));
+            }
+            Setting {
+                value: *samples.get_ref(),
+                origin: origin_at(samples.span()),
+            }
+        }
+        (None, false) => Setting::default(args.samples),
+    };
+    let seed = match (&raw.seed, from_cli("seed")) {
+        (_, true) => Setting {
+            value: args.seed,
+            origin: Origin::CommandLine,
+        },
+        (Some(seed), false) => Setting {
+            value: *seed.get_ref(),
+            origin: origin_at(seed.span()),
+        },
+        (None, false) => Setting::default(args.seed),
+    };
+    let mut package_path: Vec<Setting<PathBuf>> = args
+        .package_path
+        .iter()
+        .map(|p| Setting {
+            value: p.clone(),
+            origin: Origin::CommandLine,
+        })
+        .collect();
+    let base = path.and_then(Path::parent).unwrap_or(Path::new(""));
+    for folder in raw.package_path.iter().flatten() {
+        package_path.push(Setting {
+            value: base.join(folder.get_ref()),
+            origin: inner(folder),
+        });
+    }
+    let contact_links = match (&raw.contact_links, from_cli("contact_links")) {
+        (_, true) => Setting {
+            value: args.contact_links.clone(),
+            origin: Origin::CommandLine,
+        },
+        (Some(links), false) => Setting {
+            value: Some(links.get_ref().clone()),
+            origin: origin_at(links.span()),
+        },
+        (None, false) => Setting::default(None),
+    };
+    Ok(Effective {
+        file: path.map(Path::to_path_buf),
+        settings,
+        robot_type,
+        payload_mass,
+        payload_link,
+        samples,
+        seed,
+        package_path,
+        contact_links,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_keys_name_the_line_and_the_closest_key() {
+        let text = "ignore = [\"U105\"]\nselct = [\"U2\"]\n";
+        let error = toml::from_str::<Raw>(text).map(|_| ()).unwrap_err();
+        let message = describe_error(Path::new("urdf-validate.toml"), text, &error);
+        assert!(
+            message.starts_with(
+                "urdf-validate.toml:2:1: invalid configuration: unknown field `selct`"
+            ),
+            "{message}"
+        );
+        assert!(message.contains("did you mean 'select'?"), "{message}");
+    }
+
+    #[test]
+    fn type_errors_name_the_key() {
+        let text = "[tool.urdf-validate]\nsamples = \"many\"\n\n[tool.urdf-validate.severity]\nU201 = \"loud\"\n";
+        let error = toml::from_str::<Pyproject>(text).map(|_| ()).unwrap_err();
+        let message = describe_error(Path::new("pyproject.toml"), text, &error);
+        assert!(
+            message.starts_with("pyproject.toml:2:11: invalid configuration: key `samples`: "),
+            "{message}"
+        );
+        assert_eq!(
+            key_at(text, text.find("\"loud").unwrap_or(0)).as_deref(),
+            Some("severity.U201")
+        );
+    }
+
+    #[test]
+    fn pyproject_tables_are_recognised() {
+        assert!(has_tool_table("[tool.urdf-validate]\nignore = []\n"));
+        assert!(has_tool_table(
+            "[tool.urdf-validate.severity]\nU201 = \"info\"\n"
+        ));
+        assert!(!has_tool_table("[tool.ruff]\nselect = []\n"));
+    }
+}
