@@ -327,8 +327,14 @@ fn tripod_on_capsules(rpy: &str) -> String {
 
 #[test]
 fn capsule_feet_touch_at_their_rounded_ends() {
+    // Three fixed feet and nothing that moves: an object, whose stability is N/A. Declared a robot of
+    // unknown type, it stands on its lowest geometry: the three capsules.
+    let declared = || Overrides {
+        robot_type: Some(RobotType::Unknown),
+        ..Overrides::default()
+    };
     // Upright: the lowest point is the bottom of the lower cap, 0.05 − 0.1 − 0.05 = −0.1.
-    let report = report(&tripod_on_capsules("0 0 0"));
+    let report = report_with(&tripod_on_capsules("0 0 0"), declared());
     assert!(
         report.findings.iter().all(|f| f.rule != "U011"),
         "capsules in a 1.1 file are fine"
@@ -347,12 +353,9 @@ fn capsule_feet_touch_at_their_rounded_ends() {
     );
     // Lying along x: the lowest points are the whole bottom line of the cylinder part, at 0.05 − 0.05 = 0;
     // the support hull grows by the half-length on each foot, so the margin is at least the point-foot one.
-    let s = report_with(
-        &tripod_on_capsules("0 1.5707963267948966 0"),
-        Overrides::default(),
-    )
-    .stability
-    .unwrap();
+    let s = report_with(&tripod_on_capsules("0 1.5707963267948966 0"), declared())
+        .stability
+        .unwrap();
     assert!(
         s.ground_height.unwrap().abs() < 1e-9,
         "{:?}",
