@@ -225,10 +225,7 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                     *f
                 })
                 .collect();
-            let mut out = format!("{}\n", joint.summary);
-            if let Some(margin) = joint.margin {
-                let _ = writeln!(out, "margin: {margin:.2}×");
-            }
+            let out = format!("{}\n", joint.summary);
             cases.push(case(
                 format!("statics: {}", joint.name),
                 joint.status,
