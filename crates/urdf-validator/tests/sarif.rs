@@ -89,10 +89,16 @@ fn sarif_of_a_broken_robot_and_an_unreadable_input_is_valid() {
         "{:?}",
         validation.report.findings
     );
-    let unreported = [Unreported {
-        file: dir.join("missing.urdf").display().to_string(),
-        error: "cannot read: No such file or directory".into(),
-    }];
+    let unreported = [
+        Unreported {
+            file: dir.join("missing.urdf").display().to_string(),
+            error: "cannot read: No such file or directory".into(),
+        },
+        Unreported {
+            file: String::new(),
+            error: "robots/: no URDF or xacro file below it".into(),
+        },
+    ];
     let options = FormatOptions {
         base_dir: Some(dir.clone()),
         rules_url: Some("https://example.org/urdf-validator/blob/main/docs/rules.md".into()),
@@ -140,6 +146,10 @@ fn sarif_of_a_broken_robot_and_an_unreadable_input_is_valid() {
 fn the_schema_refuses_a_result_without_message() {
     let bad = r#"{"version":"2.1.0","runs":[{"tool":{"driver":{"name":"x"}},"results":[{"ruleId":"U001"}]}]}"#;
     let value: Value = serde_json::from_str(bad).unwrap();
+    assert!(!schema().is_valid(&value));
+    // Formats are checked: a helpUri must be a URI.
+    let bad_uri = r#"{"version":"2.1.0","runs":[{"tool":{"driver":{"name":"x","rules":[{"id":"U001","helpUri":"not a uri"}]}}}]}"#;
+    let value: Value = serde_json::from_str(bad_uri).unwrap();
     assert!(!schema().is_valid(&value));
 }
 

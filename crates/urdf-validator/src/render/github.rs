@@ -77,10 +77,17 @@ pub fn render_github(
         }
     }
     for input in unreported {
+        let file = if input.file.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "file={},",
+                escape_property(DisplayPath::new(&input.file, base).as_str())
+            )
+        };
         let _ = writeln!(
             out,
-            "::error file={},title=urdf_validate::{}",
-            escape_property(DisplayPath::new(&input.file, base).as_str()),
+            "::error {file}title=urdf_validate::{}",
             escape_data(&input.error)
         );
     }
@@ -114,10 +121,14 @@ pub fn render_step_summary(
         );
     }
     for input in unreported {
+        let file = if input.file.is_empty() {
+            String::new()
+        } else {
+            format!("`{}`", cell(DisplayPath::new(&input.file, base).as_str()))
+        };
         let _ = writeln!(
             out,
-            "| — | `{}` | ❌ ERROR: {} | | | | |",
-            cell(DisplayPath::new(&input.file, base).as_str()),
+            "| — | {file} | ❌ ERROR: {} | | | | |",
             cell(&input.error)
         );
     }

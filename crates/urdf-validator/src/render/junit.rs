@@ -26,9 +26,17 @@ pub fn render_junit(
     let base = options.base_dir.as_deref();
     let mut suites: Vec<Suite> = validations.iter().map(|v| suite(&v.report, base)).collect();
     suites.extend(unreported.iter().map(|input| {
-        let file = DisplayPath::new(&input.file, base).as_str().to_string();
+        let file = if input.file.is_empty() {
+            String::new()
+        } else {
+            DisplayPath::new(&input.file, base).as_str().to_string()
+        };
+        let name = match stem(&input.file) {
+            name if name.is_empty() => "input".to_string(),
+            name => name,
+        };
         Suite {
-            name: stem(&input.file),
+            name,
             file: file.clone(),
             timestamp: None,
             properties: Vec::new(),
@@ -36,7 +44,7 @@ pub fn render_junit(
                 name: "load".into(),
                 outcome: Outcome::Error {
                     message: input.error.clone(),
-                    body: format!("{file}: {}", input.error),
+                    body: input.error.clone(),
                 },
                 out: String::new(),
             }],

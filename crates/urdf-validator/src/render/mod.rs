@@ -42,7 +42,7 @@ pub struct FormatOptions {
 /// for every input (SARIF, JUnit, GitHub) list it as an error.
 #[derive(Clone, Debug)]
 pub struct Unreported {
-    /// The input, as given.
+    /// The input, as given (empty when the error names no file, such as a folder that cannot be read).
     pub file: String,
     /// Why there is no report (one line).
     pub error: String,

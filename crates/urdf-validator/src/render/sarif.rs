@@ -107,11 +107,20 @@ fn sarif_log(
     let notifications: Vec<Value> = unreported
         .iter()
         .map(|input| {
-            json!({
+            let mut notification = json!({
                 "level": "error",
                 "message": { "text": input.error },
-                "locations": [location(&Place { file: &input.file, region: None }, base)],
-            })
+            });
+            if !input.file.is_empty() {
+                notification["locations"] = json!([location(
+                    &Place {
+                        file: &input.file,
+                        region: None
+                    },
+                    base
+                )]);
+            }
+            notification
         })
         .collect();
 
