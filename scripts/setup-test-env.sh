@@ -18,6 +18,7 @@ TEST_PACKAGES=(
     "xacro==2.1.1"              # oracle for the native xacro expander's differential tests (.venv/bin/xacro)
     "pyyaml==6.0.3"             # xacro's load_yaml
     "ros-ament-index-python==1.11.0" # xacro's $(find pkg) without ROS (AMENT_PREFIX_PATH resource index)
+    "junitparser==5.0.3"        # a real JUnit consumer for the --format junit tests (crates/cli/tests/formats.rs)
 )
 # ---------------------------------------------------------------------------------------------------------
 

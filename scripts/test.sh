@@ -15,6 +15,8 @@ export URDF_VALIDATOR_CORPUS="$corpus"
 echo "test.sh: URDF_VALIDATOR_CORPUS=$URDF_VALIDATOR_CORPUS" >&2
 # Python xacro 2.1.1 (installed by setup-test-env.sh): the oracle of crates/xacro's differential tests.
 export URDF_VALIDATOR_XACRO="$repo_root/.venv/bin/xacro"
+# The venv's Python with junitparser: reads the --format junit output as a CI would (crates/cli/tests/formats.rs).
+export URDF_VALIDATOR_PYTHON="$repo_root/.venv/bin/python"
 
 shared_robots="$repo_root/../shared/robots"
 if [[ -d "$shared_robots" ]]; then

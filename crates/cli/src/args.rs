@@ -116,9 +116,22 @@ pub struct Args {
     #[arg(long)]
     pub detailed: bool,
 
-    /// What to print on stdout: the text report, or the JSON report(s).
-    #[arg(long, value_enum, default_value_t = Format::Text)]
-    pub format: Format,
+    /// Output formats, comma-separated: text (terminal), json (the report, on stdout when listed without
+    /// text), sarif, junit, html (files `<name>_validation.sarif|.xml|.html` beside each input or in
+    /// --output-dir), github (annotations; automatic when GITHUB_ACTIONS=true).
+    #[arg(
+        long,
+        value_enum,
+        value_name = "LIST",
+        value_delimiter = ',',
+        default_value = "text"
+    )]
+    pub format: Vec<Format>,
+
+    /// Write the one --format to FILE instead, every input in one document (one SARIF run, one JUnit file
+    /// with a suite per robot, a JSON array); `-` for stdout.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
 
     /// List every finding, each with its source snippet.
     #[arg(short, long)]
@@ -128,7 +141,7 @@ pub struct Args {
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
 
-    /// Do not write JSON report files.
+    /// Do not write report files (JSON, and the SARIF, JUnit and HTML files of --format).
     #[arg(long)]
     pub no_write: bool,
 
@@ -274,13 +287,47 @@ impl From<RobotTypeArg> for urdf_validator::analysis::classify::RobotType {
     }
 }
 
-/// Output format on stdout.
+/// `--format` values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
-    /// Human-readable report.
+    /// Human-readable report on stdout.
     Text,
-    /// The JSON report: an object for one named file, an array for directories and several inputs.
+    /// The JSON report: always written as a file (unless --no-write); on stdout when listed without
+    /// text: an object for one named file, an array for directories and several inputs.
     Json,
+    /// SARIF 2.1.0 for code scanning: `<name>_validation.sarif`.
+    Sarif,
+    /// JUnit XML, one test case per check: `<name>_validation.xml`.
+    Junit,
+    /// GitHub Actions annotations on stdout, and the step summary when GITHUB_STEP_SUMMARY is set.
+    Github,
+    /// An HTML page: `<name>_validation.html`.
+    Html,
+}
+
+impl Format {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Text => "text",
+            Format::Json => "json",
+            Format::Sarif => "sarif",
+            Format::Junit => "junit",
+            Format::Github => "github",
+            Format::Html => "html",
+        }
+    }
+
+    /// The extension of its report file (`None`: a terminal format).
+    pub fn extension(self) -> Option<&'static str> {
+        match self {
+            Format::Json => Some("json"),
+            Format::Sarif => Some("sarif"),
+            Format::Junit => Some("xml"),
+            Format::Html => Some("html"),
+            Format::Text | Format::Github => None,
+        }
+    }
 }
 
 /// When to colour.

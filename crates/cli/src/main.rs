@@ -24,6 +24,7 @@ macro_rules! errln {
 
 mod args;
 mod config;
+mod formats;
 mod inputs;
 mod outputs;
 mod progress;
@@ -43,10 +44,11 @@ use urdf_validator::analysis::Overrides;
 use urdf_validator::diagnostics::rules;
 use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
-use urdf_validator::render::{render_text, TextOptions};
+use urdf_validator::render::FormatOptions;
 use urdf_validator::Options;
 
 use args::{Args, ColorChoice, Format};
+use formats::{GithubEnv, Plan};
 use outputs::Outcome;
 
 fn main() -> ExitCode {
@@ -196,25 +198,43 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             return 2;
         }
     };
-    let report_paths = outputs::report_paths(&files, args.output_dir.as_deref());
+    let plan = match Plan::new(&args, &GithubEnv::from_env()) {
+        Ok(plan) => plan,
+        Err(message) => {
+            errln!("error: {message}");
+            return 2;
+        }
+    };
+    if matches!(plan.output, Some((Format::Html, _))) && files.len() + input_errors.len() != 1 {
+        errln!(
+            "error: --format html --output takes one input (got {}); without --output each input gets its own page",
+            files.len() + input_errors.len()
+        );
+        return 2;
+    }
+    let format_options = FormatOptions {
+        base_dir: std::env::current_dir().ok(),
+        rules_url: rules_url(),
+    };
+    let files_to_write = outputs::Files {
+        formats: plan.file_formats.clone(),
+        options: format_options.clone(),
+    };
+    let bases = outputs::report_bases(&files, args.output_dir.as_deref());
     let progress = progress::Bar::for_batch(files.len());
     let outcomes: Vec<Outcome> = files
         .par_iter()
-        .zip(report_paths.par_iter())
+        .zip(bases.par_iter())
         .zip(config_of.par_iter())
-        .map(|((file, report_path), config)| {
+        .map(|((file, base), config)| {
             let options = groups
                 .iter()
                 .find(|(p, _)| p == config)
                 .map(|(_, options)| options);
             let outcome = match options {
-                Some(options) => outputs::validate_one(
-                    file,
-                    report_path.as_deref(),
-                    options,
-                    args.no_write,
-                    timeout,
-                ),
+                Some(options) => {
+                    outputs::validate_one(file, base, options, &files_to_write, timeout)
+                }
                 None => outputs::Outcome::not_configured(file),
             };
             progress.tick(file);
@@ -223,13 +243,29 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         .collect();
     progress.finish();
     let single_file = paths.len() == 1 && !paths[0].is_dir();
-    print_outcomes(&args, single_file, &outcomes, &input_errors);
+    let written = formats::emit(
+        &plan,
+        &args,
+        single_file,
+        &outcomes,
+        &input_errors,
+        &format_options,
+    );
     let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
-    if input_errors.is_empty() {
+    if input_errors.is_empty() && written {
         worst
     } else {
         2
     }
+}
+
+/// The rules reference on the web, for SARIF `helpUri`s: `docs/rules.md` of the repository named in
+/// Cargo.toml (`repository`); none when it names none.
+fn rules_url() -> Option<String> {
+    option_env!("CARGO_PKG_REPOSITORY")
+        .map(|url| url.trim_end_matches('/'))
+        .filter(|url| !url.is_empty())
+        .map(|url| format!("{url}/blob/main/docs/rules.md"))
 }
 
 fn explain(code: &str) -> u8 {
@@ -245,62 +281,6 @@ fn explain(code: &str) -> u8 {
                 urdf_validator::diagnostics::suggest::did_you_mean(code, names)
             );
             2
-        }
-    }
-}
-
-/// Print every outcome. `single_file`: one file was named, so the JSON is that report as an object (or
-/// nothing when it cannot be loaded); otherwise an array.
-fn print_outcomes(args: &Args, single_file: bool, outcomes: &[Outcome], input_errors: &[String]) {
-    let mut stdout = anstream::stdout().lock();
-    let mut stderr = anstream::stderr().lock();
-    for error in input_errors {
-        let _ = writeln!(stderr, "error: {error}");
-    }
-    match args.format {
-        Format::Json => {
-            let reports: Vec<&urdf_validator::report::Report> = outcomes
-                .iter()
-                .filter_map(|o| o.validation.as_ref().ok())
-                .map(|v| &v.report)
-                .collect();
-            let text = match reports.as_slice() {
-                [one] if single_file => Some(serde_json::to_string_pretty(one)),
-                [] if single_file => None,
-                many => Some(serde_json::to_string_pretty(many)),
-            };
-            if let Some(text) = text {
-                let _ = writeln!(stdout, "{}", text.unwrap_or_default());
-            }
-            for outcome in outcomes {
-                if let Err(error) = &outcome.validation {
-                    let _ = writeln!(stderr, "error: {error}");
-                }
-            }
-        }
-        Format::Text => {
-            for outcome in outcomes {
-                match &outcome.validation {
-                    Ok(validation) if !args.quiet => {
-                        let options = TextOptions {
-                            verbose: args.verbose,
-                            detailed: args.detailed,
-                            report_path: outcome.written.clone(),
-                        };
-                        let _ = write!(stdout, "{}", render_text(validation, &options));
-                    }
-                    Ok(_) => {}
-                    Err(error) => {
-                        let _ = writeln!(stderr, "error: {error}");
-                    }
-                }
-                if let Some(error) = &outcome.write_error {
-                    let _ = writeln!(stderr, "error: {error}");
-                }
-            }
-            if outcomes.len() > 1 || args.quiet {
-                let _ = write!(stdout, "{}", outputs::summary_table(outcomes));
-            }
         }
     }
 }

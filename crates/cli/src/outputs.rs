@@ -1,4 +1,4 @@
-//! Running one file, writing its report, and the summary table of a batch.
+//! Running one file, writing its report files, and the summary table of a batch.
 
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -7,9 +7,12 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use urdf_validator::input::LoadError;
+use urdf_validator::render::{render_html, render_json, render_junit, render_sarif, FormatOptions};
 use urdf_validator::report::Status;
 use urdf_validator::timings::Progress;
 use urdf_validator::{validate, Options, Validation};
+
+use crate::args::Format;
 
 /// What happened to one input.
 pub struct Outcome {
@@ -19,6 +22,8 @@ pub struct Outcome {
     pub validation: Result<Validation, LoadError>,
     /// Where the JSON report was written.
     pub written: Option<String>,
+    /// The other report files written (SARIF, JUnit, HTML).
+    pub also_written: Vec<String>,
     /// Why the JSON report could not be written.
     pub write_error: Option<String>,
 }
@@ -33,6 +38,7 @@ impl Outcome {
                 message: "no settings for this file".to_string(),
             }),
             written: None,
+            also_written: Vec::new(),
             write_error: None,
         }
     }
@@ -56,9 +62,10 @@ fn stem(file: &Path) -> String {
     name.to_string()
 }
 
-/// The report path of each file: `<stem>_validation.json` beside it or in `output_dir`. Two inputs that
-/// would share a report file in `output_dir` get `_2`, `_3`, ... in input order.
-pub fn report_paths(files: &[PathBuf], output_dir: Option<&Path>) -> Vec<Option<PathBuf>> {
+/// The report files of each input, without extension: `<stem>_validation` beside it or in `output_dir`
+/// (`.json`, `.sarif`, ... are appended). Two inputs that would share a report file in `output_dir` get
+/// `_2`, `_3`, ... in input order.
+pub fn report_bases(files: &[PathBuf], output_dir: Option<&Path>) -> Vec<PathBuf> {
     let mut used: HashMap<PathBuf, usize> = HashMap::new();
     files
         .iter()
@@ -70,13 +77,29 @@ pub fn report_paths(files: &[PathBuf], output_dir: Option<&Path>) -> Vec<Option<
             let count = used.entry(dir.join(&base)).or_insert(0);
             *count += 1;
             let name = if *count == 1 {
-                format!("{base}_validation.json")
+                format!("{base}_validation")
             } else {
-                format!("{base}_{count}_validation.json")
+                format!("{base}_{count}_validation")
             };
-            Some(dir.join(name))
+            dir.join(name)
         })
         .collect()
+}
+
+/// `base` with `.ext` appended (`robot_validation` → `robot_validation.sarif`).
+pub fn with_extension(base: &Path, ext: &str) -> PathBuf {
+    let mut path = base.as_os_str().to_owned();
+    path.push(".");
+    path.push(ext);
+    PathBuf::from(path)
+}
+
+/// The report files to write for each input.
+pub struct Files {
+    /// The formats written as files (`json`, `sarif`, `junit`, `html`); empty with `--no-write`.
+    pub formats: Vec<Format>,
+    /// Paths and rule links for SARIF and JUnit.
+    pub options: FormatOptions,
 }
 
 /// Validate `file`, giving up after `timeout` (`None`: no limit). A run that does not finish in time is
@@ -120,12 +143,12 @@ fn validate_within(
     })
 }
 
-/// Validate one file (within `timeout`) and write its report unless `no_write`.
+/// Validate one file (within `timeout`) and write its report files (`<base>.json`, `.sarif`, ...).
 pub fn validate_one(
     file: &Path,
-    report_path: Option<&Path>,
+    base: &Path,
     options: &Options,
-    no_write: bool,
+    files: &Files,
     timeout: Option<Duration>,
 ) -> Outcome {
     let validation = validate_within(file, options, timeout);
@@ -133,26 +156,43 @@ pub fn validate_one(
         file: file.to_path_buf(),
         validation,
         written: None,
+        also_written: Vec::new(),
         write_error: None,
     };
-    if let (Ok(validation), Some(path), false) = (&outcome.validation, report_path, no_write) {
-        match write_report(validation, path) {
-            Ok(()) => outcome.written = Some(path.display().to_string()),
-            Err(error) => {
-                outcome.write_error =
-                    Some(format!("{}: cannot write report: {error}", path.display()))
-            }
+    let Ok(validation) = &outcome.validation else {
+        return outcome;
+    };
+    let mut errors = Vec::new();
+    for &format in &files.formats {
+        let Some(ext) = format.extension() else {
+            continue;
+        };
+        let path = with_extension(base, ext);
+        let text = match format {
+            Format::Json => render_json(&validation.report),
+            Format::Sarif => render_sarif(&[validation], &[], &files.options),
+            Format::Junit => render_junit(&[validation], &[], &files.options),
+            Format::Html => render_html(validation),
+            Format::Text | Format::Github => continue,
+        };
+        match write_file(&path, &text) {
+            Ok(()) if format == Format::Json => outcome.written = Some(path.display().to_string()),
+            Ok(()) => outcome.also_written.push(path.display().to_string()),
+            Err(error) => errors.push(format!("{}: cannot write report: {error}", path.display())),
         }
+    }
+    if !errors.is_empty() {
+        outcome.write_error = Some(errors.join("\nerror: "));
     }
     outcome
 }
 
-fn write_report(validation: &Validation, path: &Path) -> std::io::Result<()> {
+/// Write `text` to `path`, creating its folder.
+pub fn write_file(path: &Path, text: &str) -> std::io::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
-    let json = serde_json::to_string_pretty(&validation.report).map_err(std::io::Error::other)?;
-    std::fs::write(path, json + "\n")
+    std::fs::write(path, text)
 }
 
 /// The table printed after a batch.
