@@ -1,4 +1,4 @@
-//! The report formats (`--format sarif,junit,github`, `--output`): insta snapshots of each over the
+//! The report formats (`--format sarif,junit,github,html`, `--output`): insta snapshots of each over the
 //! reference robots, the JUnit XML read by a real consumer (Python `junitparser`, pinned in
 //! scripts/setup-test-env.sh, found through `URDF_VALIDATOR_PYTHON`), and the routing rules of
 //! `--format`/`--output`/`--no-write`/`GITHUB_ACTIONS`. The SARIF schema test is
@@ -219,7 +219,7 @@ fn check_junit_with_consumer(python: &Path, junit: &Path, reports: &[Value]) {
 fn check(name: &str, dir: &Path, file: &str, flags: &[&str]) {
     let out_dir = scratch(name);
     let summary = out_dir.join("summary.md");
-    let mut args = vec![file, "--format", "sarif,junit,github", "--output-dir"];
+    let mut args = vec![file, "--format", "sarif,junit,github,html", "--output-dir"];
     let out_dir_str = out_dir.display().to_string();
     args.push(&out_dir_str);
     args.extend(flags);
@@ -260,7 +260,7 @@ fn check(name: &str, dir: &Path, file: &str, flags: &[&str]) {
     );
 
     let description = format!(
-        "urdf_validate {} --format sarif,junit,github",
+        "urdf_validate {} --format sarif,junit,github,html",
         [file]
             .iter()
             .chain(flags)
@@ -286,6 +286,12 @@ fn check(name: &str, dir: &Path, file: &str, flags: &[&str]) {
             format!("{name}__step_summary"),
             redact(&std::fs::read_to_string(&summary).unwrap(), &redactions)
         );
+        // The page's text (what a reader sees, the plots' labels included), not its markup.
+        let timestamp = report["timestamp"].as_str().unwrap_or_default();
+        insta::assert_snapshot!(
+            format!("{name}__html_text"),
+            redact(&html_text(&read("html")), &redactions).replace(timestamp, "[TIMESTAMP]")
+        );
     });
     if let Some(python) = junit_python() {
         check_junit_with_consumer(
@@ -294,6 +300,26 @@ fn check(name: &str, dir: &Path, file: &str, flags: &[&str]) {
             &[report],
         );
     }
+}
+
+/// The text of an HTML page, one text node a line: tags, `<style>` blocks and blank lines left out.
+fn html_text(html: &str) -> String {
+    let mut lines = Vec::new();
+    let mut rest = html;
+    while let Some(start) = rest.find('<') {
+        let text = rest[..start].trim();
+        if !text.is_empty() {
+            lines.push(text.split_whitespace().collect::<Vec<_>>().join(" "));
+        }
+        let tag = &rest[start..];
+        let skip_to = if tag.starts_with("<style") {
+            tag.find("</style>").map(|i| i + "</style>".len())
+        } else {
+            tag.find('>').map(|i| i + 1)
+        };
+        rest = &tag[skip_to.unwrap_or(tag.len())..];
+    }
+    lines.join("\n") + "\n"
 }
 
 fn redact_json(value: &mut Value, dirs: &[(&Path, &str)]) {
