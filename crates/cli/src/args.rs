@@ -72,7 +72,7 @@ pub struct Args {
     #[arg(long, value_name = "LINK")]
     pub payload_link: Option<String>,
 
-    /// Declare the robot category (the structural heuristic still runs; a disagreement is a warning).
+    /// Declare the robot category (the structural heuristic still runs; a disagreement is an INFO, U730).
     #[arg(long, value_enum, value_name = "TYPE")]
     pub robot_type: Option<RobotTypeArg>,
 
