@@ -15,36 +15,9 @@ use std::process::Command;
 
 use serde_json::Value;
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("repository root")
-}
+mod common;
 
-/// `../shared/robots`, canonical; `None` (with a message) when absent outside CI.
-fn shared_robots() -> Option<PathBuf> {
-    const VAR: &str = "URDF_VALIDATOR_SHARED_ROBOTS";
-    let dir = std::env::var_os(VAR)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| repo_root().join("../shared/robots"));
-    match dir.canonicalize() {
-        Ok(dir) if dir.is_dir() => Some(dir),
-        _ if std::env::var_os("CI").is_some() => {
-            panic!(
-                "../shared/robots is absent under CI ({} not found; set {VAR})",
-                dir.display()
-            )
-        }
-        _ => {
-            eprintln!(
-                "skipping: ../shared/robots is absent ({} not found; set {VAR})",
-                dir.display()
-            );
-            None
-        }
-    }
-}
+use common::{repo_root, shared_robots};
 
 /// The venv Python with junitparser (`URDF_VALIDATOR_PYTHON`, else `.venv/bin/python`); `None` (with a
 /// message) when it is missing outside CI.
