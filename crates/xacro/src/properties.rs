@@ -3,7 +3,7 @@
 
 use std::cell::RefCell;
 use std::collections::HashMap;
-use std::rc::Rc;
+use std::rc::{Rc, Weak};
 
 use crate::document::{Loc, NodeRef};
 use crate::expr::Value;
@@ -30,19 +30,44 @@ pub(crate) struct Table {
     pub entries: RefCell<HashMap<String, Entry>>,
     /// Names being resolved right now (circular definitions).
     pub resolving: RefCell<Vec<String>>,
-    pub parent: Option<TableRef>,
+    /// The enclosing scope (`None` at the global table).
+    parent: Option<ParentLink>,
     /// A `NameSpace` (from an include with `ns`), skipped by `scope="parent"` from a macro.
     pub is_namespace: bool,
 }
 
+/// How a table reaches its enclosing scope.
+///
+/// A namespace table is stored in its parent's entries, so it holds its parent weakly: a strong link both
+/// ways would be a reference cycle that outlives the expansion (every namespaced include leaked its tables).
+/// A namespace is reachable only through its parent, so the parent is alive whenever the namespace is used.
+#[derive(Debug)]
+enum ParentLink {
+    Scope(TableRef),
+    Owner(Weak<Table>),
+}
+
 impl Table {
-    /// A new scope below `parent`.
+    /// A new scope below `parent`; a namespace (`is_namespace`) is owned by `parent`'s entries.
     pub fn child(parent: &TableRef, is_namespace: bool) -> TableRef {
+        let link = if is_namespace {
+            ParentLink::Owner(Rc::downgrade(parent))
+        } else {
+            ParentLink::Scope(parent.clone())
+        };
         Rc::new(Table {
-            parent: Some(parent.clone()),
+            parent: Some(link),
             is_namespace,
             ..Default::default()
         })
+    }
+
+    /// The enclosing scope, if any.
+    pub fn parent(&self) -> Option<TableRef> {
+        match self.parent.as_ref()? {
+            ParentLink::Scope(table) => Some(table.clone()),
+            ParentLink::Owner(table) => table.upgrade(),
+        }
     }
 
     /// The table holding `name`, innermost first.
@@ -52,7 +77,7 @@ impl Table {
             if table.entries.borrow().contains_key(name) {
                 return Some(table);
             }
-            t = table.parent.clone();
+            t = table.parent();
         }
         None
     }
@@ -60,7 +85,7 @@ impl Table {
     /// The global table (the one below Python's root of built-ins).
     pub fn top(self: &Rc<Self>) -> TableRef {
         let mut t = self.clone();
-        while let Some(p) = t.parent.clone() {
+        while let Some(p) = t.parent() {
             t = p;
         }
         t
@@ -97,7 +122,7 @@ impl Table {
         let mut t = Some(self.clone());
         while let Some(table) = t {
             table.entries.borrow_mut().remove(name);
-            t = table.parent.clone();
+            t = table.parent();
         }
     }
 
@@ -114,7 +139,7 @@ impl Table {
                     .filter(|k| !k.starts_with('*'))
                     .cloned(),
             );
-            t = table.parent.clone();
+            t = table.parent();
         }
         names
     }
@@ -187,6 +212,21 @@ pub(crate) fn boolean_value(value: &Value) -> Option<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_namespace_table_is_freed_with_its_parent() {
+        let global: TableRef = Rc::default();
+        let namespace = Table::child(&global, true);
+        global.set_entry("ns", Entry::Namespace(namespace.clone()));
+        assert!(Rc::ptr_eq(&namespace.parent().expect("parent"), &global));
+        let weak = Rc::downgrade(&namespace);
+        drop(namespace);
+        drop(global);
+        assert!(
+            weak.upgrade().is_none(),
+            "the namespace outlived its parent: a cycle"
+        );
+    }
 
     #[test]
     fn literals_follow_python_xacro() {

@@ -96,13 +96,13 @@ impl Expander<'_> {
                 lazy = false;
                 symbols.top()
             }
-            Some("parent") => match &symbols.parent {
+            Some("parent") => match symbols.parent() {
                 Some(parent) => {
                     lazy = false;
-                    let mut target = parent.clone();
+                    let mut target = parent;
                     if !symbols.is_namespace {
                         while target.is_namespace {
-                            match target.parent.clone() {
+                            match target.parent() {
                                 Some(p) => target = p,
                                 None => break,
                             }
