@@ -31,6 +31,7 @@ pub mod model;
 pub mod render;
 pub mod report;
 pub mod rng;
+pub mod task_query;
 pub mod timings;
 pub mod urdf;
 

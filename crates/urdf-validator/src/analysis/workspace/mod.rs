@@ -303,7 +303,10 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         )),
         _ => None,
     };
-    let target_height = ctx.options.task.map(|t| scene.ground + t.height());
+    let target_height = ctx
+        .options
+        .task
+        .map(|t| scene.ground + t.height(scene.ground));
     let shoulder = job.chain.shoulder;
     let stride = tip_stride(ctx.options.samples);
     for i in 0..count {
@@ -438,7 +441,7 @@ fn names(robot: &Robot, pair: (LinkId, LinkId)) -> [String; 2] {
     ]
 }
 
-fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSection {
+fn not_applicable(scene: &Scene, options: &WorkspaceOptions, reason: String) -> WorkspaceSection {
     WorkspaceSection {
         status: Status::NotApplicable,
         max_reach: None,
@@ -450,7 +453,7 @@ fn not_applicable(options: &WorkspaceOptions, reason: String) -> WorkspaceSectio
         seed: options.seed,
         arms: Vec::new(),
         task: options.task.map(|t| t.name().to_string()),
-        task_target_height_m: options.task.map(Task::height),
+        task_target_height_m: options.task.map(|task| task.height(scene.ground)),
         task_height_reachable: None,
         task_com_stable_during_reach: None,
         task_com_shift_estimate_m: None,
@@ -489,10 +492,11 @@ pub fn analyse(
                 scene.robot_type.as_str()
             )
         };
-        return not_applicable(options, reason);
+        return not_applicable(scene, options, reason);
     }
     if options.samples == 0 {
         return not_applicable(
+            scene,
             options,
             "no configuration sampled (--samples 0)".to_string(),
         );
@@ -521,7 +525,7 @@ pub fn analyse(
         })
         .collect();
     if jobs.is_empty() {
-        return not_applicable(options, "no arm has a joint that moves".to_string());
+        return not_applicable(scene, options, "no arm has a joint that moves".to_string());
     }
     let chunks = options.samples.div_ceil(CHUNK);
     let per_arm: Vec<ArmStats> = jobs
@@ -558,7 +562,7 @@ fn summarize(
 ) -> WorkspaceSection {
     let robot = scene.robot;
     let model = scene.model;
-    let target = options.task.map(Task::height);
+    let target = options.task.map(|task| task.height(scene.ground));
     let mut arms = Vec::new();
     for (job, stats) in jobs.iter().zip(per_arm) {
         let link_name = |l: LinkId| robot.links[l.0].name.value.clone();
@@ -630,7 +634,7 @@ fn summarize(
                 .iter()
                 .filter_map(|stats| stats.feasible_heights)
                 .map(|(lo, hi)| {
-                    let h = task.height();
+                    let h = task.height(scene.ground);
                     if h > hi {
                         h - hi
                     } else {
@@ -643,7 +647,7 @@ fn summarize(
             reasons.push(format!(
                 "no arm reaches the {} height ({:.2} m above the ground){}{}",
                 task.name(),
-                task.height(),
+                task.height(scene.ground),
                 if held.is_empty() {
                     String::new()
                 } else {

@@ -14,6 +14,8 @@ pub enum Task {
     PushButton,
     /// `--task custom --height H`.
     Custom(f64),
+    /// The task-query API's pick: the tool at height `z` in the root frame (not above the ground).
+    PickAt(f64),
 }
 
 impl Task {
@@ -47,16 +49,18 @@ impl Task {
             Task::PickFromTable => "pick_from_table",
             Task::PushButton => "push_button",
             Task::Custom(_) => "custom",
+            Task::PickAt(_) => "pick",
         }
     }
 
-    /// The tool height above the ground, metres.
-    pub fn height(self) -> f64 {
+    /// The tool height above the ground, metres, with the ground at height `ground` in the root frame.
+    pub fn height(self, ground: f64) -> f64 {
         match self {
             Task::PickFromGround => 0.05,
             Task::PickFromTable => 0.75,
             Task::PushButton => 1.0,
             Task::Custom(h) => h,
+            Task::PickAt(z) => z - ground,
         }
     }
 }
@@ -263,5 +267,18 @@ mod tests {
         assert!((parse_axis("0,0,2").unwrap() - Vector3::z()).norm() < 1e-12);
         assert!(parse_axis("0,0,0").is_err());
         assert!(parse_axis("w").is_err());
+    }
+}
+
+#[cfg(test)]
+mod task_tests {
+    use super::Task;
+
+    #[test]
+    fn a_pick_target_is_measured_in_the_root_frame() {
+        // The root frame 0.4 m above the ground: z = 0.8 in the root frame is 1.2 m above the ground.
+        assert!((Task::PickAt(0.8).height(-0.4) - 1.2).abs() < 1e-12);
+        // The named tasks are heights above the ground, wherever the root frame is.
+        assert_eq!(Task::PickFromTable.height(-0.4), 0.75);
     }
 }

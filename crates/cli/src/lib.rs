@@ -1,0 +1,460 @@
+//! `urdf_validate`: validate URDF files, write one JSON report each, exit 0 / 1 / 2.
+//!
+//! The command lives in this library so that every front end runs the same code: the binary
+//! (`src/main.rs`) and the console command of the Python wheel both call [`main_from`].
+
+/// Write to stdout, ignoring a closed pipe (`urdf_validate --list-rules | head -1`): the rest is dropped
+/// quietly and the exit status stays what the run decides.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// [`out!`] with a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// `eprintln!` that does not panic when stderr is closed.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stderr().lock(), $($arg)*);
+    }};
+}
+
+mod args;
+mod config;
+mod formats;
+mod inputs;
+mod outputs;
+mod progress;
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::{CommandFactory, FromArgMatches};
+use rayon::prelude::*;
+use urdf_validator::analysis::pose::PoseOptions;
+use urdf_validator::analysis::statics::StaticsOptions;
+use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task};
+use urdf_validator::analysis::workspace::WorkspaceOptions;
+use urdf_validator::analysis::Overrides;
+use urdf_validator::diagnostics::rules;
+use urdf_validator::input::mesh::{DiskCache, MeshCache};
+use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::render::FormatOptions;
+use urdf_validator::Options;
+
+use args::{Args, ColorChoice, Format};
+use formats::{GithubEnv, Plan};
+use outputs::Outcome;
+
+/// Run the command with `argv` (the program name first), as `urdf_validate` does; returns the exit status.
+/// `--help`, `--version` and a usage error print and exit the process, as every command line does.
+pub fn main_from<I, T>(argv: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let matches = Args::command().get_matches_from(argv);
+    let args = match Args::from_arg_matches(&matches) {
+        Ok(args) => args,
+        Err(error) => error.exit(),
+    };
+    match args.color {
+        ColorChoice::Auto => {}
+        ColorChoice::Always => anstream::ColorChoice::Always.write_global(),
+        ColorChoice::Never => anstream::ColorChoice::Never.write_global(),
+    }
+    run(args, &matches)
+}
+
+fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
+    if let Some(code) = &args.explain {
+        return explain(code);
+    }
+    if args.list_rules {
+        for rule in rules::ALL {
+            outln!(
+                "{}  {:<32} {:<8} {}",
+                rule.code,
+                rule.name,
+                rule.severity.label(),
+                rule.what
+            );
+        }
+        return 0;
+    }
+    if args.list_rules_markdown {
+        out!("{}", rules::reference_markdown());
+        return 0;
+    }
+    if args.json_schema_markdown {
+        out!(
+            "{}",
+            urdf_validator::report::schema_doc::json_schema_markdown()
+        );
+        return 0;
+    }
+    if args.json_schema {
+        out!("{}", urdf_validator::report::json_schema());
+        return 0;
+    }
+    if args.show_config {
+        return show_config(&args, matches);
+    }
+    if args.inputs.is_empty() {
+        errln!(
+            "error: no input given (expected one or more URDF or xacro files or directories; see --help)"
+        );
+        return 2;
+    }
+    if let Some(jobs) = args.jobs {
+        // Only fails when a global pool already exists, which cannot happen this early.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build_global();
+    }
+    if let Err(message) = workspace_options(&args) {
+        errln!("error: {message}");
+        return 2;
+    }
+    if args.arm_root.len() != args.arm_tip.len() {
+        errln!(
+            "error: {} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
+            args.arm_root.len(),
+            args.arm_tip.len()
+        );
+        return 2;
+    }
+    let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
+    for arg in &args.xacro_arg {
+        match inputs::parse_xacro_arg_flag(arg) {
+            Ok(pair) => xacro_args.push(pair),
+            Err(message) => {
+                errln!("error: {message}");
+                return 2;
+            }
+        }
+    }
+    let (files, input_errors) = inputs::expand(&paths, args.skip_xacro_libraries);
+    if files.is_empty() && input_errors.is_empty() && args.skip_xacro_libraries {
+        // Only macro libraries were named (a pre-commit run on changed library files): nothing to do.
+        return 0;
+    }
+    if files.is_empty() && input_errors.is_empty() {
+        errln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
+        return 2;
+    }
+    let resolver = PackageResolver::from_env(args.package_path.clone());
+    if args.expand_only {
+        if paths.len() != 1 || paths[0].is_dir() {
+            errln!(
+                "error: --expand-only expands one xacro file (got {} input(s){})",
+                paths.len(),
+                if paths.iter().any(|p| p.is_dir()) {
+                    ", a directory among them"
+                } else {
+                    ""
+                }
+            );
+            return 2;
+        }
+        return expand_only(&files, &input_errors, &xacro_args, &resolver);
+    }
+    // One set of options per configuration file (the nearest to each input, unless named or turned off).
+    let meshes = mesh_cache(args.no_cache);
+    let config_of: Vec<Option<PathBuf>> = configs_of(&args, &files);
+    let mut groups: Vec<(Option<PathBuf>, Options)> = Vec::new();
+    for path in &config_of {
+        if groups.iter().any(|(p, _)| p == path) {
+            continue;
+        }
+        let effective = match config::load(path.as_deref(), &args, matches) {
+            Ok(effective) => effective,
+            Err(message) => {
+                errln!("error: {message}");
+                return 2;
+            }
+        };
+        let mut group_args = args.clone();
+        effective.apply_to(&mut group_args);
+        match options_for(&group_args, effective.settings, &xacro_args, &meshes) {
+            Ok(options) => groups.push((path.clone(), options)),
+            Err(message) => {
+                errln!(
+                    "error: {message}{}",
+                    path.as_ref()
+                        .map(|p| format!(" (with the settings of {})", p.display()))
+                        .unwrap_or_default()
+                );
+                return 2;
+            }
+        }
+    }
+    let timeout = match args.timeout {
+        // Zero, or more seconds than a Duration holds: no limit.
+        t if t >= 0.0 => std::time::Duration::try_from_secs_f64(t)
+            .ok()
+            .filter(|d| !d.is_zero()),
+        t => {
+            errln!("error: --timeout {t}: expected seconds ≥ 0 (0: no limit)");
+            return 2;
+        }
+    };
+    let plan = match Plan::new(&args, &GithubEnv::from_env()) {
+        Ok(plan) => plan,
+        Err(message) => {
+            errln!("error: {message}");
+            return 2;
+        }
+    };
+    if matches!(plan.output, Some((Format::Html, _))) && files.len() + input_errors.len() != 1 {
+        errln!(
+            "error: --format html --output takes one input (got {}); without --output each input gets its own page",
+            files.len() + input_errors.len()
+        );
+        return 2;
+    }
+    let format_options = FormatOptions {
+        base_dir: std::env::current_dir().ok(),
+        rules_url: rules_url(),
+    };
+    let files_to_write = outputs::Files {
+        formats: plan.file_formats.clone(),
+        options: format_options.clone(),
+    };
+    let bases = outputs::report_bases(&files, args.output_dir.as_deref());
+    let progress = progress::Bar::for_batch(files.len());
+    let outcomes: Vec<Outcome> = files
+        .par_iter()
+        .zip(bases.par_iter())
+        .zip(config_of.par_iter())
+        .map(|((file, base), config)| {
+            let options = groups
+                .iter()
+                .find(|(p, _)| p == config)
+                .map(|(_, options)| options);
+            let outcome = match options {
+                Some(options) => {
+                    outputs::validate_one(file, base, options, &files_to_write, timeout)
+                }
+                None => outputs::Outcome::not_configured(file),
+            };
+            progress.tick(file);
+            outcome
+        })
+        .collect();
+    progress.finish();
+    let single_file = paths.len() == 1 && !paths[0].is_dir();
+    let written = formats::emit(
+        &plan,
+        &args,
+        single_file,
+        &outcomes,
+        &input_errors,
+        &format_options,
+    );
+    let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
+    if input_errors.is_empty() && written {
+        worst
+    } else {
+        2
+    }
+}
+
+/// The rules reference on the web, for SARIF `helpUri`s: `docs/rules.md` of the repository named in
+/// Cargo.toml (`repository`); none when it names none.
+fn rules_url() -> Option<String> {
+    option_env!("CARGO_PKG_REPOSITORY")
+        .map(|url| url.trim_end_matches('/'))
+        .filter(|url| !url.is_empty())
+        .map(|url| format!("{url}/blob/main/docs/rules.md"))
+}
+
+fn explain(code: &str) -> u8 {
+    match rules::find(code) {
+        Some(rule) => {
+            out!("{}", rules::explain(rule));
+            0
+        }
+        None => {
+            let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
+            errln!(
+                "error: no rule '{code}' ({}); `urdf_validate --list-rules` lists them all",
+                urdf_validator::diagnostics::suggest::did_you_mean(code, names)
+            );
+            2
+        }
+    }
+}
+
+/// The configuration file of each input: `--config` for all, none with `--no-config`, else the nearest
+/// found from the input's folder upwards.
+fn configs_of(args: &Args, files: &[PathBuf]) -> Vec<Option<PathBuf>> {
+    if args.no_config {
+        return vec![None; files.len()];
+    }
+    if let Some(path) = &args.config {
+        return vec![Some(path.clone()); files.len()];
+    }
+    let mut by_dir: HashMap<PathBuf, Option<PathBuf>> = HashMap::new();
+    files
+        .iter()
+        .map(|file| {
+            let dir = file.parent().unwrap_or(Path::new("")).to_path_buf();
+            by_dir
+                .entry(dir)
+                .or_insert_with(|| config::discover(file))
+                .clone()
+        })
+        .collect()
+}
+
+/// `--show-config`: the settings for the first input (else the current folder), with their origins.
+fn show_config(args: &Args, matches: &clap::ArgMatches) -> u8 {
+    let (paths, _) = inputs::split_xacro_args(&args.inputs);
+    let anchor = paths.first().cloned().unwrap_or_else(|| PathBuf::from("."));
+    let path = if args.no_config {
+        None
+    } else if let Some(path) = &args.config {
+        Some(path.clone())
+    } else {
+        config::discover(&anchor)
+    };
+    match config::load(path.as_deref(), args, matches) {
+        Ok(effective) => {
+            out!("{}", effective.show());
+            0
+        }
+        Err(message) => {
+            errln!("error: {message}");
+            2
+        }
+    }
+}
+
+/// The library options from the flags (already merged with a configuration file) and `settings`.
+fn options_for(
+    args: &Args,
+    settings: urdf_validator::diagnostics::Settings,
+    xacro_args: &[(String, String)],
+    meshes: &MeshCache,
+) -> Result<Options, String> {
+    Ok(Options {
+        workspace: workspace_options(args)?,
+        xacro_args: xacro_args.to_vec(),
+        resolver: PackageResolver::from_env(args.package_path.clone()),
+        statics: StaticsOptions {
+            pose: PoseOptions {
+                kind: args.pose.into(),
+                joint_angles: args.joint_angles.clone(),
+                srdf: args.srdf.clone(),
+                state: args.state.clone(),
+                samples: args.samples,
+                seed: args.seed,
+            },
+            payload_mass: args.payload_mass,
+            payload_link: args.payload_link.clone(),
+        },
+        overrides: Overrides {
+            robot_type: args.robot_type.map(Into::into),
+            contact_links: args.contact_links.clone(),
+            arms: args
+                .arm_root
+                .iter()
+                .cloned()
+                .zip(args.arm_tip.iter().cloned())
+                .collect(),
+        },
+        timings: args.timings,
+        meshes: meshes.clone(),
+        progress: None,
+        settings,
+    })
+}
+
+/// The run's mesh cache: in memory, and on disk unless `--no-cache` (or no cache folder is known).
+fn mesh_cache(no_cache: bool) -> MeshCache {
+    match DiskCache::user_default().filter(|_| !no_cache) {
+        Some(disk) => MeshCache::new().with_disk_cache(disk),
+        None => MeshCache::new(),
+    }
+}
+
+/// The workspace flags, checked.
+fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
+    let task = match (&args.task, args.height) {
+        (Some(name), height) => Some(Task::parse(name, height)?),
+        (None, Some(_)) => return Err("--height needs --task custom".to_string()),
+        (None, None) => None,
+    };
+    if args.samples == 0 {
+        return Err("--samples must be at least 1".to_string());
+    }
+    let tolerance = args.orientation_tolerance;
+    if !(tolerance.is_finite() && (0.0..=180.0).contains(&tolerance)) {
+        return Err(format!(
+            "--orientation-tolerance must be between 0 and 180 degrees, not {tolerance}"
+        ));
+    }
+    Ok(WorkspaceOptions {
+        samples: args.samples,
+        seed: args.seed,
+        task,
+        orientation: args
+            .orientation
+            .as_deref()
+            .map(Orientation::parse)
+            .transpose()?,
+        orientation_tolerance_deg: tolerance,
+        approach_axis: args.approach_axis.as_deref().map(parse_axis).transpose()?,
+        progress: None,
+    })
+}
+
+/// `--expand-only`: the expanded URDF of each xacro input on stdout.
+fn expand_only(
+    files: &[std::path::PathBuf],
+    input_errors: &[String],
+    xacro_args: &[(String, String)],
+    resolver: &PackageResolver,
+) -> u8 {
+    for error in input_errors {
+        errln!("error: {error}");
+    }
+    let mut status = u8::from(!input_errors.is_empty()) * 2;
+    let mut stdout = std::io::stdout().lock();
+    for file in files {
+        if !urdf_validator::input::xacro::is_xacro(file) {
+            errln!(
+                "error: {}: --expand-only expects a .xacro file",
+                file.display()
+            );
+            status = 2;
+            continue;
+        }
+        match urdf_validator::input::xacro::expand(file, xacro_args, resolver, true) {
+            Ok(expanded) => {
+                for (message, location) in expanded.warnings() {
+                    match location {
+                        Some(at) => {
+                            errln!("warning: {}:{}:{}: {message}", at.file, at.line, at.column)
+                        }
+                        None => errln!("warning: {message}"),
+                    }
+                }
+                let _ = stdout.write_all(expanded.xml().as_bytes());
+            }
+            Err(error) => {
+                errln!("error: {error}");
+                status = 2;
+            }
+        }
+    }
+    status
+}
