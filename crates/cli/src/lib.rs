@@ -25,6 +25,7 @@ macro_rules! errln {
     }};
 }
 
+pub mod api;
 mod args;
 mod config;
 mod formats;
@@ -196,13 +197,10 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             }
         }
     }
-    let timeout = match args.timeout {
-        // Zero, or more seconds than a Duration holds: no limit.
-        t if t >= 0.0 => std::time::Duration::try_from_secs_f64(t)
-            .ok()
-            .filter(|d| !d.is_zero()),
-        t => {
-            errln!("error: --timeout {t}: expected seconds ≥ 0 (0: no limit)");
+    let timeout = match timeout_of(&args) {
+        Ok(timeout) => timeout,
+        Err(message) => {
+            errln!("error: {message}");
             return 2;
         }
     };
@@ -264,6 +262,16 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         worst
     } else {
         2
+    }
+}
+
+/// `--timeout`: `None` for no limit (0, or more seconds than a `Duration` holds).
+fn timeout_of(args: &Args) -> Result<Option<std::time::Duration>, String> {
+    match args.timeout {
+        t if t >= 0.0 => Ok(std::time::Duration::try_from_secs_f64(t)
+            .ok()
+            .filter(|d| !d.is_zero())),
+        t => Err(format!("--timeout {t}: expected seconds ≥ 0 (0: no limit)")),
     }
 }
 

@@ -105,7 +105,7 @@ pub struct Files {
 /// Validate `file`, giving up after `timeout` (`None`: no limit). A run that does not finish in time is
 /// reported as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: its sampling stops
 /// at the next chunk, and anything else it still does ends with it or with the process.
-fn validate_within(
+pub(crate) fn validate_within(
     file: &Path,
     options: &Options,
     timeout: Option<Duration>,

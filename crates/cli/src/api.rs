@@ -1,0 +1,106 @@
+//! The command's options for programs: the Python package and the MCP server validate with exactly the
+//! options `urdf_validate` would use for the same flags (configuration files included), without a
+//! process per file.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use clap::{CommandFactory, FromArgMatches};
+use rayon::prelude::*;
+use urdf_validator::input::LoadError;
+use urdf_validator::{Options, Validation};
+
+use crate::args::Args;
+
+/// Validation options built from command-line flags.
+#[derive(Clone, Debug)]
+pub struct Session {
+    options: Options,
+    timeout: Option<Duration>,
+}
+
+impl Session {
+    /// The options `urdf_validate FLAGS...` would use for files near `anchor` (its configuration file
+    /// is the nearest `urdf-validate.toml` or `pyproject.toml` from there, unless the flags name one or
+    /// say `--no-config`). `flags` hold options only, no input paths; an unknown or malformed flag is an
+    /// error naming it.
+    pub fn from_flags(flags: &[String], anchor: Option<&Path>) -> Result<Session, String> {
+        let argv = std::iter::once("urdf_validate".to_string()).chain(flags.iter().cloned());
+        let matches = Args::command()
+            .try_get_matches_from(argv)
+            .map_err(|e| first_line(&e.to_string()))?;
+        let mut args = Args::from_arg_matches(&matches).map_err(|e| first_line(&e.to_string()))?;
+        if !args.inputs.is_empty() {
+            return Err(format!(
+                "unexpected input {} among the options (give paths separately)",
+                args.inputs[0].display()
+            ));
+        }
+        crate::workspace_options(&args)?;
+        let timeout = crate::timeout_of(&args)?;
+        let config = if args.no_config {
+            None
+        } else {
+            args.config
+                .clone()
+                .or_else(|| crate::config::discover(anchor.unwrap_or(Path::new("."))))
+        };
+        let effective = crate::config::load(config.as_deref(), &args, &matches)?;
+        effective.apply_to(&mut args);
+        let meshes = crate::mesh_cache(args.no_cache);
+        let options = crate::options_for(&args, effective.settings, &[], &meshes)?;
+        Ok(Session { options, timeout })
+    }
+
+    /// The library options.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// Validate one file (within `--timeout`).
+    pub fn validate(&self, path: &Path) -> Result<Validation, LoadError> {
+        crate::outputs::validate_within(path, &self.options, self.timeout)
+    }
+
+    /// Validate every file in parallel; one result per path, in order.
+    pub fn validate_many(&self, paths: &[PathBuf]) -> Vec<Result<Validation, LoadError>> {
+        paths.par_iter().map(|path| self.validate(path)).collect()
+    }
+
+    /// Validate URDF `text`, as if read from `path` (relative meshes and the report's name use it).
+    pub fn validate_text(&self, text: String, path: &Path) -> Result<Validation, LoadError> {
+        urdf_validator::validate_text(text, path, &self.options)
+    }
+}
+
+/// The first line of a clap error, without its `error: ` prefix.
+fn first_line(message: &str) -> String {
+    let line = message.lines().next().unwrap_or_default();
+    line.strip_prefix("error: ").unwrap_or(line).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flags_become_the_options_the_command_uses() {
+        let session = Session::from_flags(
+            &["--samples".into(), "1234".into(), "--payload-mass".into(), "2".into()],
+            None,
+        )
+        .expect("session");
+        assert_eq!(session.options().workspace.samples, 1234);
+        assert_eq!(session.options().statics.payload_mass, Some(2.0));
+    }
+
+    #[test]
+    fn an_unknown_flag_is_named() {
+        let error = Session::from_flags(&["--sampels".into(), "3".into()], None)
+            .expect_err("unknown flag");
+        assert!(error.contains("--sampels"), "{error}");
+        let error = Session::from_flags(&["--samples".into(), "0".into()], None)
+            .expect_err("no samples");
+        assert!(error.contains("--samples"), "{error}");
+    }
+}

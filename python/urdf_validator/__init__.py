@@ -1,0 +1,59 @@
+"""Physics-aware validation of URDF and xacro robot descriptions, from Python.
+
+The work is done by the same Rust library as the ``urdf_validate`` command, with the Python GIL
+released, so other Python threads keep running::
+
+    import urdf_validator
+
+    report = urdf_validator.validate("robot.urdf", payload_mass=0.5, samples=10_000)
+    print(report.overall_status)          # "PASS" | "WARN" | "FAIL" | "UNKNOWN"
+    for finding in report.findings:
+        print(finding["rule"], finding["severity"], finding["message"])
+
+Keyword arguments are the command's long flags with ``_`` for ``-`` (``robot_type="wheeled"`` is
+``--robot-type wheeled``; ``True`` gives a bare flag; a list repeats the flag). Configuration files
+(``urdf-validate.toml``, ``[tool.urdf-validate]`` in ``pyproject.toml``) apply as they do for the
+command; ``no_config=True`` turns them off.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Iterable, List, Optional, Sequence, Union
+
+from . import _native
+from ._flags import flags_from_options
+from ._report import Report
+
+__all__ = ["Report", "validate", "validate_many", "validate_string", "__version__"]
+
+__version__: str = _native.__version__
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def validate(path: PathLike, **options: Any) -> Report:
+    """Validate the URDF or xacro file at ``path``; ``options`` are the command's flags.
+
+    A file that cannot be read or parsed gives a report whose ``error`` says why (``overall_status``
+    ``UNKNOWN``); a bad option raises ``ValueError`` naming it.
+    """
+    return Report._from_json(_native.validate(os.fspath(path), flags_from_options(options)))
+
+
+def validate_many(paths: Iterable[PathLike], **options: Any) -> List[Report]:
+    """Validate every file, in parallel in Rust; one report per path, in the order given.
+
+    A file that fails gives its own report with ``error``; the others are unaffected.
+    """
+    documents = _native.validate_many([os.fspath(p) for p in paths], flags_from_options(options))
+    return [Report._from_json(document) for document in documents]
+
+
+def validate_string(
+    xml: str, base_dir: Optional[PathLike] = None, name: str = "robot.urdf", **options: Any
+) -> Report:
+    """Validate URDF text. ``base_dir`` is where relative mesh paths (and configuration files) are
+    looked up, default the current directory; ``name`` is the file name the report uses."""
+    path = os.path.join(os.fspath(base_dir) if base_dir is not None else os.getcwd(), name)
+    return Report._from_json(_native.validate_string(xml, path, flags_from_options(options)))

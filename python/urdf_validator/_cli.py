@@ -1,0 +1,21 @@
+"""The ``urdf_validate`` console command of the wheel: the Rust command itself, run in-process."""
+
+from __future__ import annotations
+
+import signal
+import sys
+
+from . import _native
+
+
+def main() -> None:
+    """Run ``urdf_validate`` with this process's arguments and exit with its status."""
+    # The Rust command runs with the GIL released, where Python's handler would only note a Ctrl-C:
+    # let it end the process as it ends the native binary. (A closed pipe is already quiet: Python
+    # ignores SIGPIPE, as Rust binaries do, and the command ends quietly on the write error.)
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    sys.exit(_native.main(["urdf_validate", *sys.argv[1:]]))
+
+
+if __name__ == "__main__":
+    main()

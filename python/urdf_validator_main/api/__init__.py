@@ -1,0 +1,1 @@
+"""The task-query API, at the import path the spec documents."""
