@@ -242,3 +242,42 @@ fn iterating_a_huge_string_is_refused_before_it_is_built() {
         started.elapsed()
     );
 }
+
+/// Nested comprehensions over strings (found by the `expression` target: 3 s of CPU for one
+/// expression, a timeout on a loaded machine) ran 10 million items because each item cost one step
+/// whatever its element evaluated. Every node evaluated is now charged, and the budget is 2 million steps.
+#[test]
+fn nested_comprehensions_are_charged_for_every_node() {
+    struct Counting(std::cell::Cell<u64>);
+    impl xacro::expr::Scope for Counting {
+        fn lookup(&self, name: &str) -> Result<Option<Value>, xacro::expr::EvalError> {
+            if name == "tick" {
+                self.0.set(self.0.get() + 1);
+                return Ok(Some(Value::Int(1)));
+            }
+            Ok(None)
+        }
+        fn call_host(
+            &self,
+            _: &str,
+            _: &[Value],
+            _: &[(String, Value)],
+        ) -> Option<Result<Value, xacro::expr::EvalError>> {
+            None
+        }
+    }
+    let scope = Counting(std::cell::Cell::new(0));
+    let s = format!("'{}'", "x".repeat(300));
+    let e = eval_str(
+        &format!("[tick + 1 for a in {s} for b in {s} for c in {s}]"),
+        &scope,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("step budget exhausted"), "{e}");
+    // Before: about 10 million elements were evaluated; now at most a few hundred thousand.
+    assert!(
+        scope.0.get() < 1_000_000,
+        "{} elements evaluated",
+        scope.0.get()
+    );
+}

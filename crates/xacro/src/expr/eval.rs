@@ -10,9 +10,9 @@ use super::parser::{Arg, BinOp, CmpOp, CompKind, Kind, Node, Target};
 use super::value::{py_cmp, py_eq};
 use super::{EvalError, Scope, Value};
 
-/// Most steps in one evaluation: loop iterations (comprehension steps, items built by `range` and
-/// friends) and the values visited by deep operations (comparisons, membership tests, `str()`).
-const STEP_BUDGET: u64 = 10_000_000;
+/// Most steps in one evaluation: nodes evaluated, loop iterations (comprehension steps, items built by
+/// `range` and friends) and the values visited by deep operations (comparisons, membership tests, `str()`).
+const STEP_BUDGET: u64 = 2_000_000;
 
 thread_local! {
     /// The steps left to the innermost evaluation running on this thread, and whether it ran out. A
@@ -92,6 +92,9 @@ impl<'a> Ctx<'a> {
     }
 
     pub(crate) fn eval(&mut self, node: &Node) -> Result<Value, EvalError> {
+        // Every node evaluated costs a step: a comprehension's element is charged for its whole
+        // expression, not once per item (nested loops over strings ran for seconds under the budget).
+        self.spend(1).map_err(|e| with_offset(e, node.offset))?;
         let result = match self.eval_inner(node) {
             // A deep operation ran out of budget and returned early: its result is not to be trusted.
             _ if budget_exhausted() => Err(budget_error()),
