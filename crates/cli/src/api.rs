@@ -86,7 +86,12 @@ mod tests {
     #[test]
     fn flags_become_the_options_the_command_uses() {
         let session = Session::from_flags(
-            &["--samples".into(), "1234".into(), "--payload-mass".into(), "2".into()],
+            &[
+                "--samples".into(),
+                "1234".into(),
+                "--payload-mass".into(),
+                "2".into(),
+            ],
             None,
         )
         .expect("session");
@@ -96,11 +101,11 @@ mod tests {
 
     #[test]
     fn an_unknown_flag_is_named() {
-        let error = Session::from_flags(&["--sampels".into(), "3".into()], None)
-            .expect_err("unknown flag");
+        let error =
+            Session::from_flags(&["--sampels".into(), "3".into()], None).expect_err("unknown flag");
         assert!(error.contains("--sampels"), "{error}");
-        let error = Session::from_flags(&["--samples".into(), "0".into()], None)
-            .expect_err("no samples");
+        let error =
+            Session::from_flags(&["--samples".into(), "0".into()], None).expect_err("no samples");
         assert!(error.contains("--samples"), "{error}");
     }
 }

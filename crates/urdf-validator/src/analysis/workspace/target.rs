@@ -226,7 +226,10 @@ mod tests {
 
     #[test]
     fn tasks_and_heights() {
-        assert_eq!(Task::parse("pick_from_table", None).unwrap().height(0.0), 0.75);
+        assert_eq!(
+            Task::parse("pick_from_table", None).unwrap().height(0.0),
+            0.75
+        );
         assert_eq!(Task::parse("custom", Some(1.2)).unwrap(), Task::Custom(1.2));
         assert!(Task::parse("custom", None).is_err());
         assert!(Task::parse("push_button", Some(1.0)).is_err());
