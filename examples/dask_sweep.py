@@ -32,8 +32,9 @@ from urdf_validator_main.api.task_schema import TaskQueryRequest, TaskQueryRespo
 
 
 def validate_robot(path: str, samples: int) -> urdf_validator.Report:
-    """One robot (runs on a worker)."""
-    return urdf_validator.validate(path, samples=samples)
+    """One robot (runs on a worker). ``validate_many`` rather than ``validate``: a file that cannot be
+    read gives a report with ``error`` instead of an exception, so one bad file does not fail the job."""
+    return urdf_validator.validate_many([path], samples=samples)[0]
 
 
 def sweep_chunk(requests: List[TaskQueryRequest], samples: int) -> List[TaskQueryResponse]:

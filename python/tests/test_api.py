@@ -13,7 +13,9 @@ from pathlib import Path
 import pytest
 
 import urdf_validator
-from urdf_validator import Report
+from urdf_validator import Report, ValidationError
+
+from conftest import shared_robot
 
 
 def test_validate_gives_the_report_the_command_writes(example: Path, tmp_path: Path) -> None:
@@ -44,10 +46,47 @@ def test_options_are_the_command_flags(example: Path) -> None:
     assert heavy.statics["payload_mass"] == 400.0
     assert heavy.overall_status == "FAIL"
     assert any(f["rule"] == "U701" for f in heavy.findings)
-    with pytest.raises(ValueError, match="--sampels"):
-        urdf_validator.validate(example, sampels=10)
-    with pytest.raises(ValueError, match="--samples"):
-        urdf_validator.validate(example, samples=0)
+
+
+@pytest.mark.parametrize(
+    "options, named",
+    [
+        ({"sampels": 10}, "--sampels"),
+        ({"samples": 0}, "--samples"),
+        ({"payload_mass": -3}, "--payload-mass -3"),
+        ({"robot_type": "boat"}, "possible values: wheeled"),
+        ({"orientation": "1,2,3,4,5"}, "got 5"),
+    ],
+)
+def test_bad_options_raise_value_error_before_any_work(example: Path, options: dict, named: str) -> None:
+    with pytest.raises(ValueError, match=named.replace("(", r"\(")):
+        urdf_validator.validate(example, **options)
+
+
+def test_unreadable_input_raises_validation_error(tmp_path: Path) -> None:
+    broken = tmp_path / "broken.urdf"
+    broken.write_text("<robot name='x'>\n  <link name='a'>\n</robot>\n")
+    with pytest.raises(ValidationError) as caught:
+        urdf_validator.validate(broken)
+    error = caught.value
+    assert error.file == str(broken) and error.line == 3 and error.column is not None
+    assert "not well-formed XML" in error.message and str(broken) in str(error)
+    with pytest.raises(ValidationError) as caught:
+        urdf_validator.validate(tmp_path / "missing.urdf")
+    assert caught.value.line is None and "missing.urdf" in str(caught.value)
+    with pytest.raises(ValidationError):
+        urdf_validator.validate_string("<robot name='r'><link name='a'>")
+    # The exception pickles too (it crosses process boundaries with the reports).
+    again = pickle.loads(pickle.dumps(error))
+    assert (again.file, again.line, again.message) == (error.file, error.line, error.message)
+
+
+def test_pr2_fails_on_its_shoulders() -> None:
+    report = urdf_validator.validate(shared_robot("pr2/pr2_description/robots/pr2.urdf"), samples=2000)
+    assert report.overall_status == "FAIL" and report.exit_code == 2
+    undersized = {f["message"].split("'")[1] for f in report.findings if f["rule"] == "U701"}
+    assert undersized == {"l_shoulder_lift_joint", "r_shoulder_lift_joint"}
+    assert report.statics["weakest_joint_name"] in undersized
 
 
 def test_validate_many_keeps_order_and_isolates_failures(example: Path, tmp_path: Path) -> None:
@@ -55,11 +94,11 @@ def test_validate_many_keeps_order_and_isolates_failures(example: Path, tmp_path
     broken.write_text("<robot name='x'><link name='a'></robot>")
     missing = tmp_path / "missing.urdf"
     reports = urdf_validator.validate_many([example, missing, broken, example], samples=1000)
-    assert [r.overall_status for r in reports] == ["PASS", "UNKNOWN", reports[2].overall_status, "PASS"]
+    assert [r.overall_status for r in reports] == ["PASS", "UNKNOWN", "UNKNOWN", "PASS"]
     assert "missing.urdf" in (reports[1].error or "")
     assert reports[1].exit_code == 2
-    assert reports[2].exit_code == 2
     assert reports[2].urdf_path.endswith("broken.urdf")
+    assert reports[2].to_dict()["error_location"]["line"] == 1
 
 
 def test_validate_string_resolves_relative_paths_from_base_dir(example: Path) -> None:

@@ -7,6 +7,8 @@ from pathlib import Path
 from urdf_validator_main.api.task_runner import run_pick_sweep, run_pick_task
 from urdf_validator_main.api.task_schema import SubCheckResult, TaskQueryRequest, TaskQueryResponse
 
+from conftest import shared_robot
+
 SUB_CHECKS = ["reach", "reach_orientation", "payload_strength", "stability_during_reach", "self_collision"]
 
 
@@ -66,3 +68,31 @@ def test_payload_strength_names_the_bottleneck(example: Path) -> None:
     assert payload.name == "payload_strength" and payload.status == "FAIL"
     assert payload.bottleneck
     assert resp.overall_status == "FAIL"
+
+
+def test_the_spec_snippet_verbatim_on_fetch(monkeypatch, capsys) -> None:
+    fetch = shared_robot("fetch/fetch_description/robots/fetch.urdf")
+    monkeypatch.chdir(fetch.parent)
+    # From ../shared/spec/seed-README.md, "Task-query API", unchanged:
+    from urdf_validator_main.api.task_runner import run_pick_task, run_pick_sweep
+    from urdf_validator_main.api.task_schema import TaskQueryRequest
+
+    req = TaskQueryRequest(
+        urdf_path="fetch.urdf",
+        task_type="pick",
+        target_position=[0.5, 0.0, 0.8],    # [x, y, z] metres, robot frame
+        target_orientation="top_down",        # or "side", [r,p,y], [qw,qx,qy,qz]
+        object_mass_kg=0.5,
+        terrain_angle_deg=0.0,
+    )
+    resp = run_pick_task(req)
+    print(resp.overall_status)               # "PASS" | "FAIL" | "UNKNOWN"
+    for check in resp.sub_checks:
+        print(check.name, check.status, check.reason)
+    # (end of the snippet)
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[0] in ("PASS", "FAIL", "UNKNOWN")
+    assert [line.split()[0] for line in printed[1:]] == SUB_CHECKS
+    names = {c.name: c for c in resp.sub_checks}
+    assert names["reach"].status == "PASS", names["reach"]
+    assert names["payload_strength"].status in ("PASS", "FAIL", "UNKNOWN")

@@ -23,9 +23,9 @@ from typing import Any, Iterable, List, Optional, Sequence, Union
 
 from . import _native
 from ._flags import flags_from_options
-from ._report import Report
+from ._report import Report, ValidationError
 
-__all__ = ["Report", "validate", "validate_many", "validate_string", "__version__"]
+__all__ = ["Report", "ValidationError", "validate", "validate_many", "validate_string", "__version__"]
 
 __version__: str = _native.__version__
 
@@ -35,16 +35,18 @@ PathLike = Union[str, "os.PathLike[str]"]
 def validate(path: PathLike, **options: Any) -> Report:
     """Validate the URDF or xacro file at ``path``; ``options`` are the command's flags.
 
-    A file that cannot be read or parsed gives a report whose ``error`` says why (``overall_status``
-    ``UNKNOWN``); a bad option raises ``ValueError`` naming it.
+    Raises ``ValidationError`` (``file``, ``line``, ``column``, ``message``) when the file cannot be
+    read (missing, not XML, a xacro that does not expand) and ``ValueError`` naming a bad option before
+    any work starts; every problem of a readable file is in the report.
     """
-    return Report._from_json(_native.validate(os.fspath(path), flags_from_options(options)))
+    return Report._from_json(_native.validate(os.fspath(path), flags_from_options(options)))._raise_error()
 
 
 def validate_many(paths: Iterable[PathLike], **options: Any) -> List[Report]:
     """Validate every file, in parallel in Rust; one report per path, in the order given.
 
-    A file that fails gives its own report with ``error``; the others are unaffected.
+    A file that cannot be read gives its own report with ``error`` (``overall_status`` ``UNKNOWN``)
+    instead of an exception, so the others are never lost.
     """
     documents = _native.validate_many([os.fspath(p) for p in paths], flags_from_options(options))
     return [Report._from_json(document) for document in documents]
@@ -54,6 +56,7 @@ def validate_string(
     xml: str, base_dir: Optional[PathLike] = None, name: str = "robot.urdf", **options: Any
 ) -> Report:
     """Validate URDF text. ``base_dir`` is where relative mesh paths (and configuration files) are
-    looked up, default the current directory; ``name`` is the file name the report uses."""
+    looked up, default the current directory; ``name`` is the file name the report uses. Raises
+    ``ValidationError`` for text that is not well-formed XML."""
     path = os.path.join(os.fspath(base_dir) if base_dir is not None else os.getcwd(), name)
-    return Report._from_json(_native.validate_string(xml, path, flags_from_options(options)))
+    return Report._from_json(_native.validate_string(xml, path, flags_from_options(options)))._raise_error()

@@ -8,7 +8,7 @@ from typing import Any, Dict, List
 
 def flags_from_options(options: Dict[str, Any]) -> List[str]:
     """``{"robot_type": "wheeled", "no_cache": True, "package_path": ["a", "b"]}`` to
-    ``["--robot-type", "wheeled", "--no-cache", "--package-path", "a", "--package-path", "b"]``.
+    ``["--robot-type=wheeled", "--no-cache", "--package-path=a", "--package-path=b"]``.
 
     ``None`` and ``False`` leave a flag out; an unknown name reaches the Rust side, which raises
     ``ValueError`` naming it.
@@ -18,13 +18,13 @@ def flags_from_options(options: Dict[str, Any]) -> List[str]:
         flag = "--" + name.replace("_", "-")
         if value is None or value is False:
             continue
+        # `--flag=value`, so a value starting with '-' (a negative number) is not read as a flag.
         if value is True:
             flags.append(flag)
         elif isinstance(value, (list, tuple)):
-            for item in value:
-                flags += [flag, _text(item)]
+            flags += [f"{flag}={_text(item)}" for item in value]
         else:
-            flags += [flag, _text(value)]
+            flags.append(f"{flag}={_text(value)}")
     return flags
 
 

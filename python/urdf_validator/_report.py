@@ -7,11 +7,28 @@ import json
 from typing import Any, Dict, List, Optional
 
 
+class ValidationError(Exception):
+    """A file that could not be validated at all: unreadable, not well-formed XML, a xacro that does not
+    expand. ``line`` and ``column`` are ``None`` when the error has no position."""
+
+    def __init__(self, message: str, file: str, line: Optional[int], column: Optional[int], detail: str) -> None:
+        super().__init__(message)
+        self.file = file
+        self.line = line
+        self.column = column
+        #: The error without its position.
+        self.message = detail
+
+    def __reduce__(self):  # type: ignore[no-untyped-def]
+        return (ValidationError, (str(self), self.file, self.line, self.column, self.message))
+
+
 class Report:
     """One robot's validation report: the JSON report file's content with typed attributes.
 
     ``to_dict()`` equals the ``<robot>_validation.json`` file the command writes (for a file that
-    could not be validated: ``urdf_path``, ``overall_status`` ``UNKNOWN`` and ``error``). Reports
+    could not be validated, in ``validate_many``: ``urdf_path``, ``overall_status`` ``UNKNOWN``,
+    ``error`` and ``error_location``). Reports
     pickle, so they cross process boundaries (multiprocessing, Dask, Ray).
     """
 
@@ -27,6 +44,19 @@ class Report:
         report._json = text
         report._data = json.loads(text)
         return report
+
+    def _raise_error(self) -> "Report":
+        """This report, or ``ValidationError`` when it is the error document of an unreadable file."""
+        if self.error is None:
+            return self
+        where = self._data.get("error_location") or {}
+        raise ValidationError(
+            self.error,
+            where.get("file", self.urdf_path),
+            where.get("line"),
+            where.get("column"),
+            where.get("message", self.error),
+        )
 
     # Pickling keeps the JSON text, so a round trip gives the same document.
     def __getstate__(self) -> str:

@@ -73,10 +73,19 @@ impl Session {
     }
 }
 
-/// The first line of a clap error, without its `error: ` prefix.
+/// A clap error in one line, without its `error: ` prefix, with the allowed values when clap lists them
+/// (`invalid value 'foo' for '--robot-type <TYPE>' [possible values: wheeled, ...]`).
 fn first_line(message: &str) -> String {
-    let line = message.lines().next().unwrap_or_default();
-    line.strip_prefix("error: ").unwrap_or(line).to_string()
+    let mut lines = message.lines();
+    let first = lines.next().unwrap_or_default();
+    let first = first.strip_prefix("error: ").unwrap_or(first);
+    match lines
+        .map(str::trim)
+        .find(|l| l.starts_with("[possible values"))
+    {
+        Some(values) => format!("{first} {values}"),
+        None => first.to_string(),
+    }
 }
 
 #[cfg(test)]
@@ -107,5 +116,11 @@ mod tests {
         let error =
             Session::from_flags(&["--samples".into(), "0".into()], None).expect_err("no samples");
         assert!(error.contains("--samples"), "{error}");
+        let error = Session::from_flags(&["--robot-type".into(), "boat".into()], None)
+            .expect_err("unknown robot type");
+        assert!(error.contains("possible values: wheeled"), "{error}");
+        let error =
+            Session::from_flags(&["--payload-mass=-3".into()], None).expect_err("negative payload");
+        assert!(error.contains("--payload-mass -3"), "{error}");
     }
 }

@@ -353,6 +353,9 @@ fn options_for(
     xacro_args: &[(String, String)],
     meshes: &MeshCache,
 ) -> Result<Options, String> {
+    if let Some(mass) = args.payload_mass.filter(|m| !(m.is_finite() && *m >= 0.0)) {
+        return Err(format!("--payload-mass {mass}: expected a mass ≥ 0 in kg"));
+    }
     Ok(Options {
         workspace: workspace_options(args)?,
         xacro_args: xacro_args.to_vec(),

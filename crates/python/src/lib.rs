@@ -15,16 +15,54 @@ use urdf_validator::task_query::{self, TaskQueryRequest};
 use urdf_validator::Validation;
 
 /// The JSON report of `validation`, or for a file that could not be validated a document with its
-/// path, `overall_status` UNKNOWN and `error` (the message the command prints).
+/// path, `overall_status` UNKNOWN, `error` (the message the command prints) and `error_location`
+/// (`file`, `line`, `column`, `message`; line and column when the error has a position).
 fn report_json(path: &Path, validation: Result<Validation, LoadError>) -> String {
     match validation {
         Ok(validation) => render_json(&validation.report),
-        Err(error) => serde_json::json!({
-            "urdf_path": path.display().to_string(),
-            "overall_status": "UNKNOWN",
-            "error": error.to_string(),
-        })
-        .to_string(),
+        Err(error) => {
+            let (file, line, column, message) = location(path, &error);
+            serde_json::json!({
+                "urdf_path": path.display().to_string(),
+                "overall_status": "UNKNOWN",
+                "error": error.to_string(),
+                "error_location": {"file": file, "line": line, "column": column, "message": message},
+            })
+            .to_string()
+        }
+    }
+}
+
+/// Where a load error points: the file, line and column when known, and the message without them.
+fn location(path: &Path, error: &LoadError) -> (String, Option<u32>, Option<u32>, String) {
+    let file = path.display().to_string();
+    match error {
+        LoadError::Xml {
+            path,
+            line,
+            column,
+            message,
+        } => (
+            path.display().to_string(),
+            Some(*line),
+            Some(*column),
+            format!("not well-formed XML: {message}"),
+        ),
+        // The expander's message starts `file:line:col: ` when it has a position.
+        LoadError::Xacro { message, .. } => {
+            let first = message.lines().next().unwrap_or_default();
+            let positioned = first.split_once(": ").and_then(|(head, rest)| {
+                let mut parts = head.rsplitn(3, ':');
+                let column = parts.next()?.parse().ok()?;
+                let line = parts.next()?.parse().ok()?;
+                Some((parts.next()?.to_string(), line, column, rest.to_string()))
+            });
+            match positioned {
+                Some((at, line, column, rest)) => (at, Some(line), Some(column), rest),
+                None => (file, None, None, message.clone()),
+            }
+        }
+        other => (file, None, None, other.to_string()),
     }
 }
 
