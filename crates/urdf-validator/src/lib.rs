@@ -8,7 +8,7 @@
 //! | parse | [`urdf`] | a typed [`urdf::Robot`] with spans, and parse findings |
 //! | model | [`model`] | the kinematic tree, forward kinematics, mass properties |
 //! | assets | [`assets`] | meshes and their hulls, link supports, the SRDF: loaded once |
-//! | checks | [`checks`] | structural findings |
+//! | checks | `checks` (internal) | structural findings |
 //! | analyses | [`analysis`] | statics, stability, workspace sections and their findings |
 //! | report | [`report`] | the one [`report::Report`] |
 //! | render | [`render`] | views of the report (text) |

@@ -4,7 +4,7 @@ use crate::diagnostics::rules::Rule;
 use crate::input::source::Span;
 
 /// How serious a finding is. Ordered: `Info < Warn < Fail < Critical`; the exit code follows the worst
-/// (see [`crate::diagnostics::exit_code`]).
+/// (see [`crate::diagnostics::overall_status`] and [`crate::diagnostics::Status::exit_code`]).
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, schemars::JsonSchema,
 )]
