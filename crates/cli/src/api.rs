@@ -29,14 +29,14 @@ impl Session {
         let matches = Args::command()
             .try_get_matches_from(argv)
             .map_err(|e| first_line(&e.to_string()))?;
-        let mut args = Args::from_arg_matches(&matches).map_err(|e| first_line(&e.to_string()))?;
-        if !args.inputs.is_empty() {
+        let args = Args::from_arg_matches(&matches).map_err(|e| first_line(&e.to_string()))?;
+        let (inputs, xacro_args) = crate::checked_inputs(&args)?;
+        if let Some(input) = inputs.first() {
             return Err(format!(
                 "unexpected input {} among the options (give paths separately)",
-                args.inputs[0].display()
+                input.display()
             ));
         }
-        crate::workspace_options(&args)?;
         let timeout = crate::timeout_of(&args)?;
         let config = if args.no_config {
             None
@@ -45,10 +45,9 @@ impl Session {
                 .clone()
                 .or_else(|| crate::config::discover(anchor.unwrap_or(Path::new("."))))
         };
-        let effective = crate::config::load(config.as_deref(), &args, &matches)?;
-        effective.apply_to(&mut args);
         let meshes = crate::mesh_cache(args.no_cache);
-        let options = crate::options_for(&args, effective.settings, &[], &meshes)?;
+        let options =
+            crate::configured_options(&args, &matches, config.as_deref(), &xacro_args, &meshes)?;
         Ok(Session { options, timeout })
     }
 
@@ -59,7 +58,7 @@ impl Session {
 
     /// Validate one file (within `--timeout`).
     pub fn validate(&self, path: &Path) -> Result<Validation, LoadError> {
-        crate::outputs::validate_within(path, &self.options, self.timeout)
+        crate::outputs::validate_within(path, &self.options, self.timeout, urdf_validator::validate)
     }
 
     /// Validate every file in parallel; one result per path, in order.
@@ -67,9 +66,12 @@ impl Session {
         paths.par_iter().map(|path| self.validate(path)).collect()
     }
 
-    /// Validate URDF `text`, as if read from `path` (relative meshes and the report's name use it).
+    /// Validate URDF `text`, as if read from `path` (relative meshes and the report's name use it), within
+    /// `--timeout`.
     pub fn validate_text(&self, text: String, path: &Path) -> Result<Validation, LoadError> {
-        urdf_validator::validate_text(text, path, &self.options)
+        crate::outputs::validate_within(path, &self.options, self.timeout, move |path, options| {
+            urdf_validator::validate_text(text, path, options)
+        })
     }
 }
 

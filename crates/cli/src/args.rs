@@ -9,7 +9,14 @@ use clap::{Parser, ValueEnum};
 /// Writes `<name>_validation.json` beside each input (or in --output-dir). Exit code: 0 PASS, 1 WARN,
 /// 2 FAIL, UNKNOWN or unreadable input.
 #[derive(Clone, Debug, Parser)]
-#[command(name = "urdf_validate", version, about, long_about)]
+#[command(
+    name = "urdf_validate",
+    version,
+    about,
+    long_about,
+    after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
+                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp."
+)]
 pub struct Args {
     /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>
     /// root that builds a robot), and xacro arguments as `name:=value`.

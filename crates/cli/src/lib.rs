@@ -30,10 +30,12 @@ mod args;
 mod config;
 mod formats;
 mod inputs;
+mod mcp;
 mod outputs;
 mod progress;
 
 use std::collections::HashMap;
+use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -44,7 +46,7 @@ use urdf_validator::analysis::statics::StaticsOptions;
 use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task};
 use urdf_validator::analysis::workspace::WorkspaceOptions;
 use urdf_validator::analysis::Overrides;
-use urdf_validator::diagnostics::rules;
+use urdf_validator::diagnostics::rules::{self, Rule};
 use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::render::FormatOptions;
@@ -56,11 +58,16 @@ use outputs::Outcome;
 
 /// Run the command with `argv` (the program name first), as `urdf_validate` does; returns the exit status.
 /// `--help`, `--version` and a usage error print and exit the process, as every command line does.
+/// `urdf_validate mcp` serves the Model Context Protocol on stdin/stdout instead (see `docs/mcp.md`).
 pub fn main_from<I, T>(argv: I) -> u8
 where
     I: IntoIterator<Item = T>,
-    T: Into<std::ffi::OsString> + Clone,
+    T: Into<OsString> + Clone,
 {
+    let argv: Vec<OsString> = argv.into_iter().map(Into::into).collect();
+    if argv.get(1).is_some_and(|word| word == "mcp") {
+        return mcp::main(&argv[2..]);
+    }
     let matches = Args::command().get_matches_from(argv);
     let args = match Args::from_arg_matches(&matches) {
         Ok(args) => args,
@@ -120,28 +127,13 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             .num_threads(jobs)
             .build_global();
     }
-    if let Err(message) = workspace_options(&args) {
-        errln!("error: {message}");
-        return 2;
-    }
-    if args.arm_root.len() != args.arm_tip.len() {
-        errln!(
-            "error: {} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
-            args.arm_root.len(),
-            args.arm_tip.len()
-        );
-        return 2;
-    }
-    let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
-    for arg in &args.xacro_arg {
-        match inputs::parse_xacro_arg_flag(arg) {
-            Ok(pair) => xacro_args.push(pair),
-            Err(message) => {
-                errln!("error: {message}");
-                return 2;
-            }
+    let (paths, xacro_args) = match checked_inputs(&args) {
+        Ok(checked) => checked,
+        Err(message) => {
+            errln!("error: {message}");
+            return 2;
         }
-    }
+    };
     let (files, input_errors) = inputs::expand(&paths, args.skip_xacro_libraries);
     if files.is_empty() && input_errors.is_empty() && args.skip_xacro_libraries {
         // Only macro libraries were named (a pre-commit run on changed library files): nothing to do.
@@ -175,24 +167,10 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         if groups.iter().any(|(p, _)| p == path) {
             continue;
         }
-        let effective = match config::load(path.as_deref(), &args, matches) {
-            Ok(effective) => effective,
-            Err(message) => {
-                errln!("error: {message}");
-                return 2;
-            }
-        };
-        let mut group_args = args.clone();
-        effective.apply_to(&mut group_args);
-        match options_for(&group_args, effective.settings, &xacro_args, &meshes) {
+        match configured_options(&args, matches, path.as_deref(), &xacro_args, &meshes) {
             Ok(options) => groups.push((path.clone(), options)),
             Err(message) => {
-                errln!(
-                    "error: {message}{}",
-                    path.as_ref()
-                        .map(|p| format!(" (with the settings of {})", p.display()))
-                        .unwrap_or_default()
-                );
+                errln!("error: {message}");
                 return 2;
             }
         }
@@ -285,20 +263,27 @@ fn rules_url() -> Option<String> {
 }
 
 fn explain(code: &str) -> u8 {
-    match rules::find(code) {
-        Some(rule) => {
+    match find_rule(code) {
+        Ok(rule) => {
             out!("{}", rules::explain(rule));
             0
         }
-        None => {
-            let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
-            errln!(
-                "error: no rule '{code}' ({}); `urdf_validate --list-rules` lists them all",
-                urdf_validator::diagnostics::suggest::did_you_mean(code, names)
-            );
+        Err(message) => {
+            errln!("error: {message}; `urdf_validate --list-rules` lists them all");
             2
         }
     }
+}
+
+/// The rule with this code or name, else `no rule 'X' (did you mean ...)`.
+fn find_rule(code: &str) -> Result<&'static Rule, String> {
+    rules::find(code).ok_or_else(|| {
+        let names = rules::ALL.iter().flat_map(|r| [r.code, r.name]);
+        format!(
+            "no rule '{code}' ({})",
+            urdf_validator::diagnostics::suggest::did_you_mean(code, names)
+        )
+    })
 }
 
 /// The configuration file of each input: `--config` for all, none with `--no-config`, else the nearest
@@ -344,6 +329,46 @@ fn show_config(args: &Args, matches: &clap::ArgMatches) -> u8 {
             2
         }
     }
+}
+
+/// xacro arguments, `(name, value)` in the order given.
+type XacroArgs = Vec<(String, String)>;
+
+/// The flags' checks that come before any file is read, and the paths to validate with the xacro
+/// arguments (positional `name:=value` words and `--xacro-arg`).
+fn checked_inputs(args: &Args) -> Result<(Vec<PathBuf>, XacroArgs), String> {
+    workspace_options(args)?;
+    if args.arm_root.len() != args.arm_tip.len() {
+        return Err(format!(
+            "{} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
+            args.arm_root.len(),
+            args.arm_tip.len()
+        ));
+    }
+    let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
+    for arg in &args.xacro_arg {
+        xacro_args.push(inputs::parse_xacro_arg_flag(arg)?);
+    }
+    Ok((paths, xacro_args))
+}
+
+/// The options of the inputs that configuration file `config` governs (none: the flags and defaults
+/// alone): the file read and merged with the flags.
+fn configured_options(
+    args: &Args,
+    matches: &clap::ArgMatches,
+    config: Option<&Path>,
+    xacro_args: &[(String, String)],
+    meshes: &MeshCache,
+) -> Result<Options, String> {
+    let effective = config::load(config, args, matches)?;
+    let mut group_args = args.clone();
+    effective.apply_to(&mut group_args);
+    options_for(&group_args, effective.settings, xacro_args, meshes).map_err(|message| match config
+    {
+        Some(path) => format!("{message} (with the settings of {})", path.display()),
+        None => message,
+    })
 }
 
 /// The library options from the flags (already merged with a configuration file) and `settings`.

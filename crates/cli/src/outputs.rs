@@ -102,16 +102,21 @@ pub struct Files {
     pub options: FormatOptions,
 }
 
-/// Validate `file`, giving up after `timeout` (`None`: no limit). A run that does not finish in time is
-/// reported as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: its sampling stops
-/// at the next chunk, and anything else it still does ends with it or with the process.
-pub(crate) fn validate_within(
+/// Validate `file` with `job` ([`validate`], or [`urdf_validator::validate_text`] for text standing for
+/// `file`), giving up after `timeout` (`None`: no limit). A run that does not finish in time is reported
+/// as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: its sampling stops at the
+/// next chunk, and anything else it still does ends with it or with the process.
+pub(crate) fn validate_within<F>(
     file: &Path,
     options: &Options,
     timeout: Option<Duration>,
-) -> Result<Validation, LoadError> {
+    job: F,
+) -> Result<Validation, LoadError>
+where
+    F: FnOnce(&Path, &Options) -> Result<Validation, LoadError> + Send + 'static,
+{
     let Some(timeout) = timeout else {
-        return validate(file, options);
+        return job(file, options);
     };
     let progress = Progress::default();
     let options = Options {
@@ -123,7 +128,7 @@ pub(crate) fn validate_within(
     let worker = std::thread::Builder::new()
         .name(format!("validate {}", file.display()))
         .spawn(move || {
-            let _ = done.send(validate(&path, &options));
+            let _ = done.send(job(&path, &options));
         });
     if let Err(error) = worker {
         return Err(LoadError::Io {
@@ -151,7 +156,7 @@ pub fn validate_one(
     files: &Files,
     timeout: Option<Duration>,
 ) -> Outcome {
-    let validation = validate_within(file, options, timeout);
+    let validation = validate_within(file, options, timeout, validate);
     let mut outcome = Outcome {
         file: file.to_path_buf(),
         validation,

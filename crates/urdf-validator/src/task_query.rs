@@ -22,6 +22,7 @@
 use std::path::PathBuf;
 
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::workspace::target::{Orientation, Task};
@@ -30,7 +31,7 @@ use crate::report::Report;
 use crate::Options;
 
 /// The orientation a pick must reach, as the spec writes it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(untagged)]
 pub enum TargetOrientation {
     /// `"top_down"` or `"side"`.
@@ -56,12 +57,14 @@ impl TargetOrientation {
     }
 }
 
-/// One task query (the spec's `TaskQueryRequest`, same field names).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// One task query (the spec's `TaskQueryRequest`, same field names; its JSON Schema describes the
+/// arguments of the MCP server's task tools).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct TaskQueryRequest {
     /// The robot description (URDF or xacro).
     pub urdf_path: PathBuf,
-    /// The task: only `"pick"`.
+    /// The task: only `"pick"` (the default, as in the Python tool's MCP server).
+    #[serde(default = "pick")]
     pub task_type: String,
     /// Where the tool must be, `[x, y, z]` metres in the root frame.
     #[serde(default)]
@@ -76,6 +79,11 @@ pub struct TaskQueryRequest {
     /// `terrain_gravity` sub-check.
     #[serde(default)]
     pub terrain_angle_deg: f64,
+}
+
+/// `task_type`'s default.
+fn pick() -> String {
+    "pick".to_string()
 }
 
 /// One sub-check of a response (the spec's `SubCheckResult`).

@@ -1,0 +1,151 @@
+//! `urdf_validate mcp`: the validator as a Model Context Protocol server on stdin/stdout, for AI agents.
+//!
+//! The tools (`tools`) keep the names and arguments of the Python tool's MCP server where the feature
+//! exists here. Each call runs off the async executor, so the server keeps answering while it works.
+//! A failure (a missing file, a bad argument, an unknown rule) is a tool result with `isError` and a
+//! one-line message; the server goes on. stdout carries the protocol only; messages go to stderr.
+
+mod tools;
+
+use std::ffi::OsString;
+use std::io::{IsTerminal, Write};
+
+use rmcp::model::{
+    CallToolRequestParams, CallToolResponse, CallToolResult, ContentBlock, Implementation,
+    ListToolsResult, PaginatedRequestParams, ServerCapabilities, ServerConfig,
+};
+use rmcp::service::RequestContext;
+use rmcp::service::ServerInitializeError;
+use rmcp::{ErrorData, RoleServer, ServerHandler, ServiceExt};
+
+/// `urdf_validate mcp --help`.
+const HELP: &str = "\
+Serve the validator to AI agents over the Model Context Protocol (MCP), on stdin/stdout.
+
+Usage: urdf_validate mcp
+
+An MCP client (Claude Desktop, an agent framework) starts this command and speaks JSON-RPC to it, one
+message a line; messages for people go to stderr. Tools: validate_urdf, validate_urdf_string,
+run_pick_task, run_pick_sweep, list_rules, explain_rule. Client set-up and every tool's arguments:
+docs/mcp.md. Relative paths in tool arguments start from this command's working directory.
+
+A file named `mcp` is validated as `urdf_validate ./mcp`.
+";
+
+/// What the server tells clients on `initialize`.
+const INSTRUCTIONS: &str = "Physics-aware validation of robot descriptions (URDF and xacro). \
+validate_urdf returns the full JSON report (overall_status PASS, WARN, FAIL or UNKNOWN; findings with \
+rule codes and file:line:col; statics, stability and workspace sections); explain_rule explains a rule \
+code; run_pick_task answers whether the robot can pick an object at a place. Paths are files on the \
+machine that runs the server; relative ones start from its working directory, so prefer absolute \
+paths. Each call is independent and writes no report file.";
+
+/// Run `urdf_validate mcp ARGS`: serve until stdin closes. Exit status 0, or 2 when the server cannot run.
+pub(crate) fn main(args: &[OsString]) -> u8 {
+    match args.first() {
+        None => {}
+        Some(arg) if arg == "-h" || arg == "--help" => {
+            out!("{HELP}");
+            return 0;
+        }
+        Some(arg) => {
+            errln!(
+                "error: `urdf_validate mcp` takes no arguments (got '{}'); to validate a file named mcp, \
+                 write ./mcp",
+                arg.to_string_lossy()
+            );
+            return 2;
+        }
+    }
+    if std::io::stdin().is_terminal() {
+        errln!(
+            "urdf_validate mcp: an MCP server, waiting for JSON-RPC on stdin (one message a line); \
+             Ctrl-D ends it. An MCP client starts it: see docs/mcp.md."
+        );
+    }
+    let runtime = match tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+    {
+        Ok(runtime) => runtime,
+        Err(error) => {
+            errln!("error: urdf_validate mcp: cannot start: {error}");
+            return 2;
+        }
+    };
+    let status = runtime.block_on(serve());
+    // Do not wait for a validation still running for a client that has gone, nor for the blocked read
+    // of stdin.
+    runtime.shutdown_background();
+    status
+}
+
+/// Serve on stdin/stdout until the client closes stdin.
+async fn serve() -> u8 {
+    let service = match Server.serve(rmcp::transport::stdio()).await {
+        Ok(service) => service,
+        // stdin closed before `initialize`: nothing was asked.
+        Err(ServerInitializeError::ConnectionClosed(_)) => return 0,
+        Err(error) => {
+            errln!("error: urdf_validate mcp: {error}");
+            return 2;
+        }
+    };
+    match service.waiting().await {
+        Ok(_) => 0,
+        Err(error) => {
+            errln!("error: urdf_validate mcp: {error}");
+            2
+        }
+    }
+}
+
+/// The server: stateless, every call stands alone.
+struct Server;
+
+impl ServerHandler for Server {
+    fn get_info(&self) -> ServerConfig {
+        ServerConfig::new(ServerCapabilities::builder().enable_tools().build())
+            .with_server_info(Implementation::new(
+                "urdf_validator",
+                env!("CARGO_PKG_VERSION"),
+            ))
+            .with_instructions(INSTRUCTIONS)
+    }
+
+    async fn list_tools(
+        &self,
+        _request: Option<PaginatedRequestParams>,
+        _context: RequestContext<RoleServer>,
+    ) -> Result<ListToolsResult, ErrorData> {
+        Ok(ListToolsResult::with_all_items(tools::listed().to_vec()))
+    }
+
+    async fn call_tool(
+        &self,
+        request: CallToolRequestParams,
+        _context: RequestContext<RoleServer>,
+    ) -> Result<CallToolResponse, ErrorData> {
+        let Some(tool) = tools::find(&request.name) else {
+            // The one protocol error: the spec's answer to a tool that does not exist.
+            return Err(ErrorData::invalid_params(
+                format!(
+                    "no tool '{}' (tools: {})",
+                    request.name,
+                    tools::names().join(", ")
+                ),
+                None,
+            ));
+        };
+        let arguments = request.arguments.unwrap_or_default();
+        let result = match tokio::task::spawn_blocking(move || tools::call(tool, arguments)).await {
+            Ok(Ok(output)) => output.into_result(),
+            Ok(Err(message)) => CallToolResult::error(vec![ContentBlock::text(message)]),
+            Err(error) => CallToolResult::error(vec![ContentBlock::text(format!(
+                "internal error in {}: {error}",
+                request.name
+            ))]),
+        };
+        Ok(result.into())
+    }
+}

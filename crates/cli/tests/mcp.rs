@@ -1,0 +1,383 @@
+//! `urdf_validate mcp`: the binary spoken to as an MCP client does, newline-delimited JSON-RPC over its
+//! stdin and stdout.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
+
+mod common;
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{self, Receiver};
+use std::time::{Duration, Instant};
+
+use serde_json::{json, Value};
+
+/// Longest wait for one answer (a debug build validating with few samples takes well under this).
+const WAIT: Duration = Duration::from_secs(120);
+
+/// A running `urdf_validate mcp` and the lines it writes on stdout.
+struct Server {
+    child: Child,
+    stdin: Option<ChildStdin>,
+    lines: Receiver<String>,
+    next_id: u64,
+}
+
+impl Server {
+    /// Start the server in `dir` and initialise the session.
+    fn start(dir: &Path) -> Server {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+            .arg("mcp")
+            .current_dir(dir)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("starts");
+        let stdin = child.stdin.take();
+        let stdout = child.stdout.take().expect("stdout");
+        let (send, lines) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines() {
+                let Ok(line) = line else { break };
+                if send.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        let mut server = Server {
+            child,
+            stdin,
+            lines,
+            next_id: 0,
+        };
+        let init = server.request(
+            "initialize",
+            json!({
+                "protocolVersion": "2025-06-18",
+                "capabilities": {},
+                "clientInfo": {"name": "mcp-test", "version": "0"}
+            }),
+        );
+        assert_eq!(
+            init["result"]["serverInfo"]["name"], "urdf_validator",
+            "{init}"
+        );
+        assert!(
+            init["result"]["capabilities"]["tools"].is_object(),
+            "{init}"
+        );
+        server.send(&json!({"jsonrpc": "2.0", "method": "notifications/initialized"}));
+        server
+    }
+
+    fn send(&mut self, message: &Value) {
+        let stdin = self.stdin.as_mut().expect("stdin open");
+        writeln!(stdin, "{message}").expect("write");
+        stdin.flush().expect("flush");
+    }
+
+    /// Send a request; its id.
+    fn ask(&mut self, method: &str, params: Value) -> u64 {
+        self.next_id += 1;
+        let id = self.next_id;
+        self.send(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        id
+    }
+
+    /// The next response (notifications skipped).
+    fn response(&mut self) -> Value {
+        let deadline = Instant::now() + WAIT;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            let line = self
+                .lines
+                .recv_timeout(left)
+                .expect("an answer in time, on stdout");
+            let message: Value = serde_json::from_str(&line)
+                .unwrap_or_else(|e| panic!("stdout holds only JSON-RPC, got {line:?}: {e}"));
+            if message.get("id").is_some() {
+                return message;
+            }
+        }
+    }
+
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        let id = self.ask(method, params);
+        let response = self.response();
+        assert_eq!(response["id"], id, "{response}");
+        response
+    }
+
+    /// `tools/call`: the result.
+    fn call(&mut self, tool: &str, arguments: Value) -> Value {
+        let response = self.request("tools/call", json!({"name": tool, "arguments": arguments}));
+        assert!(response.get("error").is_none(), "a tool result: {response}");
+        response["result"].clone()
+    }
+
+    /// Close stdin; the exit status within the wait.
+    fn close(mut self) -> std::process::ExitStatus {
+        drop(self.stdin.take());
+        let deadline = Instant::now() + Duration::from_secs(20);
+        loop {
+            if let Some(status) = self.child.try_wait().expect("wait") {
+                return status;
+            }
+            if Instant::now() > deadline {
+                let _ = self.child.kill();
+                panic!("the server did not exit when stdin closed");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+fn example_robot() -> String {
+    common::repo_root()
+        .join("examples/robots/mobile_manipulator.urdf")
+        .display()
+        .to_string()
+}
+
+fn error_text(result: &Value) -> String {
+    assert_eq!(result["isError"], true, "an error result: {result}");
+    result["content"][0]["text"]
+        .as_str()
+        .expect("text")
+        .to_string()
+}
+
+#[test]
+fn a_session_lists_validates_answers_and_ends_with_stdin() {
+    let dir = std::env::temp_dir();
+    let mut server = Server::start(&dir);
+
+    let tools = server.request("tools/list", json!({}));
+    let names: Vec<&str> = tools["result"]["tools"]
+        .as_array()
+        .expect("tools")
+        .iter()
+        .map(|t| t["name"].as_str().expect("name"))
+        .collect();
+    for name in [
+        "validate_urdf",
+        "validate_urdf_string",
+        "run_pick_task",
+        "run_pick_sweep",
+        "list_rules",
+        "explain_rule",
+    ] {
+        assert!(names.contains(&name), "{name} in {names:?}");
+    }
+    let validate = &tools["result"]["tools"][0];
+    assert_eq!(validate["inputSchema"]["required"], json!(["urdf_path"]));
+    assert!(
+        validate["inputSchema"]["properties"]["robot_type"]["enum"]
+            .as_array()
+            .is_some_and(|values| values.contains(&json!("wheeled"))),
+        "robot_type lists the CLI's values: {validate}"
+    );
+
+    // The report, as structured content and as the report file's text.
+    let result = server.call(
+        "validate_urdf",
+        json!({"urdf_path": example_robot(), "samples": 300}),
+    );
+    assert_eq!(result["isError"], false, "{result}");
+    let report = &result["structuredContent"];
+    assert_eq!(report["overall_status"], "PASS", "{report}");
+    assert_eq!(report["robot_name"], "mobile_manipulator");
+    let text: Value = serde_json::from_str(result["content"][0]["text"].as_str().expect("text"))
+        .expect("the text is the JSON report");
+    assert_eq!(text["overall_status"], "PASS");
+
+    // The CLI's flags reach the analysis.
+    let result = server.call(
+        "validate_urdf",
+        json!({"urdf_path": example_robot(), "samples": 300, "task": "pick_from_table"}),
+    );
+    let workspace = &result["structuredContent"]["workspace"];
+    assert_eq!(workspace["samples"], 300, "{workspace}");
+    assert!(
+        workspace["task_target_height_m"].is_number(),
+        "the task was analysed: {workspace}"
+    );
+
+    let result = server.call(
+        "run_pick_task",
+        json!({
+            "urdf_path": example_robot(),
+            "target_position": [0.5, 0.0, 0.75],
+            "target_orientation": "top_down",
+            "object_mass_kg": 0.5,
+            "samples": 300
+        }),
+    );
+    assert_eq!(result["isError"], false, "{result}");
+    let response = &result["structuredContent"];
+    assert_eq!(
+        response["task_type"], "pick",
+        "defaults to pick: {response}"
+    );
+    let checks: Vec<&str> = response["sub_checks"]
+        .as_array()
+        .expect("sub_checks")
+        .iter()
+        .map(|c| c["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(
+        checks,
+        [
+            "reach",
+            "reach_orientation",
+            "payload_strength",
+            "stability_during_reach",
+            "self_collision"
+        ]
+    );
+    assert!(
+        ["PASS", "FAIL", "UNKNOWN"].contains(&response["overall_status"].as_str().expect("status"))
+    );
+
+    let result = server.call(
+        "run_pick_sweep",
+        json!({
+            "requests": [
+                {"urdf_path": example_robot(), "target_position": [0.4, 0.0, 0.8]},
+                {"urdf_path": "/nonexistent/robot.urdf", "target_position": [0.4, 0.0, 0.8]}
+            ],
+            "samples": 200
+        }),
+    );
+    let responses = result["structuredContent"]["responses"]
+        .as_array()
+        .expect("responses");
+    assert_eq!(responses.len(), 2);
+    assert_eq!(responses[1]["sub_checks"][0]["name"], "urdf_load");
+
+    let result = server.call("explain_rule", json!({"code": "U205"}));
+    assert_eq!(
+        result["structuredContent"]["name"],
+        "inertia-not-positive-definite"
+    );
+    let result = server.call("list_rules", json!({}));
+    assert!(
+        result["structuredContent"]["rules"]
+            .as_array()
+            .expect("rules")
+            .len()
+            > 50
+    );
+
+    // Errors are results naming what was wrong; the server goes on.
+    let missing = dir.join("no_such_robot.urdf").display().to_string();
+    let message = error_text(&server.call("validate_urdf", json!({ "urdf_path": missing })));
+    assert!(message.contains(&missing), "{message}");
+    assert!(
+        message.contains("expected a URDF or xacro file"),
+        "{message}"
+    );
+    let message = error_text(&server.call(
+        "validate_urdf",
+        json!({"urdf_path": example_robot(), "pose": "sideways"}),
+    ));
+    assert!(message.contains("sideways"), "{message}");
+    let message = error_text(&server.call(
+        "validate_urdf",
+        json!({"urdf_path": example_robot(), "samples": "many"}),
+    ));
+    assert!(message.contains("samples"), "{message}");
+    let message = error_text(&server.call(
+        "validate_urdf",
+        json!({"urdf_path": example_robot(), "sample": 10}),
+    ));
+    assert!(message.contains("did you mean 'samples'"), "{message}");
+    let message = error_text(&server.call("explain_rule", json!({"code": "U9999"})));
+    assert!(message.contains("no rule 'U9999'"), "{message}");
+    let message = error_text(&server.call(
+        "validate_urdf_string",
+        json!({"urdf_xml": "<robot name='x'><link name='a'/>"}),
+    ));
+    assert!(message.contains("robot.urdf"), "{message}");
+
+    let unknown = server.request(
+        "tools/call",
+        json!({"name": "solve_target", "arguments": {}}),
+    );
+    assert!(unknown["error"].is_object(), "{unknown}");
+
+    let result = server.call(
+        "validate_urdf_string",
+        json!({"urdf_xml": "<robot name='one'><link name='base'/></robot>", "base_dir": dir}),
+    );
+    assert_eq!(result["structuredContent"]["robot_name"], "one", "{result}");
+
+    assert!(server.close().success());
+}
+
+#[test]
+fn a_long_validation_does_not_hold_up_other_calls() {
+    let mut server = Server::start(&std::env::temp_dir());
+    let slow = server.ask(
+        "tools/call",
+        json!({"name": "validate_urdf", "arguments": {"urdf_path": example_robot(), "samples": 2000000}}),
+    );
+    let quick = server.ask(
+        "tools/call",
+        json!({"name": "explain_rule", "arguments": {"code": "U701"}}),
+    );
+    let first = server.response();
+    assert_eq!(first["id"], quick, "the quick call answered first: {first}");
+    let second = server.response();
+    assert_eq!(second["id"], slow);
+    assert_eq!(second["result"]["isError"], false, "{second}");
+    assert!(server.close().success());
+}
+
+#[test]
+fn help_and_usage() {
+    let exe = env!("CARGO_BIN_EXE_urdf_validate");
+    let help = Command::new(exe)
+        .args(["mcp", "--help"])
+        .output()
+        .expect("runs");
+    assert!(help.status.success());
+    assert!(String::from_utf8_lossy(&help.stdout).contains("Model Context Protocol"));
+    let extra = Command::new(exe)
+        .args(["mcp", "robot.urdf"])
+        .output()
+        .expect("runs");
+    assert_eq!(extra.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&extra.stderr).contains("./mcp"));
+    // Closing stdin before initialising is a quiet exit.
+    let closed = Command::new(exe)
+        .arg("mcp")
+        .stdin(Stdio::null())
+        .output()
+        .expect("runs");
+    assert!(closed.status.success(), "{closed:?}");
+    assert!(closed.stdout.is_empty());
+}
+
+#[test]
+fn a_file_named_mcp_is_validated_as_dot_slash_mcp() {
+    let dir = std::env::temp_dir().join(format!("urdf_validate_mcp_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    std::fs::write(
+        dir.join("mcp"),
+        "<robot name='m'><link name='base'/></robot>\n",
+    )
+    .expect("write");
+    let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["./mcp", "--no-write", "--samples", "100"])
+        .current_dir(&dir)
+        .output()
+        .expect("runs");
+    assert!(
+        String::from_utf8_lossy(&output.stdout).contains("urdf_validate — mcp"),
+        "{output:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
