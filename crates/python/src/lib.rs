@@ -2,6 +2,7 @@
 //! flags (the Python layer turns keyword arguments into them), releases the GIL while Rust works, and
 //! returns JSON text that the Python layer wraps (`Report`, `TaskQueryResponse`).
 
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -88,9 +89,8 @@ fn validate_many(py: Python<'_>, paths: Vec<PathBuf>, flags: Vec<String>) -> PyR
         let mut sessions: HashMap<PathBuf, Session> = HashMap::new();
         for path in &paths {
             let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-            if !sessions.contains_key(&dir) {
-                let made = session(&flags, Some(path))?;
-                sessions.insert(dir, made);
+            if let Entry::Vacant(entry) = sessions.entry(dir) {
+                entry.insert(session(&flags, Some(path))?);
             }
         }
         Ok(paths
