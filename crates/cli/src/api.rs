@@ -111,6 +111,15 @@ mod tests {
     }
 
     #[test]
+    fn xacro_arguments_reach_the_options() {
+        let session = Session::from_flags(&["--xacro-arg=arm:=ur5".into()], None).expect("session");
+        assert_eq!(
+            session.options().xacro_args,
+            [("arm".to_string(), "ur5".to_string())]
+        );
+    }
+
+    #[test]
     fn an_unknown_flag_is_named() {
         let error =
             Session::from_flags(&["--sampels".into(), "3".into()], None).expect_err("unknown flag");
