@@ -302,6 +302,27 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
     ));
     assert!(message.contains("robot.urdf"), "{message}");
 
+    // A xacro file with its arguments.
+    let xacro = dir.join(format!("mcp_test_{}.urdf.xacro", std::process::id()));
+    std::fs::write(
+        &xacro,
+        r#"<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="base" default="base_link"/>
+  <link name="$(arg base)"/>
+</robot>
+"#,
+    )
+    .expect("write xacro");
+    let result = server.call(
+        "validate_urdf",
+        json!({"urdf_path": xacro, "xacro_args": {"base": "chassis"}}),
+    );
+    let _ = std::fs::remove_file(&xacro);
+    assert_eq!(
+        result["structuredContent"]["links"][0]["name"], "chassis",
+        "{result}"
+    );
+
     let unknown = server.request(
         "tools/call",
         json!({"name": "solve_target", "arguments": {}}),

@@ -143,6 +143,9 @@ fn requests_and_responses_use_the_spec_field_names() {
         Some(TargetOrientation::Values(vec![1.0, 0.0, 0.0, 0.0]))
     );
     assert_eq!(request.terrain_angle_deg, 0.0);
+    let untyped: TaskQueryRequest =
+        serde_json::from_str(r#"{"urdf_path": "r.urdf"}"#).expect("request without task_type");
+    assert_eq!(untyped.task_type, "pick");
     let response = serde_json::to_value(run_pick_task(&request, &options())).expect("json");
     for key in [
         "task_type",

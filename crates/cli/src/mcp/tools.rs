@@ -538,14 +538,15 @@ fn check_names(arguments: &JsonObject, schema: &JsonObject, what: &str) -> Resul
              URDF and call again)"
         ));
     }
-    let accepted = if names.is_empty() {
-        "it takes none".to_string()
-    } else {
-        format!("accepted: {}", names.join(", "))
-    };
+    if names.is_empty() {
+        return Err(format!(
+            "{what}: unknown argument '{unknown}' (it takes none)"
+        ));
+    }
     Err(format!(
-        "{what}: unknown argument '{unknown}' ({}; {accepted})",
-        did_you_mean(unknown, names.iter().map(String::as_str))
+        "{what}: unknown argument '{unknown}': {} (arguments: {})",
+        did_you_mean(unknown, names.iter().map(String::as_str)),
+        names.join(", ")
     ))
 }
 
