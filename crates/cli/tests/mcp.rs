@@ -164,6 +164,7 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
     for name in [
         "validate_urdf",
         "validate_urdf_string",
+        "check_pick_task",
         "run_pick_task",
         "run_pick_sweep",
         "list_rules",
@@ -172,7 +173,10 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
         assert!(names.contains(&name), "{name} in {names:?}");
     }
     let validate = &tools["result"]["tools"][0];
-    assert_eq!(validate["inputSchema"]["required"], json!(["urdf_path"]));
+    let properties = &validate["inputSchema"]["properties"];
+    for argument in ["path", "xml", "base_dir", "urdf_path"] {
+        assert!(properties.get(argument).is_some(), "{argument}: {validate}");
+    }
     assert!(
         validate["inputSchema"]["properties"]["robot_type"]["enum"]
             .as_array()
@@ -180,18 +184,27 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
         "robot_type lists the CLI's values: {validate}"
     );
 
-    // The report, as structured content and as the report file's text.
+    // The report as structured content, the verdict and findings as text.
     let result = server.call(
         "validate_urdf",
-        json!({"urdf_path": example_robot(), "samples": 300}),
+        json!({"path": example_robot(), "samples": 300}),
     );
     assert_eq!(result["isError"], false, "{result}");
     let report = &result["structuredContent"];
     assert_eq!(report["overall_status"], "PASS", "{report}");
     assert_eq!(report["robot_name"], "mobile_manipulator");
-    let text: Value = serde_json::from_str(result["content"][0]["text"].as_str().expect("text"))
-        .expect("the text is the JSON report");
-    assert_eq!(text["overall_status"], "PASS");
+    let text = result["content"][0]["text"].as_str().expect("text");
+    assert!(text.starts_with("mobile_manipulator: PASS"), "{text}");
+    // Inline XML, and a finding with its rule and position in the text.
+    let result = server.call(
+        "validate_urdf",
+        json!({"xml": "<robot name='dup'><link name='a'/><link name='a'/></robot>"}),
+    );
+    let text = result["content"][0]["text"].as_str().expect("text");
+    assert!(text.starts_with("dup: FAIL"), "{text}");
+    assert!(text.contains("CRITICAL U"), "{text}");
+    assert!(text.contains("robot.urdf:1:"), "{text}");
+    assert!(error_text(&server.call("validate_urdf", json!({}))).contains("missing path"));
 
     // The CLI's flags reach the analysis.
     let result = server.call(

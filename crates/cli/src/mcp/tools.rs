@@ -39,29 +39,31 @@ pub struct ToolDef {
 static TOOLS: &[ToolDef] = &[
     ToolDef {
         name: "validate_urdf",
-        description: "Validate a URDF or xacro file with the full physics-aware pipeline (structure, \
+        description: "Validate a robot description with the full physics-aware pipeline (structure, \
             mass and inertia, statics at a pose, stability, workspace reach, self-collision, and the \
-            task, orientation and payload checks asked for) and return the complete JSON report: the \
-            document `urdf_validate` writes as <name>_validation.json, with overall_status (PASS, WARN, \
-            FAIL or UNKNOWN), confidence_level, the sections, and findings[] with rule codes (see \
-            explain_rule) and file:line:col. The optional arguments are the CLI's flags; a \
-            urdf-validate.toml (or pyproject.toml [tool.urdf-validate]) next to the file applies, as on \
-            the command line. Writes no report file. samples defaults to 30000 per arm (seconds on big \
-            robots); a few hundred gives a quick, coarser workspace.",
+            task, orientation and payload checks asked for). Give `path` (a URDF or xacro file) or `xml` \
+            (URDF text, with `base_dir` for its relative mesh paths). The text result is the verdict and \
+            every finding (severity, rule code, file:line:col, message); the structured result is the \
+            complete JSON report `urdf_validate` writes as <name>_validation.json (overall_status PASS, \
+            WARN, FAIL or UNKNOWN, confidence_level, the sections, findings[]; rule codes: see \
+            explain_rule). The optional arguments are the CLI's flags; a urdf-validate.toml (or \
+            pyproject.toml [tool.urdf-validate]) near the file applies, as on the command line. Writes \
+            no report file. samples defaults to 30000 per arm (seconds on big robots); a few hundred \
+            gives a quick, coarser workspace.",
         schema: || merged(schema::<FileInput>(), schema::<Flags>()),
         run: validate_urdf,
     },
     ToolDef {
         name: "validate_urdf_string",
-        description: "Validate URDF XML given as text (not xacro) and return the complete JSON report, \
-            as validate_urdf does. The text stands for the file robot.urdf in base_dir (default: the \
+        description: "validate_urdf with `xml` (the Python tool's server had this tool): URDF XML given \
+            as text (not xacro) as `urdf_xml`. The text stands for the file robot.urdf in base_dir (default: the \
             server's working directory): relative mesh paths, package:// look-ups and the \
             configuration file start there. Takes validate_urdf's optional arguments.",
         schema: || merged(schema::<TextInput>(), schema::<Flags>()),
         run: validate_urdf_string,
     },
     ToolDef {
-        name: "run_pick_task",
+        name: "check_pick_task",
         description: "Can this robot pick an object of this mass at this place, in this orientation? \
             Runs the full pipeline with the target's height as the task, the orientation and the mass \
             as payload, and answers with five sub-checks: reach, reach_orientation, payload_strength, \
@@ -73,8 +75,14 @@ static TOOLS: &[ToolDef] = &[
         run: run_pick_task,
     },
     ToolDef {
+        name: "run_pick_task",
+        description: "check_pick_task under the name the Python tool's MCP server used.",
+        schema: || merged(schema::<TaskQueryRequest>(), schema::<RunFlags>()),
+        run: run_pick_task,
+    },
+    ToolDef {
         name: "run_pick_sweep",
-        description: "run_pick_task for every request of `requests`, in parallel: the responses in \
+        description: "check_pick_task for every request of `requests`, in parallel: the responses in \
             request order, as {\"responses\": [...]}. A request that cannot run gets its own UNKNOWN \
             response and the others still run.",
         schema: || merged(schema::<Sweep>(), schema::<RunFlags>()),
@@ -149,10 +157,31 @@ impl Output {
         Ok(Output { structured, text })
     }
 
-    /// A validation report, its text the report file's (`render_json`).
+    /// A validation report: the whole report as JSON, the verdict and the findings as text.
     fn report(report: &Report) -> Result<Output, String> {
+        let mut text = format!(
+            "{}: {} (confidence {}), {} finding(s)\n",
+            report.robot_name,
+            report.overall_status.label(),
+            report.confidence_level.label(),
+            report.findings.len()
+        );
+        for finding in &report.findings {
+            let at = match (&finding.file, finding.line, finding.column) {
+                (Some(file), Some(line), Some(column)) => format!("{file}:{line}:{column}: "),
+                (Some(file), _, _) => format!("{file}: "),
+                _ => String::new(),
+            };
+            text.push_str(&format!(
+                "{} {} {}: {at}{}\n",
+                finding.severity.label(),
+                finding.rule,
+                finding.name,
+                finding.message
+            ));
+        }
         Ok(Output {
-            text: urdf_validator::render::render_json(report),
+            text,
             ..Output::json(report)?
         })
     }
@@ -324,12 +353,19 @@ impl From<RunFlags> for Flags {
     }
 }
 
-/// `validate_urdf`'s own argument.
+/// `validate_urdf`'s own arguments: a file or a text.
 #[derive(Debug, Deserialize, JsonSchema)]
 struct FileInput {
     /// The URDF or xacro file (.urdf, .xacro, .urdf.xacro). Relative paths start from the server's
-    /// working directory.
-    urdf_path: String,
+    /// working directory. Give this or `xml`.
+    path: Option<String>,
+    /// The same as `path` (the name the Python tool's server used).
+    urdf_path: Option<String>,
+    /// URDF XML text (not xacro), validated as the file robot.urdf in `base_dir`. Give this or `path`.
+    xml: Option<String>,
+    /// With `xml`: the folder relative mesh paths, package:// look-ups and the configuration file start
+    /// from. Default: the server's working directory.
+    base_dir: Option<String>,
 }
 
 /// `validate_urdf_string`'s own arguments.
@@ -363,17 +399,32 @@ struct NoArguments {}
 
 fn validate_urdf(arguments: JsonObject) -> Result<Output, String> {
     let (input, flags): (FileInput, Flags) = parse_with(arguments)?;
-    let file = existing_file(&input.urdf_path)?;
-    let validation = flags
-        .session(&file)?
-        .validate(&file)
-        .map_err(|error| error.to_string())?;
-    Output::report(&validation.report)
+    match (input.path.or(input.urdf_path), input.xml) {
+        (Some(path), None) => {
+            if input.base_dir.is_some() {
+                return Err("base_dir goes with xml, not with path".to_string());
+            }
+            let file = existing_file(&path)?;
+            let validation = flags
+                .session(&file)?
+                .validate(&file)
+                .map_err(|error| error.to_string())?;
+            Output::report(&validation.report)
+        }
+        (None, Some(xml)) => validate_text(xml, input.base_dir, &flags),
+        (Some(_), Some(_)) => Err("give path or xml, not both".to_string()),
+        (None, None) => Err("missing path (a URDF or xacro file) or xml (URDF text)".to_string()),
+    }
 }
 
 fn validate_urdf_string(arguments: JsonObject) -> Result<Output, String> {
     let (input, flags): (TextInput, Flags) = parse_with(arguments)?;
-    let dir = match input.base_dir {
+    validate_text(input.urdf_xml, input.base_dir, &flags)
+}
+
+/// Validate URDF `xml` as the file robot.urdf in `base_dir`.
+fn validate_text(xml: String, base_dir: Option<String>, flags: &Flags) -> Result<Output, String> {
+    let dir = match base_dir {
         Some(dir) if Path::new(&dir).is_dir() => PathBuf::from(dir),
         Some(dir) => {
             return Err(format!(
@@ -385,7 +436,7 @@ fn validate_urdf_string(arguments: JsonObject) -> Result<Output, String> {
     };
     let validation = flags
         .session(&dir)?
-        .validate_text(input.urdf_xml, &dir.join("robot.urdf"))
+        .validate_text(xml, &dir.join("robot.urdf"))
         .map_err(|error| error.to_string())?;
     Output::report(&validation.report)
 }
