@@ -152,3 +152,8 @@ def test_python_dash_m_runs_the_command(example: Path) -> None:
     assert done.returncode == 0 and "joint-undersized" in done.stdout
     listed = subprocess.run(["urdf_validate", "--list-rules"], capture_output=True, text=True)
     assert listed.returncode == 0 and listed.stdout.startswith("U0")
+
+
+def test_the_python_tools_console_commands_exist() -> None:
+    done = subprocess.run(["urdf_validate_mcp", "--help"], capture_output=True, text=True)
+    assert done.returncode == 0 and "mcp" in done.stdout, done.stdout + done.stderr
