@@ -383,6 +383,10 @@ fn options_for(
         meshes: meshes.clone(),
         progress: None,
         settings,
+        deep: urdf_validator::analysis::deep::DeepOptions {
+            requested: args.deep,
+            ..Default::default()
+        },
     })
 }
 
