@@ -77,13 +77,13 @@ pub fn python() -> PathBuf {
 
 /// Run the bridge on `job`; the reply (`ok` true, or a MuJoCo compile error) or why there is none.
 pub fn run(
+    python: &std::path::Path,
     job: &Value,
     limit: Duration,
     progress: Option<&Progress>,
 ) -> Result<Value, BridgeError> {
-    let python = python();
     let scratch = Scratch::new().map_err(|e| BridgeError::Crashed(e.to_string()))?;
-    let mut child = Command::new(&python)
+    let mut child = Command::new(python)
         .arg("-c")
         .arg(SCRIPT)
         // MuJoCo writes MUJOCO_LOG.TXT into the working directory on errors: a scratch folder.

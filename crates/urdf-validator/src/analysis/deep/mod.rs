@@ -40,6 +40,8 @@ pub struct DeepOptions {
     pub automatic: bool,
     /// Time limit of the MuJoCo process.
     pub time_limit: Duration,
+    /// The Python to run MuJoCo with; `None`: `URDF_VALIDATOR_PYTHON`, else `python3` ([`bridge::python`]).
+    pub python: Option<std::path::PathBuf>,
 }
 
 impl Default for DeepOptions {
@@ -48,6 +50,7 @@ impl Default for DeepOptions {
             requested: false,
             automatic: true,
             time_limit: DEFAULT_TIME_LIMIT,
+            python: None,
         }
     }
 }
@@ -108,7 +111,8 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
         fixed_base,
         payload: input.payload,
     })?;
-    let reply = bridge::run(&job.json, input.options.time_limit, input.progress);
+    let python = input.options.python.clone().unwrap_or_else(bridge::python);
+    let reply = bridge::run(&python, &job.json, input.options.time_limit, input.progress);
     Some(match reply {
         Ok(reply) => {
             let mut outcome = verdict::judge(&verdict::Context {
@@ -136,13 +140,18 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
             }
             outcome
         }
-        Err(error) => not_run(input, trigger, &error),
+        Err(error) => not_run(input, trigger, &python, &error),
     })
 }
 
 /// The section and finding when MuJoCo could not run: a FAIL when `--deep` was asked for (U790), an
 /// INFO when the pass triggered itself.
-fn not_run(input: &DeepInput, trigger: &str, error: &BridgeError) -> (DeepSection, Vec<Finding>) {
+fn not_run(
+    input: &DeepInput,
+    trigger: &str,
+    interpreter: &std::path::Path,
+    error: &BridgeError,
+) -> (DeepSection, Vec<Finding>) {
     let why = error.describe();
     let finding = if input.options.requested {
         Finding::new(
@@ -162,7 +171,7 @@ fn not_run(input: &DeepInput, trigger: &str, error: &BridgeError) -> (DeepSectio
     };
     let (python, version) = match error {
         BridgeError::NoMujoco { python, .. } => (Some(python.clone()), None),
-        _ => (Some(bridge::python().display().to_string()), None),
+        _ => (Some(interpreter.display().to_string()), None),
     };
     let section = DeepSection {
         status: Status::Unknown,

@@ -220,7 +220,7 @@ fn refusals(cx: &Context, changes: &mut Changes) {
                         &link.name.value,
                         span,
                         format!(
-                            "MuJoCo refuses link '{}': its principal moments {a:.6e}, {b:.6e}, {c:.6e} break A + B ≥ C by {:.3e} kg·m² (MuJoCo: \"{error}\"); loaded with the two smaller moments each raised by {raise:.3e} kg·m², the smallest change that makes A + B = C (axes, mass and centre of mass unchanged)",
+                            "MuJoCo refuses link '{}': its principal moments {a:.6e}, {b:.6e}, {c:.6e} break A + B ≥ C by {:.3e} kg·m² (MuJoCo stops at the first such body: \"{error}\"); loaded with the two smaller moments each raised by {raise:.3e} kg·m², the smallest change that makes A + B = C (axes, mass and centre of mass unchanged)",
                             link.name.value, fix.shortfall
                         ),
                     );
@@ -655,7 +655,8 @@ fn folded(model: &Model, robot: &Robot, raw: &Value) -> Vec<Option<f64>> {
         .collect();
     let mut out = raw.clone();
     for (j, value) in raw.iter().enumerate() {
-        if model.mimic[j].is_none() {
+        // A fixed joint can carry <mimic>: it has no force to fold (statics' raw torque is 0 there too).
+        if model.mimic[j].is_none() || !model.joint_data[j].is_actuated() {
             continue;
         }
         let (leader, factor) =
