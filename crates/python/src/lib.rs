@@ -50,9 +50,8 @@ fn validate_many(py: Python<'_>, paths: Vec<PathBuf>, flags: Vec<String>) -> PyR
         let mut sessions: HashMap<PathBuf, Session> = HashMap::new();
         for path in &paths {
             let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-            if !sessions.contains_key(&dir) {
-                let made = session(&flags, Some(path))?;
-                sessions.insert(dir, made);
+            if let std::collections::hash_map::Entry::Vacant(slot) = sessions.entry(dir) {
+                slot.insert(session(&flags, Some(path))?);
             }
         }
         Ok(paths
