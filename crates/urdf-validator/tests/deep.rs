@@ -391,3 +391,55 @@ fn without_mujoco_the_message_says_how_to_install_it_and_the_rest_runs() {
     assert!(report.deep.is_none());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A link without `<inertial>` but with a collision box gets mass from MuJoCo (U743); a floating joint
+/// below the root is one MuJoCo refuses outright (U740, quoting MuJoCo), and the static report stays whole.
+#[test]
+fn what_mujoco_changes_or_cannot_load_is_reported_at_the_element() {
+    let Some(python) = mujoco_python() else {
+        return;
+    };
+    let mut options = deep_options(&python, true);
+    options.overrides.robot_type = Some(RobotType::ArmOnly);
+    let with_box = MIMIC_ARM.replace(
+        "</robot>",
+        r#"<link name="camera"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="camera_joint" type="fixed"><parent link="lower"/><child link="camera"/><origin xyz="0.5 0 0"/></joint>
+</robot>"#,
+    );
+    let report = validate_text(&with_box, &options);
+    let deep = report.deep.as_ref().unwrap();
+    assert!(
+        deep.simulator_changes
+            .iter()
+            .any(|c| c.kind == "mass" && c.message.contains("'camera'")),
+        "{:#?}",
+        deep.simulator_changes
+    );
+    assert!(report.findings.iter().any(|f| f.rule == "U743"));
+    assert!(
+        !report.findings.iter().any(|f| f.rule == "U744"),
+        "explained, not a disagreement"
+    );
+
+    let floating = MIMIC_ARM.replace(
+        r#"<joint name="elbow" type="revolute">"#,
+        r#"<joint name="elbow" type="floating">"#,
+    );
+    let report = validate_text(&floating, &options);
+    let finding = report
+        .findings
+        .iter()
+        .find(|f| f.rule == "U740")
+        .unwrap_or_else(|| panic!("{:#?}", report.findings));
+    assert!(
+        finding
+            .message
+            .starts_with("MuJoCo cannot load this robot: "),
+        "{}",
+        finding.message
+    );
+    assert!(finding.line.is_some());
+    assert_eq!(report.deep.as_ref().unwrap().status, Status::Fail);
+    assert!(report.statics.is_some() && report.workspace.is_some());
+}
