@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import signal
 import sys
 
@@ -23,6 +24,8 @@ def _run(arguments: list) -> None:
     # let it end the process as it ends the native binary. (A closed pipe is already quiet: Python
     # ignores SIGPIPE, as Rust binaries do, and the command ends quietly on the write error.)
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+    # --deep runs MuJoCo in a Python process: this one's, where `pip install "urdf-validator[mujoco]"` put it.
+    os.environ.setdefault("URDF_VALIDATOR_PYTHON", sys.executable)
     sys.exit(_native.main(["urdf_validate", *arguments]))
 
 

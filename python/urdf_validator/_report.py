@@ -155,3 +155,8 @@ class Report:
     def workspace(self) -> Optional[Dict[str, Any]]:
         """The ``[WORKSPACE]`` section, if computed."""
         return self._data.get("workspace")
+
+    @property
+    def deep(self) -> Optional[Dict[str, Any]]:
+        """The ``[DEEP]`` MuJoCo pass (``deep=True``, or by itself on a robot that tips over), if it ran."""
+        return self._data.get("deep")

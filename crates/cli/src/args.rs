@@ -162,6 +162,13 @@ pub struct Args {
     #[arg(long)]
     pub no_cache: bool,
 
+    /// Also load the robot into MuJoCo (from PyPI: pip install "urdf-validator[mujoco]"; the Python of
+    /// URDF_VALIDATOR_PYTHON, else python3): what MuJoCo refuses or changes, its gravity torques and
+    /// centre of mass against statics, and a 2-second drop test. Runs by itself when the stability
+    /// margin is negative.
+    #[arg(long)]
+    pub deep: bool,
+
     /// Seconds each file may take; a file still running then is reported as not finished (naming the
     /// stage it was in, exit 2) and a batch goes on with the next file. 0: no limit.
     #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]

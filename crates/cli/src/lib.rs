@@ -411,6 +411,10 @@ fn options_for(
         meshes: meshes.clone(),
         progress: None,
         settings,
+        deep: urdf_validator::analysis::deep::DeepOptions {
+            requested: args.deep,
+            ..Default::default()
+        },
     })
 }
 

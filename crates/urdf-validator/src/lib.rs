@@ -79,6 +79,8 @@ pub struct Options {
     /// Rule selection, severity overrides and suppressions, applied when the report is built
     /// (`urdf-validate.toml`, `--select`, `--ignore`, `--show-suppressed`).
     pub settings: diagnostics::Settings,
+    /// `--deep`: the MuJoCo pass, and whether it runs by itself on a robot that tips over.
+    pub deep: analysis::deep::DeepOptions,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -139,7 +141,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             ..options.workspace.clone()
         };
         let inputs = analysis_inputs(&assets, options, &workspace);
-        let physics =
+        let mut physics =
             analysis::analyse(&robot, &model, &inputs, &mut clock).map_err(|message| {
                 LoadError::Usage {
                     path: loaded.path.clone(),
@@ -147,6 +149,22 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
                 }
             })?;
         findings.extend(physics.findings.iter().cloned());
+        let deep = analysis::deep::run(&analysis::deep::DeepInput {
+            text: loaded.text(),
+            robot: &robot,
+            model: &model,
+            assets: &assets,
+            physics: &physics,
+            payload: payload(&model, options),
+            options: &options.deep,
+            progress: options.progress.as_ref(),
+        });
+        if let Some((section, deep_findings)) = deep {
+            analysis::deep::mark_simulated(&mut physics, &section);
+            physics.deep = Some(section);
+            findings.extend(deep_findings);
+            clock.lap("deep");
+        }
         Some(physics)
     } else {
         None
@@ -166,6 +184,16 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     };
     let sources = loaded.into_sources();
     Ok(Validation { report, sources })
+}
+
+/// `--payload-mass` at the link statics carries it at.
+fn payload(model: &Model, options: &Options) -> Option<(model::LinkId, f64)> {
+    let mass = options.statics.payload_mass?;
+    let link = match &options.statics.payload_link {
+        Some(name) => model.link(name)?,
+        None => analysis::statics::gravity::default_payload_link(model)?,
+    };
+    Some((link, mass))
 }
 
 fn asset_source<'a>(path: &'a Path, options: &'a Options) -> AssetSource<'a> {

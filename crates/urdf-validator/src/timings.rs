@@ -54,7 +54,7 @@ impl Serialize for Timings {
 }
 
 /// The phases of the pipeline, in the order they run.
-pub const PHASES: [&str; 11] = [
+pub const PHASES: [&str; 12] = [
     "load",
     "parse",
     "model",
@@ -65,6 +65,7 @@ pub const PHASES: [&str; 11] = [
     "stability",
     "collision_setup",
     "workspace",
+    "deep",
     "report",
 ];
 

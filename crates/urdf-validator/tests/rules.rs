@@ -292,6 +292,16 @@ const COVERED: &[&str] = &[
     "U723",
     "U724",
     "U730",
+    // The MuJoCo pass: tests/deep.rs (they need MuJoCo from the test venv).
+    "U740",
+    "U741",
+    "U742",
+    "U743",
+    "U744",
+    "U745",
+    "U746",
+    "U747",
+    "U748",
     "U790",
     // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
     u801_unused_suppression::CODE,

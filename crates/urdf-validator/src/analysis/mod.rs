@@ -6,6 +6,7 @@
 pub mod arms;
 pub mod classify;
 pub mod collision;
+pub mod deep;
 pub(crate) mod mass;
 pub mod pose;
 pub mod stability;
@@ -66,6 +67,10 @@ pub struct Physics {
     /// Findings of the analyses: every verdict that is not PASS, declarations that differ from the
     /// structure, link pairs in contact at the reference pose.
     pub findings: Vec<Finding>,
+    /// The configuration statics and stability were evaluated at (mimic relations applied).
+    pub q: crate::model::kinematics::Configuration,
+    /// The MuJoCo pass (`--deep`, or by itself when the stability margin is negative).
+    pub deep: Option<deep::DeepSection>,
 }
 
 fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
@@ -297,6 +302,8 @@ pub fn analyse(
         detected,
         evidence: classification.evidence,
         findings,
+        q,
+        deep: None,
     })
 }
 

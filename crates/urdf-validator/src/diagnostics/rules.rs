@@ -352,8 +352,62 @@ rules! {
         why: "The declaration wins, as the spec says; the difference is shown so that a wrong declaration (or a misleading structure) is noticed.",
         fix: "Nothing if the declaration is right; otherwise correct it.",
     }
+    SIMULATOR_CANNOT_LOAD = "U740" "simulator-cannot-load" Fail {
+        section: Deep,
+        what: "`--deep` (or its automatic run): MuJoCo cannot compile the robot, even after the adjustments this pass makes for its known refusals (A + B < C inertias, moving links without mass). The message quotes MuJoCo's own error and points at the element it names.",
+        why: "Anyone loading this file into MuJoCo gets the same error; the simulated checks (cross-check, drop test) cannot run. The static report is complete.",
+        fix: "Fix what MuJoCo names (an inertia that is not positive definite, a floating joint below the root: MuJoCo allows free joints only on top-level bodies, a broken mesh).",
+    }
+    SIMULATOR_REFUSES = "U741" "simulator-refuses" Warn {
+        section: Deep,
+        what: "MuJoCo refuses the file as written, and the deep pass loaded it after the smallest adjustment, stated in the message: principal moments breaking A + B ≥ C (MuJoCo: `inertia must satisfy A + B >= C`; src/user/user_objects.cc, mjCBody::Compile) have their two smaller moments raised by half the shortfall each; a moving link without mass and inertia (`mass and inertia of moving bodies must be larger than mjMINVAL`; src/user/user_model.cc, CheckBodyMassInertia) gets MuJoCo's `boundmass` 1e-9 kg and `boundinertia` 1e-12 kg·m².",
+        why: "`mujoco.MjModel.from_xml_path` (and every tool built on it) refuses this file; the simulated results hold for the adjusted model.",
+        fix: "Recompute the inertia from the link's geometry (or CAD), or give the link its real mass; then MuJoCo loads the file unchanged.",
+    }
+    SIMULATOR_CHANGES_MODEL = "U742" "simulator-changes-model" Info {
+        section: Deep,
+        what: "MuJoCo loads the file but silently changes its structure: links on fixed joints fused into their parent (`fusestatic`, on for URDF: src/xml/xml.cc), visual geometry dropped (`discardvisual`, on for URDF) so visual-only links have no shape, `<mimic>` ignored (src/xml/xml_urdf.cc reads none; the deep pass adds a joint equality constraint), a joint without an effort above 0 left with unlimited force, collision meshes collided as their convex hulls, and meshes MuJoCo cannot read (COLLADA, ASCII STL: it reads binary STL, OBJ and MSH) passed as the hulls this validator loaded.",
+        why: "What the simulation holds is not exactly what the file says: names of fused links do not exist in MuJoCo, a mimic joint moves freely unless constrained, concave parts collide as filled.",
+        fix: "Nothing, if intended. Add `<mujoco><compiler fusestatic=\"false\"/></mujoco>` to keep the links, an MJCF equality for each mimic joint, convex or decomposed collision meshes.",
+    }
+    SIMULATOR_CHANGES_PHYSICS = "U743" "simulator-changes-physics" Warn {
+        section: Deep,
+        what: "The model MuJoCo compiled differs physically from the file, found by comparing them: a body's mass (a link without `<inertial>` gets the mass of its collision geometry at 1000 kg/m³: `inertiafromgeom=\"auto\"`), a link's position at the analysed pose (MuJoCo reads `rpy`, not URDF 1.1's `quat_xyzw`), or joint limits (MuJoCo enforces `lower`/`upper` on a continuous joint).",
+        why: "The simulation does not behave as the file and this analysis say; gravity torques of the joints carrying those links differ (they are left out of the cross-check's verdict).",
+        fix: "Declare `<inertial>` on every link with geometry, write orientations as `rpy`, remove `lower`/`upper` from continuous joints (or make them revolute).",
+    }
+    SIMULATOR_DISAGREES = "U744" "simulator-disagrees" Fail {
+        section: Deep,
+        what: "MuJoCo's gravity generalized force at a joint (`qfrc_bias` at zero velocity, mimic followers folded in), or its whole-body centre of mass (`subtree_com` of the root), differs from statics by more than 1e-6 relative (|a − b| ≤ 1e-6 · max(|a|, |b|, 1e-3 N·m); for the centre of mass, 1e-6 of its distance from the root, at least 1 mm), at the analysed pose (for `--pose worst`, at each joint's worst configuration), where MuJoCo changed nothing that explains it.",
+        why: "Two independent computations of the same physics disagree: the statics verdicts (and the simulator's behaviour) cannot both be right.",
+        fix: "Report it with the file: the message gives both values.",
+    }
+    DROP_TEST_TIPS_OVER = "U745" "drop-test-tips-over" Fail {
+        section: Deep,
+        what: "In MuJoCo's drop test (the robot at the analysed pose, released 2 cm above flat ground, joints held by servos clamped to their declared effort, 2.0 s at a fixed 1 ms step, implicitfast integrator) the root link ends more than 15° from upright.",
+        why: "The robot falls over as soon as it is spawned in a simulator, whatever the controller.",
+        fix: "Check the masses and centres of mass of the heaviest links and the contact geometry; a COM outside the support polygon (U710) is the usual cause.",
+    }
+    DROP_TEST_JOINT_SAGS = "U746" "drop-test-joint-sags" Fail {
+        section: Deep,
+        what: "In MuJoCo's drop test a joint ends more than 0.05 rad (0.01 m for a prismatic joint) from its pose: its servo (a PID reaching the declared effort at 0.02 rad of error, with an integral term, force clamped to the effort) cannot hold it.",
+        why: "The motor is too weak to hold the robot's own weight in simulation (or the pose is not one the robot can hold); the statics torque and margin say by how much.",
+        fix: "Raise `<limit effort>` (U701 gives the torque needed), lighten the links below, or evaluate a pose the robot holds.",
+    }
+    DROP_TEST_UNSTEADY = "U747" "drop-test-unsteady" Warn {
+        section: Deep,
+        what: "In MuJoCo's drop test the robot rocks (its tilt still varies by more than 2° over the last second), drifts (its centre of mass moves more than 5 cm horizontally in 2 s), the simulation becomes unstable, or the test could not run.",
+        why: "A robot that does not settle on its contacts in simulation will not stand still in a controller test either.",
+        fix: "Check the contact geometry (wheels and casters touching the ground at the same height), the masses, and the joints' efforts.",
+    }
+    DEEP_PASS_AUTOMATIC = "U748" "deep-pass-automatic" Info {
+        section: Deep,
+        what: "The stability margin is negative, so the MuJoCo pass ran by itself (as `--deep` does), or would have run but could not (MuJoCo not found: the message gives the install line).",
+        why: "A robot that tips over gets the simulated evidence without asking for it.",
+        fix: "Nothing; install MuJoCo with `pip install \"urdf-validator[mujoco]\"` to get the drop test.",
+    }
     REQUESTED_CHECK_NOT_RUN = "U790" "requested-check-not-run" Fail {
-        what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`) could not run on this robot.",
+        what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`, `--deep`) could not run on this robot: for `--deep`, MuJoCo was not found (the message gives the install line, `pip install \"urdf-validator[mujoco]\"`), or its process failed or ran past its 60 s limit.",
         why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",
         fix: "Follow the message: it says what was missing (an arm, a declared mass, a support polygon, an SRDF group state).",
     }

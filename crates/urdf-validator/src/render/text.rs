@@ -8,8 +8,8 @@ use anstyle::{AnsiColor, Style};
 
 use crate::diagnostics::finding::{Section, Severity};
 use crate::report::{
-    ArmWorkspace, FindingReport, JointStatics, Report, StabilitySection, StaticsSection, Status,
-    Timings, WorkspaceSection,
+    ArmWorkspace, DeepSection, FindingReport, JointStatics, Report, StabilitySection,
+    StaticsSection, Status, Timings, WorkspaceSection,
 };
 use crate::Validation;
 
@@ -85,13 +85,12 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
         &mut out,
         validation,
         options,
-        &[
-            Section::Workspace,
-            Section::Task,
-            Section::Collision,
-            Section::Deep,
-        ],
+        &[Section::Workspace, Section::Task, Section::Collision],
     );
+    if let Some(deep) = &report.deep {
+        deep_section(&mut out, deep);
+        findings_block(&mut out, validation, options, &[Section::Deep]);
+    }
     suppressed_block(&mut out, report);
     let overall = report.overall_status;
     let _ = writeln!(
@@ -784,5 +783,85 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
                 free
             );
         }
+    }
+}
+
+/// `[DEEP]`: MuJoCo's version and trigger, the cross-check, the drop test.
+fn deep_section(out: &mut String, deep: &DeepSection) {
+    let version = deep.simulator_version.as_deref().unwrap_or("?");
+    let head = match deep.status {
+        Status::Unknown => format!(
+            "{}  {}",
+            paint(RED, "UNKNOWN"),
+            deep.reason.as_deref().unwrap_or("MuJoCo did not run")
+        ),
+        status => format!(
+            "{}  MuJoCo {version} ({})",
+            paint(status_style(status), status.label()),
+            deep.trigger
+        ),
+    };
+    let _ = writeln!(out, "{}  {head}", paint(BOLD, "[DEEP]"));
+    if deep.status == Status::Unknown && deep.drop_test.is_none() {
+        return;
+    }
+    let compared = deep.joints.len();
+    let worst = deep
+        .joints
+        .iter()
+        .filter_map(|j| {
+            j.abs_diff.map(|d| {
+                d / j
+                    .our_torque
+                    .abs()
+                    .max(j.mujoco_torque.unwrap_or(0.0).abs())
+                    .max(1e-3)
+            })
+        })
+        .fold(0.0f64, f64::max);
+    let agreed = deep.joints.iter().filter(|j| j.agrees).count();
+    let com = deep
+        .com_abs_diff
+        .map_or("COM not compared".to_string(), |d| {
+            format!("COM Δ {d:.1e} m")
+        });
+    let verdict = match deep.agreement {
+        Some(true) => paint(GREEN, "agree — statics and COM simulated"),
+        Some(false) => paint(YELLOW, "differ — see below"),
+        None => paint(DIM, "not compared"),
+    };
+    let _ = writeln!(
+        out,
+        "        torques: {agreed}/{compared} joints within {:e} relative (worst {worst:.1e})  {com}  {verdict}",
+        deep.tolerance
+    );
+    if let Some(drop) = &deep.drop_test {
+        let tilt = drop.final_tilt_deg.map_or(String::new(), |t| {
+            format!(
+                "  tilt {t:.1}° (max {:.1}°)",
+                drop.max_tilt_deg.unwrap_or(t)
+            )
+        });
+        let drift = drop.com_drift_m.map_or(String::new(), |d| {
+            format!("  COM drift {:.0} mm", d * 1000.0)
+        });
+        let why = drop
+            .reason
+            .as_deref()
+            .map_or(String::new(), |r| format!(" — {r}"));
+        let _ = writeln!(
+            out,
+            "        drop test ({:.1} s, {} base): {}{why}{tilt}{drift}",
+            drop.simulated_s,
+            drop.base,
+            paint(status_style(drop.status), drop.status.label())
+        );
+    }
+    if !deep.simulator_changes.is_empty() {
+        let _ = writeln!(
+            out,
+            "        {} thing(s) MuJoCo refuses or changes in this file (simulator_changes)",
+            deep.simulator_changes.len()
+        );
     }
 }

@@ -99,6 +99,7 @@ pub fn build(outcome: Outcome) -> Report {
         links,
         statics: analyses.as_ref().map(|a| a.statics.clone()),
         workspace: analyses.as_ref().map(|a| a.workspace.clone()),
+        deep: analyses.as_ref().and_then(|a| a.deep.clone()),
         stability: analyses.map(|a| a.stability),
         findings: finding_reports,
         suppressed: filtered.suppressed,
@@ -128,12 +129,23 @@ fn unknowns(analyses: &Physics) -> Vec<String> {
             "no result",
         ),
     ];
+    let deep = analyses
+        .deep
+        .as_ref()
+        .filter(|d| d.status == Status::Unknown)
+        .map(|d| {
+            format!(
+                "Deep: {}",
+                d.reason.as_deref().unwrap_or("MuJoCo did not run")
+            )
+        });
     sections
         .into_iter()
         .filter(|(_, status, _, _)| **status == Status::Unknown)
         .map(|(name, _, reason, fallback)| {
             format!("{name}: {}", reason.as_deref().unwrap_or(fallback))
         })
+        .chain(deep)
         .collect()
 }
 

@@ -12,6 +12,7 @@ pub use crate::timings::Timings;
 pub use build::{build, Outcome};
 pub use filter::SuppressedFinding;
 
+pub use crate::analysis::deep::{DeepJoint, DeepSection, DropTest, SaggingJoint, SimulatorChange};
 pub use crate::analysis::mass::{LinkReport, PhysicsSummary};
 pub use crate::analysis::stability::{ContactPoint, RaisedContact, StabilitySection};
 pub use crate::analysis::statics::{JointStatics, StaticsSection};
@@ -72,6 +73,11 @@ pub struct Report {
     /// Reach, task, orientation and self-collision of every arm (absent when the file is not a robot).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub workspace: Option<WorkspaceSection>,
+    /// The MuJoCo pass: what MuJoCo changed in the file, its gravity forces and centre of mass against
+    /// statics, and the 2-second drop test (present with `--deep`, or when the stability margin is
+    /// negative).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub deep: Option<crate::analysis::deep::DeepSection>,
     /// Every finding with its rule and source position (suppressed findings are not among them).
     pub findings: Vec<FindingReport>,
     /// Findings suppressed by the configuration (`select`, `ignore`, `per-file-ignores`) or an inline

@@ -1,0 +1,418 @@
+"""The MuJoCo side of urdf_validate --deep (embedded in the Rust binary, run as `python -c`).
+
+Reads one job as JSON on stdin and writes one reply as JSON on the original stdout. It never lets a
+traceback out: every failure becomes {"ok": false, "kind": ..., "message": ...}. Anything MuJoCo (or
+Python) prints goes to stderr, so stdout carries the reply alone.
+
+The job (built by crates/urdf-validator/src/analysis/deep/job.rs):
+  urdf            the URDF text, mesh filenames rewritten to the names in `assets`
+  assets          [{name, path}] a file MuJoCo reads as it is, or [{name, hull: {vertices, triangles}}]
+                  a convex hull written here as binary STL
+  fallbacks       [{when, kind, ...}]: what to change when MuJoCo's compile error contains `when`
+  mimic           [{follower, leader, multiplier, offset}]: <mimic> as joint equality constraints
+  root, fixed_base, payload {link, mass} | null
+  configurations  [{label, q: {joint: value}}]: gravity forces and COM at each
+  drop            {duration, timestep, height, omega_dt, saturation, integral_rate, q,
+                  servos: [{joint, effort}]} | null
+
+The reply: ok, mujoco_version, attempts [{error, applied}], model {bodies, joints}, crosscheck
+[{label, qfrc_bias, com, body_pos}], drop {...} or drop_error.
+"""
+
+import json
+import math
+import os
+import struct
+import sys
+import time
+
+_REPLY = None
+
+
+def reply(obj):
+    _REPLY.write(json.dumps(obj, allow_nan=False, default=float))
+    _REPLY.flush()
+
+
+def finite(x):
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def vec(a):
+    return [finite(v) for v in a]
+
+
+def stl_bytes(hull):
+    """A binary STL of a hull's triangles."""
+    vertices = hull["vertices"]
+    triangles = hull["triangles"]
+    out = [b"urdf_validate hull".ljust(80, b" "), struct.pack("<I", len(triangles))]
+    for tri in triangles:
+        a, b, c = (vertices[i] for i in tri)
+        out.append(struct.pack("<3f", 0.0, 0.0, 0.0))
+        for p in (a, b, c):
+            out.append(struct.pack("<3f", *p))
+        out.append(b"\0\0")
+    return b"".join(out)
+
+
+def find_body(spec, name):
+    finder = getattr(spec, "body", None) or getattr(spec, "find_body")
+    return finder(name)
+
+
+def load_spec(mujoco, job):
+    assets = {}
+    for asset in job["assets"]:
+        if "path" in asset:
+            with open(asset["path"], "rb") as f:
+                assets[asset["name"]] = f.read()
+        else:
+            assets[asset["name"]] = stl_bytes(asset["hull"])
+    return mujoco.MjSpec.from_string(job["urdf"], assets=assets)
+
+
+def add_extras(mujoco, spec, job, drop):
+    """Mimic equalities, the payload, the root's free joint, the COM sensor, and for the drop test a
+    floor and one servo per actuated joint."""
+    for m in job["mimic"]:
+        eq = spec.add_equality()
+        eq.type = mujoco.mjtEq.mjEQ_JOINT
+        eq.objtype = mujoco.mjtObj.mjOBJ_JOINT
+        eq.name1 = m["follower"]
+        eq.name2 = m["leader"]
+        data = list(eq.data)
+        data[0:5] = [m["offset"], m["multiplier"], 0.0, 0.0, 0.0]
+        eq.data = data
+    payload = job.get("payload")
+    if payload:
+        holder = find_body(spec, payload["link"])
+        body = holder.add_body()
+        body.name = "urdf_validate_payload"
+        body.mass = payload["mass"]
+        tiny = max(payload["mass"], 1e-9) * 1e-8
+        body.inertia = [tiny, tiny, tiny]
+        body.explicitinertial = True
+    root = find_body(spec, job["root"])
+    if not job["fixed_base"]:
+        root.add_freejoint()
+    # Naming the root in a sensor keeps it out of fusestatic (which would drop a fixed root's mass).
+    sensor = spec.add_sensor()
+    sensor.type = mujoco.mjtSensor.mjSENS_SUBTREECOM
+    sensor.objtype = mujoco.mjtObj.mjOBJ_BODY
+    sensor.objname = job["root"]
+    if drop:
+        for geom in spec.geoms:
+            # Only the floor collides with the robot: links in contact at the start would explode.
+            geom.contype = 1
+            geom.conaffinity = 0
+    if drop and not job["fixed_base"]:
+        floor = spec.worldbody.add_geom()
+        floor.name = "urdf_validate_floor"
+        floor.type = mujoco.mjtGeom.mjGEOM_PLANE
+        floor.size = [0.0, 0.0, 1.0]
+        floor.contype = 0
+        floor.conaffinity = 1
+    if drop:
+        for servo in drop["servos"]:
+            act = spec.add_actuator()
+            act.name = "urdf_validate_servo_" + servo["joint"]
+            act.trntype = mujoco.mjtTrn.mjTRN_JOINT
+            act.target = servo["joint"]
+            act.gaintype = mujoco.mjtGain.mjGAIN_FIXED
+            act.biastype = mujoco.mjtBias.mjBIAS_AFFINE
+            gain = list(act.gainprm)
+            gain[0] = 1.0
+            act.gainprm = gain
+            bias = list(act.biasprm)
+            bias[0:3] = [0.0, -1.0, 0.0]
+            act.biasprm = bias
+            if servo["effort"] is not None:
+                act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+                act.forcerange = [-servo["effort"], servo["effort"]]
+
+
+def apply_fallback(mujoco, spec, fallback):
+    kind = fallback["kind"]
+    if kind == "inertia":
+        for fix in fallback["links"]:
+            find_body(spec, fix["link"]).fullinertia = fix["fullinertia"]
+    elif kind == "bound":
+        spec.compiler.boundmass = fallback["mass"]
+        spec.compiler.boundinertia = fallback["inertia"]
+
+
+def compile_model(mujoco, job, drop):
+    """Compile, applying each fallback once when MuJoCo's error names its case."""
+    attempts = []
+    applied = set()
+    while True:
+        spec = load_spec(mujoco, job)
+        for index in sorted(applied):
+            apply_fallback(mujoco, spec, job["fallbacks"][index])
+        add_extras(mujoco, spec, job, drop)
+        try:
+            return spec, spec.compile(), attempts
+        except Exception as error:  # MuJoCo raises ValueError with its own message
+            message = str(error)
+            for index, fallback in enumerate(job["fallbacks"]):
+                if index not in applied and fallback["when"] in message:
+                    applied.add(index)
+                    attempts.append({"error": message, "applied": fallback["kind"]})
+                    break
+            else:
+                attempts.append({"error": message, "applied": None})
+                return None, None, attempts
+
+
+def name_of(mujoco, m, objtype, index):
+    return mujoco.mj_id2name(m, objtype, index) or ""
+
+
+def describe(mujoco, m):
+    bodies = []
+    for b in range(m.nbody):  # body 0 is the world (a URDF link named 'world' becomes it)
+        bodies.append({
+            "name": name_of(mujoco, m, mujoco.mjtObj.mjOBJ_BODY, b),
+            "parent": name_of(mujoco, m, mujoco.mjtObj.mjOBJ_BODY, int(m.body_parentid[b])),
+            "mass": finite(m.body_mass[b]),
+            "inertia": vec(m.body_inertia[b]),
+            "geoms": int(m.body_geomnum[b]),
+        })
+    joints = []
+    for j in range(m.njnt):
+        joints.append({
+            "name": name_of(mujoco, m, mujoco.mjtObj.mjOBJ_JOINT, j),
+            "type": int(m.jnt_type[j]),
+            "limited": bool(m.jnt_limited[j]),
+            "range": vec(m.jnt_range[j]),
+            "force_limited": bool(m.jnt_actfrclimited[j]),
+            "force_range": vec(m.jnt_actfrcrange[j]),
+        })
+    return {"bodies": bodies, "joints": joints, "nq": int(m.nq), "nv": int(m.nv)}
+
+
+def joint_addresses(mujoco, m):
+    out = {}
+    for j in range(m.njnt):
+        if int(m.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
+            out[name_of(mujoco, m, mujoco.mjtObj.mjOBJ_JOINT, j)] = (int(m.jnt_qposadr[j]), int(m.jnt_dofadr[j]))
+    return out
+
+
+def set_pose(m, d, addresses, q):
+    d.qpos[:] = m.qpos0
+    for name, value in q.items():
+        if name in addresses:
+            d.qpos[addresses[name][0]] = value
+    d.qvel[:] = 0.0
+
+
+def crosscheck(mujoco, m, job, root_id):
+    d = mujoco.MjData(m)
+    addresses = joint_addresses(mujoco, m)
+    results = []
+    for configuration in job["configurations"]:
+        set_pose(m, d, addresses, configuration["q"])
+        mujoco.mj_forward(m, d)
+        results.append({
+            "label": configuration["label"],
+            "qfrc_bias": {name: finite(d.qfrc_bias[dof]) for name, (_, dof) in addresses.items()},
+            "com": vec(d.subtree_com[root_id]),
+            "body_pos": {
+                name_of(mujoco, m, mujoco.mjtObj.mjOBJ_BODY, b): vec(d.xpos[b]) for b in range(1, m.nbody)
+            },
+        })
+    return results
+
+
+def lowest_point(mujoco, m, d, robot_geoms):
+    """The lowest z of the robot's collision geometry at the current pose."""
+    import numpy as np
+
+    low = math.inf
+    for g in robot_geoms:
+        pos = d.geom_xpos[g]
+        rot = d.geom_xmat[g].reshape(3, 3)
+        size = m.geom_size[g]
+        kind = mujoco.mjtGeom(int(m.geom_type[g]))
+        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+            z = pos[2] - size[0]
+        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+            z = pos[2] - abs(rot[2, 2]) * size[1] - size[0]
+        elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
+            axis_z = abs(rot[2, 2])
+            z = pos[2] - axis_z * size[1] - size[0] * math.sqrt(max(0.0, 1.0 - axis_z * axis_z))
+        elif kind == mujoco.mjtGeom.mjGEOM_BOX or kind == mujoco.mjtGeom.mjGEOM_ELLIPSOID:
+            z = pos[2] - float(np.abs(rot[2, :]) @ size[:3])
+        elif kind == mujoco.mjtGeom.mjGEOM_MESH:
+            mesh = m.geom_dataid[g]
+            start = m.mesh_vertadr[mesh]
+            verts = m.mesh_vert[start:start + m.mesh_vertnum[mesh]]
+            z = pos[2] + float(np.min(verts @ rot[2, :])) if len(verts) else pos[2]
+        else:
+            z = pos[2] - m.geom_rbound[g]
+        low = min(low, float(z))
+    return low
+
+
+def tilt_deg(d, root_id):
+    return math.degrees(math.acos(max(-1.0, min(1.0, float(d.xmat[root_id][8])))))
+
+
+def drop_test(mujoco, m, job, root_id):
+    import numpy as np
+
+    drop = job["drop"]
+    d = mujoco.MjData(m)
+    addresses = joint_addresses(mujoco, m)
+    m.opt.timestep = drop["timestep"]
+    m.opt.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    floor = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "urdf_validate_floor")  # -1: fixed base
+    robot_geoms = [g for g in range(m.ngeom) if g != floor and (m.geom_contype[g] or m.geom_conaffinity[g])]
+
+    set_pose(m, d, addresses, drop["q"])
+    mujoco.mj_forward(m, d)
+    low = lowest_point(mujoco, m, d, robot_geoms) if robot_geoms else 0.0
+    if not job["fixed_base"]:
+        d.qpos[0:3] = [0.0, 0.0, drop["height"] - low]
+        d.qpos[3:7] = [1.0, 0.0, 0.0, 0.0]
+    mujoco.mj_forward(m, d)
+
+    # Servos: a PID whose proportional gain reaches the joint's effort at `saturation` rad (or m) of
+    # error, capped so the joint's own inertia does not oscillate faster than the time step allows,
+    # critically damped, with an integral term: a joint strong enough ends on its target, one too weak
+    # saturates at its effort and sags.
+    unit, column = np.zeros(m.nv), np.zeros(m.nv)
+    omega_max = drop["omega_dt"] / drop["timestep"]
+    saturation = drop["saturation"]
+    servo_joint, servo_q, servo_dof, servo_ref, servo_limit = [], [], [], [], []
+    for a, servo in enumerate(drop["servos"]):
+        qadr, dof = addresses[servo["joint"]]
+        unit[:] = 0.0
+        unit[dof] = 1.0
+        mujoco.mj_mulM(m, d, column, unit)  # (mj_fullM's signature changed between MuJoCo 3 and 4)
+        inertia = max(float(column[dof]), 1e-12)
+        kp = inertia * omega_max * omega_max
+        if servo["effort"] is not None:
+            kp = min(kp, servo["effort"] / saturation)
+        kv = 2.0 * math.sqrt(kp * inertia)
+        m.actuator_gainprm[a, 0] = kp
+        m.actuator_biasprm[a, 0:3] = [0.0, -kp, -kv]
+        servo_joint.append(servo["joint"])
+        servo_q.append(qadr)
+        servo_dof.append(dof)
+        servo_ref.append(drop["q"].get(servo["joint"], float(d.qpos[qadr])))
+        effort = servo["effort"]
+        servo_limit.append(effort / kp if effort is not None else math.inf)
+    servo_q = np.array(servo_q, dtype=int)
+    ref = np.array(servo_ref)
+    limit = np.array(servo_limit)
+    integral = np.zeros(len(servo_joint))
+    ki = drop["integral_rate"]
+
+    steps = int(round(drop["duration"] / drop["timestep"]))
+    last_window = int(round(0.5 / drop["timestep"]))
+    com0 = np.array(d.subtree_com[root_id])
+    max_tilt = 0.0
+    max_dev = np.zeros(len(servo_joint))
+    late_dev = np.zeros(len(servo_joint))
+    tilts = []
+    started = time.time()
+    for step in range(steps):
+        if len(servo_joint):
+            error = ref - d.qpos[servo_q]
+            integral = np.clip(integral + ki * drop["timestep"] * error, -limit, limit)
+            d.ctrl[:] = ref + integral
+        mujoco.mj_step(m, d)
+        tilt = tilt_deg(d, root_id)
+        max_tilt = max(max_tilt, tilt)
+        if step % 10 == 0:
+            tilts.append(tilt)
+        if len(servo_joint):
+            dev = np.abs(d.qpos[servo_q] - ref)
+            max_dev = np.maximum(max_dev, dev)
+            if step >= steps - last_window:
+                late_dev = np.maximum(late_dev, dev)
+    unstable = None
+    bad = d.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)]
+    if bad.number > 0:
+        unstable = "MuJoCo found the acceleration not finite (simulation unstable) at step %d" % (bad.lastinfo,)
+    com1 = np.array(d.subtree_com[root_id])
+    final_dev = np.abs(d.qpos[servo_q] - ref) if len(servo_joint) else np.zeros(0)
+    return {
+        "simulated_s": steps * drop["timestep"],
+        "timestep_s": drop["timestep"],
+        "steps": steps,
+        "lowest_point_z": finite(low),
+        "max_tilt_deg": finite(max_tilt),
+        "final_tilt_deg": finite(tilt_deg(d, root_id)),
+        "tilt_range_last_s_deg": finite(max(tilts[len(tilts) // 2:]) - min(tilts[len(tilts) // 2:])) if tilts else 0.0,
+        "com_start": vec(com0),
+        "com_end": vec(com1),
+        "com_drift_m": finite(math.hypot(com1[0] - com0[0], com1[1] - com0[1])),
+        "joints": [
+            {
+                "name": name,
+                "final_deviation": finite(final_dev[i]),
+                "max_deviation": finite(max_dev[i]),
+                "max_deviation_last_half_s": finite(late_dev[i]),
+            }
+            for i, name in enumerate(servo_joint)
+        ],
+        "unstable": unstable,
+        "wall_s": time.time() - started,
+    }
+
+
+def run(job):
+    try:
+        import mujoco  # noqa: F401 (the point of the bridge)
+    except Exception as error:  # ImportError, or a broken install raising anything else
+        return {
+            "ok": False,
+            "kind": "no_mujoco",
+            "message": "%s: %s" % (type(error).__name__, error),
+            "python": sys.executable,
+            "python_version": sys.version.split()[0],
+        }
+    out = {
+        "ok": True,
+        "mujoco_version": getattr(mujoco, "__version__", "unknown"),
+        "python": sys.executable,
+        "python_version": sys.version.split()[0],
+    }
+    if job.get("probe"):
+        return out
+    spec, m, attempts = compile_model(mujoco, job, job.get("drop"))
+    out["attempts"] = attempts
+    if m is None:
+        out["ok"] = False
+        out["kind"] = "compile"
+        out["message"] = attempts[-1]["error"] if attempts else "MuJoCo compiled nothing"
+        return out
+    root_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, job["root"])
+    out["model"] = describe(mujoco, m)
+    out["crosscheck"] = crosscheck(mujoco, m, job, root_id)
+    if job.get("drop"):
+        try:
+            out["drop"] = drop_test(mujoco, m, job, root_id)
+        except Exception as error:
+            out["drop_error"] = "%s: %s" % (type(error).__name__, error)
+    return out
+
+
+def main():
+    global _REPLY
+    _REPLY = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)  # MuJoCo's C code prints to fd 1: send it to stderr
+    sys.stdout = sys.stderr
+    try:
+        job = json.load(sys.stdin)
+        reply(run(job))
+    except BaseException as error:  # never a traceback: the Rust side turns this into a finding
+        reply({"ok": False, "kind": "internal", "message": "%s: %s" % (type(error).__name__, error)})
+
+
+main()
