@@ -6,7 +6,7 @@
 //! | [`job`] | the URDF handed to MuJoCo (meshes resolved, COLLADA as hulls), fallbacks, servos |
 //! | [`bridge`] | the Python process running `bridge.py` with MuJoCo, bounded in time |
 //! | [`verdict`] | the reply compared with our model: changes, cross-check, drop test, findings |
-//! | [`section`] | the `deep` section of the report |
+//! | `section` | the `deep` section of the report |
 
 pub mod bridge;
 pub mod job;
