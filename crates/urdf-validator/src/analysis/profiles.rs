@@ -157,10 +157,10 @@ fn gazebo_lumped_mass(robot: &Robot, model: &Model, link: LinkId) -> f64 {
 fn gazebo(robot: &Robot, model: &Model) -> Vec<Finding> {
     let mut findings = Vec::new();
     for &link in &model.topological_order {
-        if !gazebo_lumps(robot, model, link) {
+        let Some(joint) = model.parent_joint[link.0].filter(|_| gazebo_lumps(robot, model, link))
+        else {
             continue;
-        }
-        let joint = model.parent_joint[link.0].expect("a lumped link has a parent joint");
+        };
         let mut target = link;
         while gazebo_lumps(robot, model, target) {
             match model.parent_joint[target.0].and_then(|j| model.joint_links[j.0]) {
@@ -303,8 +303,7 @@ fn mujoco(robot: &Robot, model: &Model) -> Vec<Finding> {
                 ),
             ));
         }
-        if fused {
-            let joint = model.parent_joint[i].expect("fixed link has a parent joint");
+        if let Some(joint) = model.parent_joint[i].filter(|_| fused) {
             let mut target = id;
             while is_fixed(robot, model, target) {
                 match model.parent_joint[target.0].and_then(|j| model.joint_links[j.0]) {
