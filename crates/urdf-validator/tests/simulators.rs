@@ -132,6 +132,10 @@ fn u752_mujoco_inertia_triangle() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, 3);
     assert!(of(&robot(INERTIAL, INERTIAL, ""), Simulator::Mujoco, "U752").is_empty());
+    // A link on a fixed joint is checked too (MuJoCo refuses PR2's fixed sensor_mount_link).
+    let fixed = of(&robot(INERTIAL, bad, ""), Simulator::Mujoco, "U752");
+    assert_eq!(fixed.len(), 1, "{fixed:?}");
+    assert!(fixed[0].1.contains("'tool'"), "{fixed:?}");
 }
 
 #[test]

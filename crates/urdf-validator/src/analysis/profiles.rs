@@ -273,14 +273,9 @@ fn mujoco(robot: &Robot, model: &Model) -> Vec<Finding> {
     for (i, link) in robot.links.iter().enumerate() {
         let id = LinkId(i);
         let name = &link.name.value;
-        // A fused link's tensor is checked only after it is combined with its parent's (not modelled).
+        // Checked per link, fused ones included: PR2's fixed `sensor_mount_link` is refused (--deep, U741).
         let fused = is_fixed(robot, model, id);
-        if let Some(inertia) = link
-            .inertial
-            .as_ref()
-            .and_then(|i| i.inertia.as_ref())
-            .filter(|_| !fused)
-        {
+        if let Some(inertia) = link.inertial.as_ref().and_then(|i| i.inertia.as_ref()) {
             if let Some([a, b, c]) = principal_moments(inertia) {
                 if a >= 0.0 && a + b < c {
                     findings.push(Finding::new(

@@ -417,7 +417,7 @@ rules! {
         fix: "Give the link an `<inertial>` with a positive mass (a small one for a pure frame), or attach it by a fixed joint that Gazebo lumps.",
     }
     MUJOCO_INERTIA_TRIANGLE = "U752" "mujoco-inertia-triangle" Warn {
-        what: "`--simulator mujoco`: a link that MuJoCo keeps as a body (not on a fixed joint: a fused link's tensor is combined with its parent's first) has principal moments breaking A + B ≥ C. MuJoCo refuses the model: `inertia must satisfy A + B >= C; use 'balanceinertia' to fix` (google-deepmind/mujoco commit a725507, src/user/user_objects.cc lines 2762–2768, mjCBody::Compile; `balanceinertia` is off by default).",
+        what: "`--simulator mujoco`: a link's principal moments break A + B ≥ C (links on fixed joints included: MuJoCo checks each link's declared inertia, as `--deep` shows on PR2's fixed `sensor_mount_link`). MuJoCo refuses the model: `inertia must satisfy A + B >= C; use 'balanceinertia' to fix` (google-deepmind/mujoco commit a725507, src/user/user_objects.cc lines 2762–2768, mjCBody::Compile; `balanceinertia` is off by default).",
         why: "`mujoco.MjModel.from_xml_path` fails on the file; with `balanceinertia` on it replaces all three moments by their mean, which changes the physics.",
         fix: "Recompute the inertia from the link's geometry (or CAD).",
     }
