@@ -169,6 +169,12 @@ pub struct Args {
     #[arg(long)]
     pub deep: bool,
 
+    /// Simulator load profiles, repeatable or comma-separated: what that simulator's URDF importer does
+    /// to this file (links it merges or drops, masses it refuses or invents, elements it ignores), as
+    /// findings U750–U759; no simulator needs to be installed.
+    #[arg(long, value_enum, value_name = "NAME", value_delimiter = ',')]
+    pub simulator: Vec<SimulatorArg>,
+
     /// Seconds each file may take; a file still running then is reported as not finished (naming the
     /// stage it was in, exit 2) and a batch goes on with the next file. 0: no limit.
     #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
@@ -230,6 +236,31 @@ pub struct Args {
     /// Print the report reference (docs/json_schema.md) and exit.
     #[arg(long, hide = true)]
     pub json_schema_markdown: bool,
+}
+
+/// `--simulator` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SimulatorArg {
+    /// MuJoCo's URDF reader and compiler.
+    Mujoco,
+    /// Gazebo (sdformat's URDF to SDF converter).
+    Gazebo,
+    /// PyBullet's loadURDF.
+    Pybullet,
+    /// Drake's URDF parser.
+    Drake,
+}
+
+impl From<SimulatorArg> for urdf_validator::analysis::profiles::Simulator {
+    fn from(simulator: SimulatorArg) -> Self {
+        use urdf_validator::analysis::profiles::Simulator;
+        match simulator {
+            SimulatorArg::Mujoco => Simulator::Mujoco,
+            SimulatorArg::Gazebo => Simulator::Gazebo,
+            SimulatorArg::Pybullet => Simulator::Pybullet,
+            SimulatorArg::Drake => Simulator::Drake,
+        }
+    }
 }
 
 /// `--pose` values.

@@ -415,6 +415,7 @@ fn options_for(
             requested: args.deep,
             ..Default::default()
         },
+        simulators: args.simulator.iter().map(|&s| s.into()).collect(),
     })
 }
 

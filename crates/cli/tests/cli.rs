@@ -499,3 +499,83 @@ fn several_arms_can_be_declared_in_pairs() {
         text(&unpaired.stderr)
     );
 }
+
+#[test]
+fn simulator_gazebo_reports_what_sdformat_does_to_the_mobile_manipulator() {
+    let robot = repo_root().join("examples/robots/mobile_manipulator.urdf");
+    let out = run(&[
+        "--format",
+        "json",
+        "--no-write",
+        "--simulator",
+        "gazebo",
+        robot.to_str().unwrap(),
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
+    let lumped: Vec<(u64, String)> = report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["rule"].as_str().is_some_and(|r| r.starts_with("U75")))
+        .map(|f| {
+            assert_eq!(f["rule"], "U750", "{f}");
+            (
+                f["line"].as_u64().unwrap(),
+                f["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    let lines: Vec<u64> = lumped.iter().map(|(line, _)| *line).collect();
+    // The six fixed joints; every massless frame is lumped into a link with mass, so none is dropped (U751).
+    assert_eq!(lines, [51, 141, 168, 196, 205, 423], "{lumped:?}");
+    assert!(
+        lumped[0]
+            .1
+            .contains("link 'base_link' is merged into 'base_footprint'"),
+        "{lumped:?}"
+    );
+    assert!(
+        lumped[5]
+            .1
+            .contains("link 'tool0' is merged into 'wrist_3_link'"),
+        "{lumped:?}"
+    );
+}
+
+#[test]
+fn simulator_names_are_checked_and_comma_lists_accepted() {
+    let robot = repo_root().join("examples/robots/mobile_manipulator.urdf");
+    let out = run(&[
+        "--no-write",
+        "--simulator",
+        "isaac",
+        robot.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("invalid value 'isaac' for '--simulator <NAME>'"),
+        "{err}"
+    );
+    assert!(err.contains("mujoco, gazebo, pybullet, drake"), "{err}");
+    let out = run(&[
+        "--format",
+        "json",
+        "--no-write",
+        "--simulator",
+        "mujoco,drake",
+        "--simulator",
+        "pybullet",
+        robot.to_str().unwrap(),
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
+    let rules: Vec<&str> = report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|f| f["rule"].as_str())
+        .collect();
+    for code in ["U754", "U757", "U758"] {
+        assert!(rules.contains(&code), "{code} missing: {rules:?}");
+    }
+}

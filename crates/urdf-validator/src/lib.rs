@@ -81,6 +81,8 @@ pub struct Options {
     pub settings: diagnostics::Settings,
     /// `--deep`: the MuJoCo pass, and whether it runs by itself on a robot that tips over.
     pub deep: analysis::deep::DeepOptions,
+    /// `--simulator`: the load profiles whose findings are added (what each importer does to the file).
+    pub simulators: Vec<analysis::profiles::Simulator>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -134,6 +136,11 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         let assets = Assets::load(&robot, &asset_source(&loaded.path, options));
         clock.lap("assets");
         findings.extend(checks::run(&robot, &model, &assets));
+        findings.extend(analysis::profiles::check(
+            &robot,
+            &model,
+            &options.simulators,
+        ));
         clock.lap("checks");
         // The workspace sampler stops early when a watchdog cancels the run.
         let workspace = WorkspaceOptions {

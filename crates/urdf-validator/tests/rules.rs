@@ -302,6 +302,17 @@ const COVERED: &[&str] = &[
     "U746",
     "U747",
     "U748",
+    // U750–U759: tests/simulators.rs (the `--simulator` load profiles).
+    "U750",
+    "U751",
+    "U752",
+    "U753",
+    "U754",
+    "U755",
+    "U756",
+    "U757",
+    "U758",
+    "U759",
     "U790",
     // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
     u801_unused_suppression::CODE,

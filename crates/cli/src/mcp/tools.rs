@@ -261,6 +261,9 @@ struct Flags {
     timings: Option<bool>,
     /// Do not read or write the mesh cache (hulls of meshes loaded before).
     no_cache: Option<bool>,
+    /// Simulator load profiles (mujoco, gazebo, pybullet, drake): what that simulator's URDF importer
+    /// will do to the file, as findings U750–U759; no simulator needed.
+    simulator: Option<Vec<String>>,
     /// Seconds the validation may take; then the call fails, naming the stage it was in. 0: no limit.
     /// Default: 60.
     timeout: Option<f64>,
@@ -303,6 +306,7 @@ impl Flags {
         line.switch("show-suppressed", self.show_suppressed);
         line.switch("timings", self.timings);
         line.switch("no-cache", self.no_cache);
+        line.values("simulator", self.simulator.as_deref());
         line.value("timeout", self.timeout);
         line.0
     }

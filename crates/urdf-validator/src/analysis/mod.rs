@@ -9,6 +9,7 @@ pub mod collision;
 pub mod deep;
 pub(crate) mod mass;
 pub mod pose;
+pub mod profiles;
 pub mod stability;
 pub mod statics;
 pub mod workspace;

@@ -406,6 +406,56 @@ rules! {
         why: "A robot that tips over gets the simulated evidence without asking for it.",
         fix: "Nothing; install MuJoCo with `pip install \"urdf-validator[mujoco]\"` to get the drop test.",
     }
+    GAZEBO_LUMPS_FIXED_JOINT = "U750" "gazebo-lumps-fixed-joint" Info {
+        what: "`--simulator gazebo`: a fixed joint that Gazebo's URDF converter (sdformat, src/parser_urdf.cc) reduces: the child link is merged into the nearest ancestor kept (its inertial added, its collisions and visuals renamed `…_fixed_joint_lump__<link>`), and the joint and link no longer exist in the simulation. Joints kept: those named by a `<gazebo reference=\"JOINT\">` block with `<preserveFixedJoint>true</preserveFixedJoint>` or `<disableFixedJointLumping>true</disableFixedJointLumping>` (parser_urdf.cc lines 1530–1548, FixedJointShouldBeReduced line 3471), and children of a `world` link (CreateSDF). Source: gazebosim/sdformat commit 2ace536, parser_urdf.cc ReduceFixedJoints (line 410).",
+        why: "Plugins, sensors and controllers that name the merged link (or joint) find nothing in Gazebo; the structure the simulation reports differs from the file's.",
+        fix: "Nothing, if intended. To keep the link, add `<gazebo reference=\"JOINT\"><preserveFixedJoint>true</preserveFixedJoint></gazebo>`.",
+    }
+    GAZEBO_DROPS_LINK = "U751" "gazebo-drops-link" Warn {
+        what: "`--simulator gazebo`: a link (not `world`) with no `<inertial>` or a mass ≤ 0, even after the masses of the links lumped into it across fixed joints, that is not itself lumped into its parent. sdformat's converter does not model it: `urdf2sdf: link[…] is not modeled in sdf`, its parent joint and child joints are ignored and nothing below it is converted (gazebosim/sdformat commit 2ace536, src/parser_urdf.cc CreateSDF, lines 2672–2779; lumped inertials are added to the parent by ReduceInertialToParent, line 793).",
+        why: "The link and everything hanging from it are missing from the Gazebo model; for the root link the whole robot is.",
+        fix: "Give the link an `<inertial>` with a positive mass (a small one for a pure frame), or attach it by a fixed joint that Gazebo lumps.",
+    }
+    MUJOCO_INERTIA_TRIANGLE = "U752" "mujoco-inertia-triangle" Warn {
+        what: "`--simulator mujoco`: a link's principal moments break A + B ≥ C (links on fixed joints included: MuJoCo checks each link's declared inertia, as `--deep` shows on PR2's fixed `sensor_mount_link`). MuJoCo refuses the model: `inertia must satisfy A + B >= C; use 'balanceinertia' to fix` (google-deepmind/mujoco commit a725507, src/user/user_objects.cc lines 2762–2768, mjCBody::Compile; `balanceinertia` is off by default).",
+        why: "`mujoco.MjModel.from_xml_path` fails on the file; with `balanceinertia` on it replaces all three moments by their mean, which changes the physics.",
+        fix: "Recompute the inertia from the link's geometry (or CAD).",
+    }
+    MUJOCO_MASS_BELOW_MINIMUM = "U753" "mujoco-mass-below-minimum" Warn {
+        what: "`--simulator mujoco`: a link on a moving joint whose mass or one of whose principal moments is below mjMINVAL (1e-15, include/mujoco/mjtype.h line 27), with no link fused to it across fixed joints that has both (a link without `<inertial>` counts as massless unless it has collision geometry, from which MuJoCo derives a mass). MuJoCo refuses the model: `mass and inertia of moving bodies must be larger than mjMINVAL` (google-deepmind/mujoco commit a725507, src/user/user_model.cc lines 5112–5117 and CheckBodyMassInertia, lines 5523–5541).",
+        why: "`mujoco.MjModel.from_xml_path` fails on the file unless `boundmass`/`boundinertia` are set, which invents a mass.",
+        fix: "Give the link its real mass and inertia, or attach it by a fixed joint if it does not move.",
+    }
+    MUJOCO_FUSES_STATIC = "U754" "mujoco-fuses-static" Info {
+        what: "`--simulator mujoco`: a link on a fixed joint. MuJoCo turns `fusestatic` on for every URDF (google-deepmind/mujoco commit a725507, src/xml/xml.cc lines 299–300), fusing the link into the nearest ancestor on a moving joint (or the root): its name is not a body of the compiled model.",
+        why: "Sensors, sites and code that look the link up by name in MuJoCo find nothing; its mass and geometry belong to the parent body.",
+        fix: "Nothing, if intended; add `<mujoco><compiler fusestatic=\"false\"/></mujoco>` inside `<robot>` to keep the link.",
+    }
+    MUJOCO_DISCARDS_VISUAL = "U755" "mujoco-discards-visual" Info {
+        what: "`--simulator mujoco`: a link with `<visual>` but no `<collision>` geometry. MuJoCo turns `discardvisual` on for every URDF (src/xml/xml.cc line 300) and then creates no geom for a `<visual>` (src/xml/xml_urdf.cc line 318; google-deepmind/mujoco commit a725507), so the link has no shape at all in MuJoCo.",
+        why: "The link is invisible in MuJoCo's viewer and, having no geom, gets no mass from geometry either.",
+        fix: "Nothing, if intended; add `<mujoco><compiler discardvisual=\"false\"/></mujoco>` to keep visual geoms, or add a `<collision>`.",
+    }
+    PYBULLET_DEFAULT_INERTIAL = "U756" "pybullet-default-inertial" Warn {
+        what: "`--simulator pybullet`: a link (not named `world`) without `<inertial>`. Bullet's URDF parser warns `No inertial data for link, using mass=1, localinertiadiagonal = 1,1,1, identity local inertial frame` and gives it 1 kg (bulletphysics/bullet3 commit 6c888f4, examples/Importers/ImportURDFDemo/UrdfParser.cpp lines 1051–1058; a link named `world` gets mass 0, lines 1043–1049).",
+        why: "PyBullet simulates a 1 kg body the file does not have: gravity torques, the centre of mass and the robot's stability differ from the file's.",
+        fix: "Declare `<inertial>` on every link (a small mass for a pure frame, or attach frames by fixed joints to a link that has one).",
+    }
+    PYBULLET_INERTIA_FROM_COLLISION = "U757" "pybullet-inertia-from-collision" Warn {
+        what: "`--simulator pybullet`: links declare inertia tensors, which `pybullet.loadURDF` ignores unless called with `flags=pybullet.URDF_USE_INERTIA_FROM_FILE`: without it the inertia diagonal is recomputed from the link's collision shapes and its mass (bulletphysics/bullet3 commit 6c888f4, examples/Importers/ImportURDFDemo/BulletUrdfImporter.cpp getMassAndInertia2, lines 374–408, the diagonal zeroed at line 400; URDF2Bullet.cpp lines 332–336, `calculateLocalInertia`; the flag is `CUF_USE_URDF_INERTIA` = 2, examples/SharedMemory/SharedMemoryPublic.h line 949). One finding per robot, at the first tensor.",
+        why: "The rotational dynamics PyBullet simulates are those of the collision shapes' bounding boxes, not the declared tensors; a link without collision geometry gets no rotational inertia.",
+        fix: "Load with `p.loadURDF(path, flags=p.URDF_USE_INERTIA_FROM_FILE)`.",
+    }
+    DRAKE_IGNORES_JOINT_FRICTION = "U758" "drake-ignores-joint-friction" Warn {
+        what: "`--simulator drake`: a joint's `<dynamics friction>` is not zero. Drake's URDF parser warns `MultibodyPlant does not currently support non-zero joint friction` and leaves it out (RobotLocomotion/drake commit 007f5fc, multibody/parsing/detail_urdf_parser.cc, UrdfParser::ParseJointDynamics).",
+        why: "The joint moves more freely in Drake than the file says; a robot that holds a pose through friction sags.",
+        fix: "Nothing, if friction is negligible; otherwise model it in Drake (joint damping, or a controller).",
+    }
+    DRAKE_IGNORES_ELEMENT = "U759" "drake-ignores-element" Info {
+        what: "`--simulator drake`: a joint has `<calibration>` or `<safety_controller>`, which Drake's URDF parser reports as unsupported and ignores (RobotLocomotion/drake commit 007f5fc, multibody/parsing/detail_urdf_parser.cc, UrdfParser::ParseJoint, `WarnUnsupportedElement`).",
+        why: "Soft limits and calibration references do not exist in the Drake model; the parser prints a warning for each.",
+        fix: "Nothing, if only ROS tools use them.",
+    }
     REQUESTED_CHECK_NOT_RUN = "U790" "requested-check-not-run" Fail {
         what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`, `--deep`) could not run on this robot: for `--deep`, MuJoCo was not found (the message gives the install line, `pip install \"urdf-validator[mujoco]\"`), or its process failed or ran past its 60 s limit.",
         why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",

@@ -139,6 +139,19 @@ fn span(node: Node) -> Span {
     Span::from_range(node.range())
 }
 
+/// Whether a `<gazebo>` block turns off fixed-joint lumping for its reference (sdformat's parser_urdf.cc
+/// accepts `true`, `yes` or `1`, case-insensitive for the words).
+fn keeps_fixed_joint(node: Node) -> bool {
+    elements(node).any(|child| {
+        matches!(
+            child.tag_name().name(),
+            "preserveFixedJoint" | "disableFixedJointLumping"
+        ) && child.text().map(str::trim).is_some_and(|v| {
+            v.eq_ignore_ascii_case("true") || v.eq_ignore_ascii_case("yes") || v == "1"
+        })
+    })
+}
+
 fn elements<'a, 'i>(node: Node<'a, 'i>) -> impl Iterator<Item = Node<'a, 'i>> {
     node.children().filter(|n| n.is_element())
 }
@@ -340,6 +353,7 @@ impl Parser {
                 "gazebo" => robot.gazebo.push(GazeboBlock {
                     span: span(node),
                     reference: self.string(node, "reference"),
+                    keeps_fixed_joint: keeps_fixed_joint(node),
                 }),
                 "ros2_control" => robot.ros2_control.push(self.ros2_control(node)),
                 _ => self.unknown_element(node, root, "robot"),

@@ -347,6 +347,9 @@ pub struct GazeboBlock {
     pub span: Span,
     /// `reference` (a link or joint name); robot-level blocks have none.
     pub reference: Option<Spanned<String>>,
+    /// A `<preserveFixedJoint>` or `<disableFixedJointLumping>` child set to `true`, `yes` or `1`: Gazebo's
+    /// URDF converter keeps the referenced fixed joint instead of lumping its child link into the parent.
+    pub keeps_fixed_joint: bool,
 }
 
 /// A `<ros2_control>` block, kept for its joint names.
