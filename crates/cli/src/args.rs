@@ -171,7 +171,7 @@ pub struct Args {
 
     /// Simulator load profiles, repeatable or comma-separated: what that simulator's URDF importer does
     /// to this file (links it merges or drops, masses it refuses or invents, elements it ignores), as
-    /// findings U750–U759; no simulator needs to be installed.
+    /// findings U750–U761; no simulator needs to be installed.
     #[arg(long, value_enum, value_name = "NAME", value_delimiter = ',')]
     pub simulator: Vec<SimulatorArg>,
 
@@ -249,6 +249,8 @@ pub enum SimulatorArg {
     Pybullet,
     /// Drake's URDF parser.
     Drake,
+    /// Isaac Sim's URDF importer.
+    Isaac,
 }
 
 impl From<SimulatorArg> for urdf_validator::analysis::profiles::Simulator {
@@ -259,6 +261,7 @@ impl From<SimulatorArg> for urdf_validator::analysis::profiles::Simulator {
             SimulatorArg::Gazebo => Simulator::Gazebo,
             SimulatorArg::Pybullet => Simulator::Pybullet,
             SimulatorArg::Drake => Simulator::Drake,
+            SimulatorArg::Isaac => Simulator::Isaac,
         }
     }
 }

@@ -548,16 +548,19 @@ fn simulator_names_are_checked_and_comma_lists_accepted() {
     let out = run(&[
         "--no-write",
         "--simulator",
-        "isaac",
+        "webots",
         robot.to_str().unwrap(),
     ]);
     assert_eq!(out.status.code(), Some(2));
     let err = text(&out.stderr);
     assert!(
-        err.contains("invalid value 'isaac' for '--simulator <NAME>'"),
+        err.contains("invalid value 'webots' for '--simulator <NAME>'"),
         "{err}"
     );
-    assert!(err.contains("mujoco, gazebo, pybullet, drake"), "{err}");
+    assert!(
+        err.contains("mujoco, gazebo, pybullet, drake, isaac"),
+        "{err}"
+    );
     let out = run(&[
         "--format",
         "json",

@@ -302,7 +302,7 @@ const COVERED: &[&str] = &[
     "U746",
     "U747",
     "U748",
-    // U750–U759: tests/simulators.rs (the `--simulator` load profiles).
+    // U750–U761: tests/simulators.rs (the `--simulator` load profiles).
     "U750",
     "U751",
     "U752",
@@ -313,6 +313,8 @@ const COVERED: &[&str] = &[
     "U757",
     "U758",
     "U759",
+    "U760",
+    "U761",
     "U790",
     // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
     u801_unused_suppression::CODE,

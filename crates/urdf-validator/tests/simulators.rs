@@ -1,4 +1,4 @@
-//! `--simulator` load profiles (U750–U759): for each rule, a small document that triggers it and one that
+//! `--simulator` load profiles (U750–U761): for each rule, a small document that triggers it and one that
 //! does not; without a profile none of them reports.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
@@ -63,8 +63,12 @@ fn no_profile_no_simulator_findings() {
 #[test]
 fn simulator_names_parse_and_unknown_ones_are_refused() {
     assert_eq!("Gazebo".parse::<Simulator>(), Ok(Simulator::Gazebo));
-    let err = "isaac".parse::<Simulator>().unwrap_err();
-    assert!(err.contains("mujoco, gazebo, pybullet, drake"), "{err}");
+    assert_eq!("isaac".parse::<Simulator>(), Ok(Simulator::Isaac));
+    let err = "webots".parse::<Simulator>().unwrap_err();
+    assert!(
+        err.contains("mujoco, gazebo, pybullet, drake, isaac"),
+        "{err}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------- Gazebo
@@ -242,4 +246,40 @@ fn u759_drake_ignores_element() {
         "{found:?}"
     );
     assert!(of(&joint_robot(""), Simulator::Drake, "U759").is_empty());
+}
+
+// ----------------------------------------------------------------------------------------------- Isaac
+
+#[test]
+fn u760_isaac_no_mass() {
+    // `arm` has collision but no inertial; `tool` has neither.
+    let urdf = robot(BOX_COLLISION, "", "");
+    let found = of(&urdf, Simulator::Isaac, "U760");
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert!(
+        found[0].1.contains("link 'arm'") && found[0].1.contains("density"),
+        "{found:?}"
+    );
+    assert!(
+        found[1].1.contains("link 'tool'") && !found[1].1.contains("density"),
+        "{found:?}"
+    );
+    // Every link with a mass: nothing.
+    let urdf = robot(INERTIAL, INERTIAL, "");
+    assert!(of(&urdf, Simulator::Isaac, "U760").is_empty());
+}
+
+#[test]
+fn u761_isaac_default_inertia() {
+    // `tool` has no collision and no inertial: the small isotropic inertia. `arm` has a collision.
+    let urdf = robot(BOX_COLLISION, "", "");
+    let found = of(&urdf, Simulator::Isaac, "U761");
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].1.contains("link 'tool'") && found[0].1.contains("1e-4"),
+        "{found:?}"
+    );
+    // A declared tensor is imported: nothing.
+    let urdf = robot(INERTIAL, INERTIAL, "");
+    assert!(of(&urdf, Simulator::Isaac, "U761").is_empty());
 }

@@ -1,7 +1,7 @@
 //! Simulator load profiles (`--simulator`): what each simulator's URDF importer does to this file, found
 //! without the simulator, from the parsed robot and its tree alone.
 //!
-//! Each behaviour is one rule (U750–U759) whose documentation cites the importer's source; a behaviour
+//! Each behaviour is one rule (U750–U761) whose documentation cites the importer's source; a behaviour
 //! that could not be checked against the simulator's own source or documentation has no rule.
 
 use std::fmt;
@@ -28,15 +28,18 @@ pub enum Simulator {
     Pybullet,
     /// Drake's URDF parser (multibody/parsing/detail_urdf_parser.cc).
     Drake,
+    /// Isaac Sim's URDF importer (isaac-sim/urdf-importer-extension, isaacsim.asset.importer.urdf).
+    Isaac,
 }
 
 impl Simulator {
     /// Every profile, in the order their findings are reported.
-    pub const ALL: [Simulator; 4] = [
+    pub const ALL: [Simulator; 5] = [
         Simulator::Mujoco,
         Simulator::Gazebo,
         Simulator::Pybullet,
         Simulator::Drake,
+        Simulator::Isaac,
     ];
 
     /// The name `--simulator` takes.
@@ -46,6 +49,7 @@ impl Simulator {
             Simulator::Gazebo => "gazebo",
             Simulator::Pybullet => "pybullet",
             Simulator::Drake => "drake",
+            Simulator::Isaac => "isaac",
         }
     }
 }
@@ -85,6 +89,7 @@ pub fn check(robot: &Robot, model: &Model, simulators: &[Simulator]) -> Vec<Find
             Simulator::Gazebo => findings.extend(gazebo(robot, model)),
             Simulator::Pybullet => findings.extend(pybullet(robot)),
             Simulator::Drake => findings.extend(drake(robot)),
+            Simulator::Isaac => findings.extend(isaac(robot)),
         }
     }
     findings
@@ -396,6 +401,44 @@ fn drake(robot: &Robot) -> Vec<Finding> {
                 format!(
                     "Drake ignores {} of joint '{name}' (unsupported element)",
                     ignored.join(" and ")
+                ),
+            ));
+        }
+    }
+    findings
+}
+
+// ----------------------------------------------------------------------------------------------- Isaac
+
+/// Isaac Sim's small isotropic inertia for a link without colliders or inertia: 10 × `kNegligibleMass`
+/// (1e-5) kg·m² on each axis (UrdfImporter::addRigidBody).
+pub const ISAAC_DEFAULT_INERTIA: f64 = 1e-4;
+
+fn isaac(robot: &Robot) -> Vec<Finding> {
+    let mut findings = Vec::new();
+    for link in &robot.links {
+        let name = &link.name.value;
+        let inertial = link.inertial.as_ref();
+        if inertial.and_then(|i| i.mass.as_ref()).is_none() {
+            findings.push(Finding::new(
+                &rules::ISAAC_NO_MASS,
+                link.span,
+                format!(
+                    "Isaac Sim's URDF importer sets no mass for link '{name}' (no <mass>): it warns 'No mass specified for link {name}' and leaves the mass to PhysX{}",
+                    if link.collisions.is_empty() {
+                        ""
+                    } else {
+                        " (or to the import's density setting, from its collision shapes)"
+                    }
+                ),
+            ));
+        }
+        if link.collisions.is_empty() && inertial.and_then(|i| i.inertia.as_ref()).is_none() {
+            findings.push(Finding::new(
+                &rules::ISAAC_DEFAULT_INERTIA,
+                link.span,
+                format!(
+                    "Isaac Sim's URDF importer gives link '{name}' (no collision, no inertia tensor) the isotropic inertia {ISAAC_DEFAULT_INERTIA:e} kg·m² on each axis"
                 ),
             ));
         }

@@ -456,6 +456,16 @@ rules! {
         why: "Soft limits and calibration references do not exist in the Drake model; the parser prints a warning for each.",
         fix: "Nothing, if only ROS tools use them.",
     }
+    ISAAC_NO_MASS = "U760" "isaac-no-mass" Warn {
+        what: "`--simulator isaac`: a link without `<inertial><mass>`. Isaac Sim's URDF importer warns `No mass specified for link <name>` and authors no mass on the rigid body, unless the import sets a density and the link has collision shapes, which then get that density (isaac-sim/urdf-importer-extension commit 180002f, source/extensions/isaacsim.asset.importer.urdf/plugins/import/UrdfImporter.cpp, UrdfImporter::addRigidBody).",
+        why: "The body's mass is then whatever PhysX derives, not a value of the file: gravity torques, the centre of mass and stability in Isaac differ from the analysis.",
+        fix: "Declare `<inertial>` with a mass on every link (a small mass for a pure frame, or attach frames by fixed joints).",
+    }
+    ISAAC_DEFAULT_INERTIA = "U761" "isaac-default-inertia" Warn {
+        what: "`--simulator isaac`: a link with no `<collision>` and no inertia tensor. Isaac Sim's URDF importer warns `Link <name> has no colliders, and no inertia was imported; assigning a small isotropic inertia matrix` and sets the diagonal inertia to 10 × kNegligibleMass = 1e-4 kg·m² (isaac-sim/urdf-importer-extension commit 180002f, source/extensions/isaacsim.asset.importer.urdf/plugins/import/UrdfImporter.cpp, UrdfImporter::addRigidBody; kNegligibleMass = 1e-5 at the top of the file). The same happens to every link without colliders when the import's `import_inertia_tensor` option is off.",
+        why: "The body rotates with an inertia the file does not declare: for a heavy link 1e-4 kg·m² is far too small (a stiff, jittery joint), for a pure frame it adds rotational inertia.",
+        fix: "Declare an inertia tensor for the link, or give it collision geometry; import with `import_inertia_tensor` on.",
+    }
     REQUESTED_CHECK_NOT_RUN = "U790" "requested-check-not-run" Fail {
         what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`, `--deep`) could not run on this robot: for `--deep`, MuJoCo was not found (the message gives the install line, `pip install \"urdf-validator[mujoco]\"`), or its process failed or ran past its 60 s limit.",
         why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",
