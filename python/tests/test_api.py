@@ -157,3 +157,17 @@ def test_python_dash_m_runs_the_command(example: Path) -> None:
 def test_the_python_tools_console_commands_exist() -> None:
     done = subprocess.run(["urdf_validate_mcp", "--help"], capture_output=True, text=True)
     assert done.returncode == 0 and "mcp" in done.stdout, done.stdout + done.stderr
+
+
+def test_a_xacro_error_points_at_the_xacro_line(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="${undefined_width}"/>\n'
+        "</robot>\n"
+    )
+    with pytest.raises(ValidationError) as caught:
+        urdf_validator.validate(robot)
+    error = caught.value
+    assert error.file == str(robot) and error.line == 2 and error.column is not None, vars(error)
+    assert "undefined_width" in error.message and not error.message.startswith(str(robot))

@@ -49,19 +49,22 @@ fn location(path: &Path, error: &LoadError) -> (String, Option<u32>, Option<u32>
             Some(*column),
             format!("not well-formed XML: {message}"),
         ),
-        // The expander's message starts `file:line:col: ` when it has a position.
-        LoadError::Xacro { message, .. } => {
-            let first = message.lines().next().unwrap_or_default();
-            let positioned = first.split_once(": ").and_then(|(head, rest)| {
-                let mut parts = head.rsplitn(3, ':');
-                let column = parts.next()?.parse().ok()?;
-                let line = parts.next()?.parse().ok()?;
-                Some((parts.next()?.to_string(), line, column, rest.to_string()))
-            });
-            match positioned {
-                Some((at, line, column, rest)) => (at, Some(line), Some(column), rest),
-                None => (file, None, None, message.clone()),
-            }
+        LoadError::Xacro {
+            message,
+            location: Some(at),
+            ..
+        } => {
+            // The message without its `file:line:col: ` prefix.
+            let prefix = format!("{}:{}:{}: ", at.path.display(), at.line, at.col);
+            let detail = message
+                .find(&prefix)
+                .map_or(message.as_str(), |i| &message[i + prefix.len()..]);
+            (
+                at.path.display().to_string(),
+                u32::try_from(at.line).ok(),
+                u32::try_from(at.col).ok(),
+                detail.to_string(),
+            )
         }
         other => (file, None, None, other.to_string()),
     }

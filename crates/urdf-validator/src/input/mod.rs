@@ -48,6 +48,8 @@ pub enum LoadError {
         path: PathBuf,
         /// The expander's error: `file:line:col: message`, then the macro / include stack.
         message: String,
+        /// Where the expander found the problem, when it knows.
+        location: Option<::xacro::Location>,
     },
     /// The options do not fit this robot (an unknown joint or link name, an unreadable SRDF).
     #[error("{}: {message}", path.display())]

@@ -81,6 +81,7 @@ pub fn expand(
     let expansion = xacro::expand_file(path, &options).map_err(|error| LoadError::Xacro {
         path: path.to_path_buf(),
         message: error.to_string(),
+        location: error.location.clone(),
     })?;
     Ok(Expanded { expansion })
 }
