@@ -26,6 +26,8 @@ def test_validate_gives_the_report_the_command_writes(example: Path, tmp_path: P
     assert report.robot_type == "wheeled"
     assert report.statics is not None and report.statics["total_mass"] > 0
     assert report.workspace is not None and report.workspace["samples"] == 2000
+    assert report.symmetry is not None and report.symmetry["status"] == "PASS"
+    assert all(j["effort_needed"] is not None for j in report.statics["joints"] if j["status"] != "N/A")
 
     # The console command of the same wheel writes the same document (timestamps aside).
     done = subprocess.run(

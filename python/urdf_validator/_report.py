@@ -157,6 +157,11 @@ class Report:
         return self._data.get("workspace")
 
     @property
+    def symmetry(self) -> Optional[Dict[str, Any]]:
+        """Mirrored left/right pairs and what differs between them (``pairs``, ``status``), if computed."""
+        return self._data.get("symmetry")
+
+    @property
     def deep(self) -> Optional[Dict[str, Any]]:
         """The ``[DEEP]`` MuJoCo pass (``deep=True``, or by itself on a robot that tips over), if it ran."""
         return self._data.get("deep")

@@ -196,6 +196,99 @@ fn mimic_follower_torque_folds_into_its_leader() {
     );
 }
 
+/// Two links about +y, horizontal at the zero pose: `upper` (m1 at l1/2, elbow at l1) then `fore` (m2 at l2/2),
+/// the payload at `tool0` (at l2 past the elbow).
+fn two_link_arm(shoulder_effort: f64, elbow_effort: f64) -> String {
+    let limit = |effort: f64| {
+        format!(
+            r#"<limit lower="-1.5707963267948966" upper="1.5707963267948966" effort="{effort}" velocity="1"/>"#
+        )
+    };
+    format!(
+        r#"<robot name="two_link">
+  <link name="base"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>{}</joint>
+  <link name="upper">{}</link>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0.4 0 0"/><axis xyz="0 1 0"/>{}</joint>
+  <link name="fore">{}</link>
+  <joint name="tool_joint" type="fixed"><parent link="fore"/><child link="tool0"/><origin xyz="0.3 0 0"/></joint>
+  <link name="tool0"/>
+</robot>"#,
+        limit(shoulder_effort),
+        inertial(3.0, 0.2),
+        limit(elbow_effort),
+        inertial(1.5, 0.15),
+    )
+}
+
+#[test]
+fn effort_needed_is_one_and_a_half_times_the_worst_torque_payload_included() {
+    let payload = 0.5;
+    let options = StaticsOptions {
+        payload_mass: Some(payload),
+        ..StaticsOptions::default()
+    };
+    // τ_shoulder = g·(m1·l1/2 + m2·(l1 + l2/2) + p·(l1 + l2)); τ_elbow = g·(m2·l2/2 + p·l2).
+    let shoulder_torque = G * (3.0 * 0.2 + 1.5 * (0.4 + 0.15) + payload * 0.7);
+    let elbow_torque = G * (1.5 * 0.15 + payload * 0.3);
+    let section = statics_with(&two_link_arm(10.0, 100.0), options);
+    let shoulder = joint(&section, "shoulder");
+    assert_eq!(shoulder.status, Status::Fail);
+    assert!((shoulder.effort_needed.unwrap() - 1.5 * shoulder_torque).abs() < 1e-9);
+    let elbow = joint(&section, "elbow");
+    assert_eq!(elbow.status, Status::Pass);
+    assert!((elbow.effort_needed.unwrap() - 1.5 * elbow_torque).abs() < 1e-9);
+
+    // Declaring exactly the effort needed passes; a hair less does not.
+    let needed = shoulder.effort_needed.unwrap();
+    for (effort, expected) in [(needed, Status::Pass), (needed * 0.999, Status::Warn)] {
+        let options = StaticsOptions {
+            payload_mass: Some(payload),
+            ..StaticsOptions::default()
+        };
+        let section = statics_with(&two_link_arm(effort, 100.0), options);
+        assert_eq!(
+            joint(&section, "shoulder").status,
+            expected,
+            "effort {effort}"
+        );
+    }
+}
+
+#[test]
+fn the_undersized_finding_and_the_text_row_say_the_effort_needed() {
+    let validation = validate_text(
+        two_link_arm(10.0, 100.0),
+        Path::new("t.urdf"),
+        &Options::default(),
+    )
+    .expect("loads");
+    let needed = 1.5 * G * (3.0 * 0.2 + 1.5 * (0.4 + 0.15));
+    let finding = validation
+        .report
+        .findings
+        .iter()
+        .find(|f| f.rule == "U701")
+        .expect("U701 on the shoulder");
+    let help = finding.help.as_deref().unwrap_or_default();
+    assert!(
+        help.contains(&format!("declare effort ≥ {needed:.2} N·m")),
+        "{help}"
+    );
+    let text = urdf_validator::render::text::render_text(
+        &validation,
+        &urdf_validator::render::text::TextOptions::default(),
+    );
+    let row = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("shoulder"))
+        .expect("a row for the failing shoulder");
+    assert!(
+        row.contains(&format!("→ declare effort ≥ {needed:.2}")),
+        "{row}"
+    );
+}
+
 #[test]
 fn payload_capacity_has_the_closed_form() {
     // τ(m) = −g(M·x + m·L); capacity: g(M·x + m·L) = effort / 1.5.

@@ -12,6 +12,7 @@ pub mod pose;
 pub mod profiles;
 pub mod stability;
 pub mod statics;
+pub mod symmetry;
 pub mod workspace;
 
 use nalgebra::Vector3;
@@ -57,6 +58,8 @@ pub struct Physics {
     pub stability: StabilitySection,
     /// Reach, task, orientation and self-collision around the chosen pose.
     pub workspace: WorkspaceSection,
+    /// Mirrored left/right pairs and how they compare.
+    pub symmetry: symmetry::SymmetrySection,
     /// The type the capability profile uses.
     pub robot_type: RobotType,
     /// `exact` when declared.
@@ -159,6 +162,7 @@ pub fn analyse(
         q,
     } = statics::analyse(robot, model, assets.srdf.as_ref(), statics_options)?;
     clock.lap("statics");
+    let (symmetry, symmetry_findings) = symmetry::analyse(robot, model);
 
     let reference = pose::resolve(robot, model, None, &PoseOptions::default())?;
     let mut data = Data::new(model);
@@ -167,6 +171,7 @@ pub fn analyse(
     clock.lap("classify");
     let detected = classification.robot_type;
     let mut findings = statics_findings;
+    findings.extend(symmetry_findings);
     let root_span = model
         .root
         .map_or(robot.span, |root| robot.links[root.0].span);
@@ -298,6 +303,7 @@ pub fn analyse(
         statics,
         stability,
         workspace,
+        symmetry,
         robot_type,
         robot_type_confidence: confidence,
         detected,

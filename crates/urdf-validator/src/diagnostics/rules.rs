@@ -466,6 +466,11 @@ rules! {
         why: "The body rotates with an inertia the file does not declare: for a heavy link 1e-4 kg·m² is far too small (a stiff, jittery joint), for a pure frame it adds rotational inertia.",
         fix: "Declare an inertia tensor for the link, or give it collision geometry; import with `import_inertia_tensor` on.",
     }
+    MIRRORED_PAIR_DIFFERS = "U770" "mirrored-pair-differs" Warn {
+        what: "Two mirrored chains (sibling joints whose origins mirror each other across the parent link's x–z plane, walked together below) differ: a link pair's mass or principal moments of inertia by more than 10 % of the larger, a joint pair's effort or velocity by more than 10 %, its position limits by more than 0.01 (rad or m) + 1 % of the range (mirrored limits `[l, u]` / `[−u, −l]` count as equal), or a value is declared on one side only. Left/right names only break ties; they never make a pair.",
+        why: "A left and a right arm, leg or wheel built from the same part should weigh and move the same: a difference is usually a copy-paste slip (a mass typed for one side, a limit not mirrored) that makes the robot pull to one side in simulation or gives one side motors too weak for what the other side holds.",
+        fix: "Compare the two elements the message names and correct the one that is wrong; if the robot really is asymmetric, suppress the finding with a reason.",
+    }
     REQUESTED_CHECK_NOT_RUN = "U790" "requested-check-not-run" Fail {
         what: "A check the user asked for (`--task`, `--payload-mass`, `--pose home`, `--deep`) could not run on this robot: for `--deep`, MuJoCo was not found (the message gives the install line, `pip install \"urdf-validator[mujoco]\"`), or its process failed or ran past its 60 s limit.",
         why: "The answer the user asked for is missing; the overall verdict is UNKNOWN and the exit code 2, so CI does not pass without it.",

@@ -371,6 +371,29 @@ fn physics_line(out: &mut String, report: &Report) {
         )
     };
     let _ = writeln!(out, "{}  {body}", paint(BOLD, "[PHYSICS]"));
+    if let Some(symmetry) = report.symmetry.as_ref().filter(|s| !s.pairs.is_empty()) {
+        let count = symmetry.pairs.len();
+        let differing: Vec<String> = symmetry
+            .pairs
+            .iter()
+            .filter(|p| p.status != Status::Pass)
+            .map(|p| format!("{} / {}", p.joints[0], p.joints[1]))
+            .collect();
+        let verdict = if differing.is_empty() {
+            paint(GREEN, "all agree")
+        } else {
+            paint(
+                YELLOW,
+                &format!("{} differ: {}", differing.len(), differing.join(", ")),
+            )
+        };
+        let _ = writeln!(
+            out,
+            "{}symmetry: {count} mirrored pair{} — {verdict}",
+            " ".repeat(11),
+            if count == 1 { "" } else { "s" }
+        );
+    }
 }
 
 fn statics_section(out: &mut String, statics: &StaticsSection, verbose: bool) {
@@ -479,9 +502,14 @@ fn joint_row(out: &mut String, joint: &JointStatics) {
     let margin = joint
         .margin
         .map_or("no margin".to_string(), |m| format!("{m:.2}×"));
+    // The effort that would PASS, beside the rows that do not.
+    let needed = joint
+        .effort_needed
+        .filter(|_| matches!(joint.status, Status::Fail | Status::Warn))
+        .map_or(String::new(), |e| format!(" → declare effort ≥ {e:.2}"));
     let _ = writeln!(
         out,
-        "  {:<30}req {:<12}declared {:<14}{:>10}  {}  — {}",
+        "  {:<30}req {:<12}declared {:<14}{:>10}  {}  — {}{needed}",
         joint.name,
         required,
         declared,

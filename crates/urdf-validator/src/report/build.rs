@@ -99,6 +99,7 @@ pub fn build(outcome: Outcome) -> Report {
         links,
         statics: analyses.as_ref().map(|a| a.statics.clone()),
         workspace: analyses.as_ref().map(|a| a.workspace.clone()),
+        symmetry: analyses.as_ref().map(|a| a.symmetry.clone()),
         deep: analyses.as_ref().and_then(|a| a.deep.clone()),
         stability: analyses.map(|a| a.stability),
         findings: finding_reports,

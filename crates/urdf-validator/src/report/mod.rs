@@ -73,6 +73,10 @@ pub struct Report {
     /// Reach, task, orientation and self-collision of every arm (absent when the file is not a robot).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub workspace: Option<WorkspaceSection>,
+    /// Mirrored left/right pairs (sibling chains with mirrored origins) and what differs between them
+    /// (absent when the file is not a robot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub symmetry: Option<crate::analysis::symmetry::SymmetrySection>,
     /// The MuJoCo pass: what MuJoCo changed in the file, its gravity forces and centre of mass against
     /// statics, and the 2-second drop test (present with `--deep`, or when the stability margin is
     /// negative).

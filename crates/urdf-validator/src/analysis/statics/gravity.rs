@@ -21,6 +21,11 @@ pub const NEGLIGIBLE_TORQUE: f64 = 1e-3;
 /// Margin at or above which a joint passes.
 pub const PASS_MARGIN: f64 = 1.5;
 
+/// The smallest effort limit that holds `torque` with the PASS margin.
+pub fn effort_needed(torque: f64) -> f64 {
+    PASS_MARGIN * torque.abs()
+}
+
 /// Mass carried by each link's subtree, at one configuration.
 #[derive(Clone, Debug)]
 pub struct SubtreeSums {

@@ -111,6 +111,7 @@ pub fn analyse(
                     Confidence::Missing
                 },
                 declared_effort: info.effort,
+                effort_needed: None,
                 margin: None,
                 status: Status::NotApplicable,
                 subtree_mass: Some(data.sums.mass[child.0]),
@@ -167,6 +168,7 @@ pub fn analyse(
             required_torque_gravity: graded.torque,
             torque_confidence: graded.confidence,
             declared_effort: info.effort,
+            effort_needed: graded.torque.map(gravity::effort_needed),
             margin: graded.margin,
             status: graded.status,
             subtree_mass: Some(mass_below),
@@ -308,7 +310,7 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             )
             .with_help(format!(
                 "declare effort ≥ {:.2} {unit} (1.5 × the gravity torque), or lighten the links below '{name}'",
-                torque * PASS_MARGIN
+                gravity::effort_needed(torque)
             )),
         ),
         (Status::Warn, Some(torque)) => Some(
@@ -324,7 +326,7 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             )
             .with_help(format!(
                 "effort ≥ {:.2} {unit} gives the 1.5× margin",
-                torque * PASS_MARGIN
+                gravity::effort_needed(torque)
             )),
         ),
         (Status::Unknown, _) if any_mass => {

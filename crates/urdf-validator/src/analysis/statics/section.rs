@@ -62,6 +62,10 @@ pub struct JointStatics {
     pub torque_confidence: Confidence,
     /// `<limit effort>`.
     pub declared_effort: Option<f64>,
+    /// The smallest effort limit that would PASS: 1.5 × |`required_torque_gravity`| (the worst over the analysed
+    /// poses, payload included). Null when the torque is unknown and for mimic followers (their torque is their
+    /// leader's to hold).
+    pub effort_needed: Option<f64>,
     /// effort / |torque|; null when the torque is negligible or a value is missing.
     pub margin: Option<f64>,
     /// PASS ≥ 1.5, WARN 1.0–1.5, FAIL < 1.0, UNKNOWN when data is missing, N/A for mimic followers.
