@@ -212,6 +212,18 @@ pub struct Args {
     #[arg(long)]
     pub show_config: bool,
 
+    /// Report only the findings that baseline FILE (written by --write-baseline, or an earlier
+    /// `<name>_validation.json`) does not hold: the status and the exit code follow the new ones alone;
+    /// baseline entries nothing matches any more are listed as stale.
+    #[arg(long, value_name = "FILE")]
+    pub baseline: Option<PathBuf>,
+
+    /// Write every finding that counts (of every input; baselined ones too) to baseline FILE, keyed by
+    /// rule, element and message without its numbers (not by line); the exit code is then 0 unless an
+    /// input could not be read or FILE written.
+    #[arg(long, value_name = "FILE")]
+    pub write_baseline: Option<PathBuf>,
+
     /// Also list the findings that the configuration or inline `urdf-validate: ignore` comments
     /// suppress (marked as suppressed; `suppressed` in the JSON). They still do not count.
     #[arg(long)]
