@@ -77,7 +77,7 @@ impl Session {
 
 /// A clap error in one line, without its `error: ` prefix, with the allowed values when clap lists them
 /// (`invalid value 'foo' for '--robot-type <TYPE>' [possible values: wheeled, ...]`).
-fn first_line(message: &str) -> String {
+pub(crate) fn first_line(message: &str) -> String {
     let mut lines = message.lines();
     let first = lines.next().unwrap_or_default();
     let first = first.strip_prefix("error: ").unwrap_or(first);

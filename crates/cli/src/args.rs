@@ -15,7 +15,8 @@ use clap::{Parser, ValueEnum};
     about,
     long_about,
     after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
-                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp."
+                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
+                  `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`)."
 )]
 pub struct Args {
     /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>

@@ -28,6 +28,7 @@ macro_rules! errln {
 pub mod api;
 mod args;
 mod config;
+mod diff;
 mod formats;
 mod inputs;
 mod mcp;
@@ -68,6 +69,9 @@ where
     let argv: Vec<OsString> = argv.into_iter().map(Into::into).collect();
     if argv.get(1).is_some_and(|word| word == "mcp") {
         return mcp::main(&argv[2..]);
+    }
+    if argv.get(1).is_some_and(|word| word == "diff") {
+        return diff::main(&argv[2..]);
     }
     let matches = Args::command().get_matches_from(argv);
     let args = match Args::from_arg_matches(&matches) {

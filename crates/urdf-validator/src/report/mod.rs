@@ -5,6 +5,7 @@
 
 pub mod baseline;
 mod build;
+pub mod diff;
 pub mod filter;
 pub mod schema_doc;
 mod timestamp;
