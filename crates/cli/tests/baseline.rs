@@ -304,3 +304,67 @@ fn the_configuration_names_the_baseline() {
     assert_eq!(output.status.code(), Some(0), "{output:?}");
     assert!(String::from_utf8_lossy(&output.stdout).contains("[BASELINE]"));
 }
+
+#[test]
+fn xacro_findings_keep_their_fingerprints_across_included_files() {
+    let dir = temp_dir();
+    let parts = |padding: &str| {
+        format!(
+            r#"<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{padding}
+  <xacro:macro name="segment" params="name parent effort">
+    <joint name="${{name}}_joint" type="revolute">
+      <parent link="${{parent}}"/><child link="${{name}}"/><axis xyz="0 1 0"/>
+      <limit lower="-1" upper="1" effort="${{effort}}" velocity="1"/>
+    </joint>
+    <link name="${{name}}"><inertial><origin xyz="0.3 0 0"/><mass value="2"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.05" iyz="0" izz="0.05"/></inertial></link>
+  </xacro:macro>
+</robot>
+"#
+        )
+    };
+    let robot = |calls: &str| {
+        format!(
+            r#"<robot name="two" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="base"><inertial><mass value="50"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <xacro:segment name="left" parent="base" effort="2"/>
+  <xacro:segment name="right" parent="base" effort="2"/>{calls}
+</robot>
+"#
+        )
+    };
+    std::fs::write(dir.join("parts.xacro"), parts("")).unwrap();
+    std::fs::write(dir.join("two.urdf.xacro"), robot("")).unwrap();
+    let (code, before) = report(&dir, &["two.urdf.xacro"]);
+    assert_eq!(code, 2, "{:?}", rules(&before));
+    // Both weak joints are written in the same line of parts.xacro: their elements tell them apart.
+    let output = run(
+        &dir,
+        &["two.urdf.xacro", "--no-write", "--write-baseline", "b.json"],
+    );
+    assert_eq!(output.status.code(), Some(0), "{output:?}");
+    let written = std::fs::read_to_string(dir.join("b.json")).unwrap();
+    assert!(
+        written.contains("joint[@name='left_joint']/limit"),
+        "{written}"
+    );
+    assert!(
+        written.contains("joint[@name='right_joint']/limit"),
+        "{written}"
+    );
+    // Lines shift in the included file: nothing new.
+    std::fs::write(dir.join("parts.xacro"), parts("\n\n  <!-- notes -->\n")).unwrap();
+    let (code, after) = report(&dir, &["two.urdf.xacro", "--baseline", "b.json"]);
+    assert_eq!(code, 0, "{:?}", rules(&after));
+    // A third weak segment from the same macro line: only it is new.
+    let third = r#"
+  <xacro:segment name="middle" parent="base" effort="2"/>"#;
+    std::fs::write(dir.join("two.urdf.xacro"), robot(third)).unwrap();
+    let (code, after) = report(&dir, &["two.urdf.xacro", "--baseline", "b.json"]);
+    assert_eq!(code, 2);
+    let new = rules(&after);
+    assert!(
+        new.len() == 1 && new[0].contains("'middle_joint'"),
+        "{new:?}"
+    );
+}

@@ -520,6 +520,67 @@ mod tests {
         assert_eq!(ElementPaths::new("not xml").at(Span::default()), None);
     }
 
+    fn finding(rule: &str, element: Option<&str>, message: &str) -> ((), FindingReport) {
+        let report = FindingReport {
+            rule: rule.to_string(),
+            name: String::new(),
+            severity: Severity::Warn,
+            section: crate::diagnostics::Section::Schema,
+            message: message.to_string(),
+            file: None,
+            line: None,
+            column: None,
+            end_line: None,
+            end_column: None,
+            help: None,
+            element: element.map(str::to_string),
+            expanded_from: Vec::new(),
+        };
+        ((), report)
+    }
+
+    #[test]
+    fn matching_counts_identical_findings() {
+        let link = Some("robot/link[@name='a']");
+        let twice = vec![
+            finding("U206", link, "short by 1.5"),
+            finding("U206", link, "short by 2.5"),
+        ];
+        let reports: Vec<FindingReport> = twice.iter().map(|(_, r)| r.clone()).collect();
+        let robot = BaselineRobot {
+            file: "r.urdf".into(),
+            robot: "r".into(),
+            findings: entries(
+                reports
+                    .iter()
+                    .map(|r| (Fingerprint::of(r), r.message.clone())),
+            ),
+        };
+        assert_eq!(robot.findings.len(), 1);
+        assert_eq!(robot.findings[0].count, 2);
+        // Three identical findings against a count of two: one is new.
+        let mut thrice = twice.clone();
+        thrice.push(finding("U206", link, "short by 3"));
+        let (new, summary) = apply(thrice, Some(&robot), Path::new("b.json"));
+        assert_eq!((new.len(), summary.matched), (1, 2));
+        // One of them: the other is stale.
+        let (new, summary) = apply(twice[..1].to_vec(), Some(&robot), Path::new("b.json"));
+        assert_eq!((new.len(), summary.matched), (0, 1));
+        assert_eq!(summary.stale.len(), 1);
+        assert_eq!(summary.stale[0].count, 1);
+        // Another element is another finding; an entry without one (an old report) matches any.
+        let elsewhere = vec![finding("U206", Some("robot/link[@name='b']"), "short by 1")];
+        assert_eq!(
+            apply(elsewhere.clone(), Some(&robot), Path::new("b.json"))
+                .0
+                .len(),
+            1
+        );
+        let mut old = robot.clone();
+        old.findings[0].element = None;
+        assert_eq!(apply(elsewhere, Some(&old), Path::new("b.json")).0.len(), 0);
+    }
+
     #[test]
     fn a_malformed_baseline_names_the_file() {
         let error = Baseline::parse("{", Path::new("b.json")).expect_err("malformed");
