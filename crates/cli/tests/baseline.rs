@@ -248,6 +248,16 @@ fn one_baseline_covers_a_batch() {
     assert_eq!(reports[0]["findings"], Value::Array(Vec::new()));
     let new = rules(&reports[1]);
     assert!(new.len() == 1 && new[0].contains("'shoulder'"), "{new:?}");
+    // A robot the baseline does not hold, of the same name: all its findings are new.
+    std::fs::create_dir_all(dir.join("c")).unwrap();
+    std::fs::write(dir.join("c/arm.urdf"), arm("5", "10", "")).unwrap();
+    let (code, after) = report(&dir, &["c/arm.urdf", "--baseline", "ci/baseline.json"]);
+    assert_eq!(code, 2);
+    assert_eq!(after["baseline"]["matched"], 0, "{after}");
+    // A robot file that moved is still found by its robot name.
+    std::fs::rename(dir.join("a"), dir.join("moved")).unwrap();
+    let (code, after) = report(&dir, &["moved/arm.urdf", "--baseline", "ci/baseline.json"]);
+    assert_eq!(code, 0, "{after}");
 }
 
 #[test]

@@ -282,23 +282,25 @@ impl Baseline {
         })
     }
 
-    /// The entries of the robot validated from `file` named `name`: the robot of that file, else the one
-    /// robot of that name, else the only robot of the baseline.
+    /// The entries of the robot validated from `file` named `name`: the robot of that file; else, among
+    /// the robots whose file is no longer there (moved, or a report written elsewhere), the one robot of
+    /// that name, else the only robot of the baseline.
     pub fn robot(&self, file: &Path, name: &str) -> Option<&BaselineRobot> {
         let file = file.canonicalize().ok();
         let by_file = self
             .robots
             .iter()
             .find(|(path, _)| path.is_some() && *path == file);
+        let gone = || self.robots.iter().filter(|(path, _)| path.is_none());
         let named = || {
-            let mut named = self.robots.iter().filter(|(_, r)| r.robot == name);
+            let mut named = gone().filter(|(_, r)| r.robot == name);
             match (named.next(), named.next()) {
                 (Some(one), None) if !name.is_empty() => Some(one),
                 _ => None,
             }
         };
         let only = || match self.robots.as_slice() {
-            [only] => Some(only),
+            [only] if only.0.is_none() => Some(only),
             _ => None,
         };
         by_file.or_else(named).or_else(only).map(|(_, r)| r)
