@@ -91,6 +91,23 @@ def test_pr2_fails_on_its_shoulders() -> None:
     assert report.statics["weakest_joint_name"] in undersized
 
 
+def test_a_baseline_hides_the_findings_it_holds(tmp_path: Path) -> None:
+    pr2 = shared_robot("pr2/pr2_description/robots/pr2.urdf")
+    baseline = tmp_path / "baseline.json"
+    done = subprocess.run(
+        ["urdf_validate", str(pr2), "--samples", "2000", "--no-write", "--quiet", "--write-baseline", str(baseline)],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    report = urdf_validator.validate(pr2, samples=2000, baseline=baseline)
+    assert report.overall_status == "PASS" and report.exit_code == 0
+    assert report.findings == []
+    assert report.to_dict()["baseline"]["matched"] > 0
+    with pytest.raises(ValueError, match="--write-baseline"):
+        urdf_validator.validate(pr2, write_baseline=baseline)
+
+
 def test_validate_many_keeps_order_and_isolates_failures(example: Path, tmp_path: Path) -> None:
     broken = tmp_path / "broken.urdf"
     broken.write_text("<robot name='x'><link name='a'></robot>")

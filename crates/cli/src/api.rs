@@ -30,6 +30,13 @@ impl Session {
             .try_get_matches_from(argv)
             .map_err(|e| first_line(&e.to_string()))?;
         let args = Args::from_arg_matches(&matches).map_err(|e| first_line(&e.to_string()))?;
+        if args.write_baseline.is_some() {
+            return Err(
+                "--write-baseline writes a file for a whole run of the command: run `urdf_validate ... \
+                 --write-baseline FILE` (`--baseline FILE` is taken here)"
+                    .to_string(),
+            );
+        }
         let (inputs, xacro_args) = crate::checked_inputs(&args)?;
         if let Some(input) = inputs.first() {
             return Err(format!(
@@ -77,7 +84,7 @@ impl Session {
 
 /// A clap error in one line, without its `error: ` prefix, with the allowed values when clap lists them
 /// (`invalid value 'foo' for '--robot-type <TYPE>' [possible values: wheeled, ...]`).
-fn first_line(message: &str) -> String {
+pub(crate) fn first_line(message: &str) -> String {
     let mut lines = message.lines();
     let first = lines.next().unwrap_or_default();
     let first = first.strip_prefix("error: ").unwrap_or(first);
@@ -133,5 +140,11 @@ mod tests {
         let error =
             Session::from_flags(&["--payload-mass=-3".into()], None).expect_err("negative payload");
         assert!(error.contains("--payload-mass -3"), "{error}");
+        let error = Session::from_flags(&["--write-baseline=b.json".into()], None)
+            .expect_err("a command-level flag");
+        assert!(error.starts_with("--write-baseline"), "{error}");
+        let error = Session::from_flags(&["--baseline=missing.json".into()], None)
+            .expect_err("an absent baseline");
+        assert!(error.contains("baseline missing.json"), "{error}");
     }
 }

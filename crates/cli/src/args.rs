@@ -15,7 +15,8 @@ use clap::{Parser, ValueEnum};
     about,
     long_about,
     after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
-                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp."
+                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
+                  `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`)."
 )]
 pub struct Args {
     /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>
@@ -211,6 +212,18 @@ pub struct Args {
     /// from (file:line, command line or default), then exit.
     #[arg(long)]
     pub show_config: bool,
+
+    /// Report only the findings that baseline FILE (written by --write-baseline, or an earlier
+    /// `<name>_validation.json`) does not hold: the status and the exit code follow the new ones alone;
+    /// baseline entries nothing matches any more are listed as stale.
+    #[arg(long, value_name = "FILE")]
+    pub baseline: Option<PathBuf>,
+
+    /// Write every finding that counts (of every input; baselined ones too) to baseline FILE, keyed by
+    /// rule, element and message without its numbers (not by line); the exit code is then 0 unless an
+    /// input could not be read or FILE written.
+    #[arg(long, value_name = "FILE")]
+    pub write_baseline: Option<PathBuf>,
 
     /// Also list the findings that the configuration or inline `urdf-validate: ignore` comments
     /// suppress (marked as suppressed; `suppressed` in the JSON). They still do not count.

@@ -8,6 +8,7 @@
 //! robot-type = "wheeled"
 //! samples = 10000
 //! package-path = ["../deps"]          # relative to this file
+//! baseline = "urdf-validate-baseline.json"  # relative to this file
 //!
 //! [per-file-ignores]
 //! "legacy/**/*.urdf" = ["U201"]
@@ -50,6 +51,7 @@ const KEYS: &[&str] = &[
     "seed",
     "package-path",
     "contact-links",
+    "baseline",
 ];
 
 /// The configuration table as written.
@@ -67,6 +69,7 @@ struct Raw {
     seed: Option<Spanned<u64>>,
     package_path: Option<Vec<Spanned<String>>>,
     contact_links: Option<Spanned<Vec<String>>>,
+    baseline: Option<Spanned<String>>,
 }
 
 /// `[severity]` values.
@@ -145,6 +148,8 @@ pub struct Effective {
     pub package_path: Vec<Setting<PathBuf>>,
     /// `contact-links`.
     pub contact_links: Setting<Option<Vec<String>>>,
+    /// `baseline` (a path in the file is relative to the file).
+    pub baseline: Setting<Option<PathBuf>>,
 }
 
 impl Effective {
@@ -157,6 +162,7 @@ impl Effective {
         args.seed = self.seed.value;
         args.package_path = self.package_path.iter().map(|p| p.value.clone()).collect();
         args.contact_links = self.contact_links.value.clone();
+        args.baseline = self.baseline.value.clone();
     }
 
     /// The `--show-config` text.
@@ -274,6 +280,15 @@ impl Effective {
             "contact-links",
             opt(self.contact_links.value.as_ref().map(|l| format!("{l:?}"))),
             self.contact_links.origin.to_string(),
+        );
+        line(
+            "baseline",
+            opt(self
+                .baseline
+                .value
+                .as_ref()
+                .map(|p| format!("{:?}", p.display().to_string()))),
+            self.baseline.origin.to_string(),
         );
         line(
             "show-suppressed",
@@ -622,6 +637,17 @@ fn merge(
         },
         (None, false) => Setting::default(None),
     };
+    let baseline = match (&raw.baseline, from_cli("baseline")) {
+        (_, true) => Setting {
+            value: args.baseline.clone(),
+            origin: Origin::CommandLine,
+        },
+        (Some(file), false) => Setting {
+            value: Some(base.join(file.get_ref())),
+            origin: inner(file),
+        },
+        (None, false) => Setting::default(None),
+    };
     Ok(Effective {
         file: path.map(Path::to_path_buf),
         settings,
@@ -632,6 +658,7 @@ fn merge(
         seed,
         package_path,
         contact_links,
+        baseline,
     })
 }
 

@@ -28,6 +28,7 @@ macro_rules! errln {
 pub mod api;
 mod args;
 mod config;
+mod diff;
 mod formats;
 mod inputs;
 mod mcp;
@@ -50,6 +51,7 @@ use urdf_validator::diagnostics::rules::{self, Rule};
 use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::render::FormatOptions;
+use urdf_validator::report::baseline::{self, Baseline};
 use urdf_validator::Options;
 
 use args::{Args, ColorChoice, Format};
@@ -67,6 +69,9 @@ where
     let argv: Vec<OsString> = argv.into_iter().map(Into::into).collect();
     if argv.get(1).is_some_and(|word| word == "mcp") {
         return mcp::main(&argv[2..]);
+    }
+    if argv.get(1).is_some_and(|word| word == "diff") {
+        return diff::main(&argv[2..]);
     }
     let matches = Args::command().get_matches_from(argv);
     let args = match Args::from_arg_matches(&matches) {
@@ -235,9 +240,40 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         &input_errors,
         &format_options,
     );
-    let worst = outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0);
+    let worst = match &args.write_baseline {
+        Some(path) => write_baseline(path, &outcomes),
+        None => outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0),
+    };
     if input_errors.is_empty() && written {
         worst
+    } else {
+        2
+    }
+}
+
+/// `--write-baseline`: every finding that counts, of every robot read, to `path`; 0 when written and
+/// every input gave a report, else 2.
+fn write_baseline(path: &Path, outcomes: &[Outcome]) -> u8 {
+    let reports: Vec<&urdf_validator::report::Report> = outcomes
+        .iter()
+        .filter_map(|o| o.validation.as_ref().ok())
+        .map(|v| &v.report)
+        .collect();
+    let findings: usize = reports
+        .iter()
+        .map(|r| r.findings.len() + r.baseline.as_ref().map_or(0, |b| b.baselined.len()))
+        .sum();
+    if let Err(error) = outputs::write_file(path, &baseline::render(&reports, path)) {
+        errln!("error: {}: cannot write baseline: {error}", path.display());
+        return 2;
+    }
+    errln!(
+        "Baseline written: {} ({findings} finding(s) of {} robot(s))",
+        path.display(),
+        reports.len()
+    );
+    if reports.len() == outcomes.len() {
+        0
     } else {
         2
     }
@@ -416,6 +452,11 @@ fn options_for(
             ..Default::default()
         },
         simulators: args.simulator.iter().map(|&s| s.into()).collect(),
+        baseline: args
+            .baseline
+            .as_deref()
+            .map(|path| Baseline::load(path).map(std::sync::Arc::new))
+            .transpose()?,
     })
 }
 

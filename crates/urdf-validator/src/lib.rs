@@ -83,6 +83,8 @@ pub struct Options {
     pub deep: analysis::deep::DeepOptions,
     /// `--simulator`: the load profiles whose findings are added (what each importer does to the file).
     pub simulators: Vec<analysis::profiles::Simulator>,
+    /// `--baseline`: findings it holds are not reported and do not count (shared by every file of a run).
+    pub baseline: Option<std::sync::Arc<report::baseline::Baseline>>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -183,6 +185,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         findings,
         analyses,
         settings: &options.settings,
+        baseline: options.baseline.as_deref(),
     });
     clock.lap("report");
     let report = Report {

@@ -255,6 +255,9 @@ struct Flags {
     config: Option<String>,
     /// Read no configuration file.
     no_config: Option<bool>,
+    /// Baseline file (written by `urdf_validate --write-baseline`, or an earlier report JSON): the findings
+    /// it holds are not reported and do not count (baseline{} in the report says how many it hid).
+    baseline: Option<String>,
     /// Also list the findings that the configuration or inline comments suppress (suppressed[]).
     show_suppressed: Option<bool>,
     /// Time each phase: timings_ms in the report.
@@ -303,6 +306,7 @@ impl Flags {
         line.values("ignore", self.ignore.as_deref());
         line.value("config", self.config.as_ref());
         line.switch("no-config", self.no_config);
+        line.value("baseline", self.baseline.as_ref());
         line.switch("show-suppressed", self.show_suppressed);
         line.switch("timings", self.timings);
         line.switch("no-cache", self.no_cache);

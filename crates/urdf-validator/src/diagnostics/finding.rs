@@ -6,7 +6,17 @@ use crate::input::source::Span;
 /// How serious a finding is. Ordered: `Info < Warn < Fail < Critical`; the exit code follows the worst
 /// (see [`crate::diagnostics::overall_status`] and [`crate::diagnostics::Status::exit_code`]).
 #[derive(
-    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, schemars::JsonSchema,
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
 )]
 #[serde(rename_all = "UPPERCASE")]
 pub enum Severity {

@@ -9,7 +9,10 @@
 //! | junit | [`junit`] | CI test reports: JUnit XML, one test case per check |
 //! | github | [`github`] | GitHub Actions: workflow-command annotations and the step summary |
 //! | html | [`html`] | a page to open in a browser |
+//!
+//! [`diff`] renders what changed between two reports (`urdf_validate diff`) as text or Markdown.
 
+pub mod diff;
 pub mod github;
 pub mod html;
 pub mod json;
@@ -18,6 +21,7 @@ mod location;
 pub mod sarif;
 pub mod text;
 
+pub use diff::{render_diff_markdown, render_diff_text};
 pub use github::{render_github, render_step_summary};
 pub use html::render_html;
 pub use json::{render_json, render_json_list};

@@ -90,6 +90,10 @@ fn sarif_log(
                 result.insert("level".into(), json!(level(finding.severity)));
                 result.insert("message".into(), json!({ "text": text }));
                 result.insert("locations".into(), json!([location(&place, base)]));
+                if report.baseline.is_some() {
+                    // Findings the baseline holds are not reported at all (they are not failures).
+                    result.insert("baselineState".into(), json!("new"));
+                }
                 result.insert(
                     "properties".into(),
                     json!({

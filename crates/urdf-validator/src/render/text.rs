@@ -92,6 +92,7 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
         findings_block(&mut out, validation, options, &[Section::Deep]);
     }
     suppressed_block(&mut out, report);
+    baseline_line(&mut out, report);
     let overall = report.overall_status;
     let _ = writeln!(
         out,
@@ -224,6 +225,37 @@ fn findings_block(
                 grouped.join(" + ")
             );
         }
+    }
+}
+
+/// `--baseline`: how many known findings it hid, and which of its entries match nothing any more.
+fn baseline_line(out: &mut String, report: &Report) {
+    let Some(baseline) = &report.baseline else {
+        return;
+    };
+    let stale: usize = baseline.stale.iter().map(|e| e.count).sum();
+    let _ = write!(
+        out,
+        "{}  {} known finding(s) hidden ({}), {} new",
+        paint(BOLD, "[BASELINE]"),
+        baseline.matched,
+        baseline.file,
+        baseline.new
+    );
+    if stale == 0 {
+        let _ = writeln!(out);
+        return;
+    }
+    let _ = writeln!(out, ", {stale} stale — rewrite with --write-baseline");
+    for entry in &baseline.stale {
+        let _ = writeln!(
+            out,
+            "  {} {} {}: {}",
+            paint(DIM, "stale:"),
+            entry.severity.label(),
+            entry.rule,
+            truncate(&entry.message, 160)
+        );
     }
 }
 

@@ -5,6 +5,7 @@ use crate::analysis::{mass, Physics};
 use crate::diagnostics::{overall_status, rules, Finding, Section, Settings, Severity};
 use crate::input::Loaded;
 use crate::model::Model;
+use crate::report::baseline::{self, Baseline, ElementPaths};
 use crate::report::{filter, FindingReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
 
@@ -22,6 +23,8 @@ pub struct Outcome<'a> {
     pub analyses: Option<Physics>,
     /// Rule selection, severity overrides and suppressions.
     pub settings: &'a Settings,
+    /// `--baseline`: the findings it holds are not reported.
+    pub baseline: Option<&'a Baseline>,
 }
 
 /// The report of one robot.
@@ -33,13 +36,18 @@ pub fn build(outcome: Outcome) -> Report {
         findings,
         analyses,
         settings,
+        baseline,
     } = outcome;
+    let paths = ElementPaths::new(loaded.text());
     let mut pairs: Vec<(Finding, FindingReport)> = findings
         .into_iter()
         .map(|finding| {
             let mut report = finding_report(&finding);
-            if let Some(at) = finding.span.and_then(|span| loaded.locate(span)) {
-                report.place(at);
+            if let Some(span) = finding.span {
+                report.element = paths.at(span);
+                if let Some(at) = loaded.locate(span) {
+                    report.place(at);
+                }
             }
             (finding, report)
         })
@@ -54,8 +62,20 @@ pub fn build(outcome: Outcome) -> Report {
         pairs.push((finding, report));
     }
     let filtered = filter::apply(pairs, settings, &loaded.path, &loaded.source_texts());
-    let (findings, finding_reports): (Vec<Finding>, Vec<FindingReport>) =
-        filtered.kept.into_iter().unzip();
+    let robot_name = robot
+        .name
+        .as_ref()
+        .map(|n| n.value.clone())
+        .unwrap_or_default();
+    let (kept, baseline) = match baseline {
+        Some(b) => {
+            let (new, summary) =
+                baseline::apply(filtered.kept, b.robot(&loaded.path, &robot_name), &b.path);
+            (new, Some(summary))
+        }
+        None => (filtered.kept, None),
+    };
+    let (findings, finding_reports): (Vec<Finding>, Vec<FindingReport>) = kept.into_iter().unzip();
     let schema: Vec<&Finding> = findings
         .iter()
         .filter(|f| f.section == Section::Schema)
@@ -73,11 +93,7 @@ pub fn build(outcome: Outcome) -> Report {
     let summary = mass::summarize(&links);
     Report {
         urdf_path: loaded.path.display().to_string(),
-        robot_name: robot
-            .name
-            .as_ref()
-            .map(|n| n.value.clone())
-            .unwrap_or_default(),
+        robot_name,
         timestamp: super::timestamp::now(),
         validator_version: crate::VERSION.to_string(),
         overall_status: overall_status(&findings),
@@ -104,6 +120,7 @@ pub fn build(outcome: Outcome) -> Report {
         stability: analyses.map(|a| a.stability),
         findings: finding_reports,
         suppressed: filtered.suppressed,
+        baseline,
         timings_ms: None,
     }
 }
@@ -175,6 +192,7 @@ pub(super) fn finding_report(finding: &Finding) -> FindingReport {
         end_line: None,
         end_column: None,
         help: finding.help.clone(),
+        element: None,
         expanded_from: Vec::new(),
     }
 }

@@ -3,7 +3,9 @@
 //! Field names follow the Python tool's JSON so existing CI scripts keep working. Sections that are not
 //! implemented yet (statics, stability, workspace) are absent, never filled with placeholders.
 
+pub mod baseline;
 mod build;
+pub mod diff;
 pub mod filter;
 pub mod schema_doc;
 mod timestamp;
@@ -89,6 +91,10 @@ pub struct Report {
     /// towards any status or the exit code. Present only with `--show-suppressed`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub suppressed: Vec<SuppressedFinding>,
+    /// What `--baseline` hid: the findings it matched (not counted), those it lacks (`new`, reported above)
+    /// and its entries nothing matches any more (`stale`). Present only with `--baseline`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baseline: Option<baseline::BaselineSummary>,
     /// Milliseconds per pipeline phase (`--timings` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub timings_ms: Option<Timings>,
@@ -133,6 +139,10 @@ pub struct FindingReport {
     pub end_column: Option<u32>,
     /// What to do about it.
     pub help: Option<String>,
+    /// Path of the element the finding points at in the (expanded) URDF, such as
+    /// `robot[@name='pr2']/joint[@name='r_elbow_flex_joint']/limit` (null when it points at none): with the
+    /// rule, severity and message, what identifies the finding in a baseline whatever its line.
+    pub element: Option<String>,
     /// For xacro input: the macro calls and includes that produced the flagged text, innermost first
     /// (`in macro 'wheel' called at robot.urdf.xacro:40:3`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
