@@ -137,6 +137,9 @@ fn heavier_forearms_show_in_torques_mass_and_com() {
         "{text}"
     );
     assert!(text.contains("total mass (kg)"), "{text}");
+    // The shoulders fail on both sides; each side says the effort that would pass.
+    assert!(text.contains("FAIL (needs ≥ 74.26)"), "{text}");
+    assert!(text.contains("FAIL (needs ≥ 95.20)"), "{text}");
 }
 
 /// A one-joint arm whose shoulder declares effort `effort` (it needs about 5.9 N·m).

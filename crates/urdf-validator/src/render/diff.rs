@@ -151,7 +151,7 @@ fn number_row(label: &str, change: &Change<f64>, digits: usize) -> [String; 4] {
     [label.to_string(), show(change.old), show(change.new), delta]
 }
 
-/// `11.77 N·m / 5 → 0.42× FAIL`.
+/// `11.77 N·m / 5 → 0.42× FAIL (needs ≥ 17.66)`.
 fn figures(figures: &Option<JointFigures>) -> String {
     let Some(f) = figures else {
         return "—".to_string();
@@ -159,7 +159,11 @@ fn figures(figures: &Option<JointFigures>) -> String {
     let torque = f.torque.map_or("?".to_string(), |t| format!("{t:.2} N·m"));
     let effort = f.effort.map_or("none".to_string(), |e| format!("{e}"));
     let margin = f.margin.map_or("—".to_string(), |m| format!("{m:.2}×"));
-    format!("{torque} / {effort} → {margin} {}", f.status)
+    let needed = f
+        .effort_needed
+        .filter(|_| matches!(f.status.as_str(), "FAIL" | "WARN"))
+        .map_or(String::new(), |e| format!(" (needs ≥ {e:.2})"));
+    format!("{torque} / {effort} → {margin} {}{needed}", f.status)
 }
 
 /// The first line: what is compared and whether NEW is worse.

@@ -33,7 +33,7 @@ impl<T: PartialEq> Change<T> {
 /// A verdict on each side.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct VerdictChange {
-    /// `overall`, or the section: `schema`, `statics`, `stability`, `workspace`.
+    /// `overall`, or the section: `schema`, `statics`, `stability`, `workspace`, `symmetry`.
     pub check: String,
     /// The statuses (PASS, WARN, FAIL, UNKNOWN, N/A).
     #[serde(flatten)]
@@ -64,6 +64,8 @@ pub struct JointFigures {
     pub effort: Option<f64>,
     /// Effort / torque (none when the torque is negligible).
     pub margin: Option<f64>,
+    /// The smallest effort that would PASS (1.5 × |torque|).
+    pub effort_needed: Option<f64>,
     /// PASS, WARN, FAIL, UNKNOWN.
     pub status: String,
 }
@@ -125,6 +127,7 @@ pub fn compare(old: &Value, new: &Value) -> ReportDiff {
         ("statics", "/statics/status"),
         ("stability", "/stability/status"),
         ("workspace", "/workspace/status"),
+        ("symmetry", "/symmetry/status"),
     ]
     .into_iter()
     .map(|(check, pointer)| {
@@ -293,6 +296,7 @@ fn joint_changes(old: &Value, new: &Value) -> Vec<JointChange> {
                         torque: number(j.get("required_torque_gravity")),
                         effort: number(j.get("declared_effort")),
                         margin: number(j.get("margin")),
+                        effort_needed: number(j.get("effort_needed")),
                         status: text(j.get("status")).unwrap_or_default(),
                     },
                 ))
