@@ -1,11 +1,11 @@
-//! urdf-validator: physics-aware validation of URDF (and xacro) robot descriptions.
+//! urdf-validator: physics-aware validation of URDF (and xacro, and SDFormat) robot descriptions.
 //!
 //! The library is laid out by pipeline stage, each folder handing the next exactly what it needs:
 //!
 //! | stage | module | produces |
 //! |---|---|---|
 //! | load | [`input`] | the URDF text (xacro expanded), positions back into the files the user edits |
-//! | parse | [`urdf`] | a typed [`urdf::Robot`] with spans, and parse findings |
+//! | parse | [`urdf`], [`sdf`] | a typed [`urdf::Robot`] with spans (SDFormat read into the same type), and parse findings |
 //! | model | [`model`] | the kinematic tree, forward kinematics, mass properties |
 //! | assets | [`assets`] | meshes and their hulls, link supports, the SRDF: loaded once |
 //! | checks | `checks` (internal) | structural findings |
@@ -31,6 +31,7 @@ pub mod model;
 pub mod render;
 pub mod report;
 pub mod rng;
+pub mod sdf;
 pub mod task_query;
 pub mod timings;
 pub mod urdf;
@@ -124,7 +125,7 @@ pub fn validate_text(
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
 fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = urdf::parse_urdf(loaded.text(), &loaded.path)?;
+    let (robot, mut findings) = parse(&loaded)?;
     clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
@@ -157,7 +158,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             })?;
         findings.extend(physics.findings.iter().cloned());
         let deep = analysis::deep::run(&analysis::deep::DeepInput {
-            text: loaded.text(),
+            urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
             robot: &robot,
             model: &model,
             assets: &assets,
@@ -191,6 +192,14 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     };
     let sources = loaded.into_sources();
     Ok(Validation { report, sources })
+}
+
+/// The parse stage of the loaded format: URDF text, or the SDFormat files.
+fn parse(loaded: &Loaded) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
+    match loaded.sdf() {
+        Some(files) => Ok(sdf::parse_sdf(files)),
+        None => urdf::parse_urdf(loaded.text(), &loaded.path),
+    }
 }
 
 /// `--payload-mass` at the link statics carries it at.
