@@ -31,6 +31,14 @@ struct Resolved<'d, 'a> {
 /// Build the robot of `scene`.
 pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
     let mut graph = FrameGraph::new(scene);
+    // Every frame is resolved once, so a cycle or a missing name is found even where nothing uses it.
+    let mut names: Vec<&String> = scene.frames.keys().collect();
+    names.sort();
+    for name in names {
+        graph.pose(name);
+        graph.link_of(name);
+    }
+    graph.link_of("");
     let resolved: Vec<Resolved> = scene
         .joints
         .iter()
