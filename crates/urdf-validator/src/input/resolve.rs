@@ -1056,4 +1056,55 @@ mod tests {
             other => panic!("expected Found, got {other:?}"),
         }
     }
+
+    #[test]
+    fn model_uris_resolve_through_the_gazebo_paths_then_package_paths_then_upwards() {
+        let t = TempTree::new();
+        let mesh = t.file("gz/arm/meshes/a.stl");
+        t.file("pp/arm/meshes/a.stl");
+        let r = PackageResolver::new(vec![t.path("pp")], None, None)
+            .with_model_paths([Some(t.path("gz").to_str().unwrap())]);
+        assert_eq!(
+            r.resolve("model://arm/meshes/a.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+        let beside = t.file("world/models/../wheel/w.dae");
+        let found = empty_resolver().resolve("model://wheel/w.dae", &t.dir("world/models"));
+        assert_eq!(
+            found,
+            Resolution::Found(t.path("world/wheel/w.dae")),
+            "{beside:?}"
+        );
+        assert!(matches!(
+            empty_resolver().resolve("model://absent/m.stl", &t.dir("x")),
+            Resolution::NotFound { .. }
+        ));
+    }
+
+    #[test]
+    fn model_config_picks_the_newest_supported_sdf() {
+        let t = TempTree::new();
+        let dir = t.dir("m");
+        fs::write(
+            dir.join("model.config"),
+            "<model><sdf version=\"1.5\">old.sdf</sdf><sdf version=\"1.10\">new.sdf</sdf><sdf version=\"2.0\">future.sdf</sdf></model>",
+        )
+        .unwrap();
+        for f in ["old.sdf", "new.sdf", "future.sdf"] {
+            t.file(&format!("m/{f}"));
+        }
+        assert_eq!(model_sdf_file(&dir), Ok(dir.join("new.sdf")));
+        let bare = t.dir("bare");
+        assert!(model_sdf_file(&bare).is_err());
+        t.file("bare/model.sdf");
+        assert_eq!(model_sdf_file(&bare), Ok(bare.join("model.sdf")));
+        assert_eq!(
+            empty_resolver().resolve_include("m", &t.0),
+            Ok(dir.join("new.sdf"))
+        );
+        assert!(empty_resolver()
+            .resolve_include("https://fuel.gazebosim.org/x", &t.0)
+            .unwrap_err()
+            .contains("offline"));
+    }
 }
