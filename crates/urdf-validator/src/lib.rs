@@ -114,6 +114,8 @@ pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError>
 }
 
 /// Validate URDF `text` that was read from `path` (used for positions, relative meshes and the report).
+/// The text is read as URDF whatever its root: SDFormat is read from files ([`validate`]), where its
+/// includes are.
 pub fn validate_text(
     text: String,
     path: &Path,

@@ -236,6 +236,12 @@ fn bad_input_is_a_finding_at_its_line() {
     );
     let f = at_line(&run(&ball), "U025", 5);
     assert_eq!(f.severity, Severity::Warn);
+    let plane = dir.file(
+        "plane.sdf",
+        &model("1.9", &format!("<link name=\"l\">{INERTIAL}\n<collision name=\"c\"><geometry><plane><normal>0 0 1</normal></plane></geometry></collision></link>")),
+    );
+    let f = at_line(&run(&plane), "U028", 5);
+    assert_eq!(f.severity, Severity::Info);
     // Malformed XML is a load error naming the line, as for URDF.
     let broken = dir.file(
         "broken.sdf",
@@ -419,4 +425,41 @@ fn sdformat_invalid_files_get_a_critical_finding() {
             "{file}: {rule} without a line"
         );
     }
+}
+
+#[test]
+fn model_uri_meshes_resolve_like_package_uris() {
+    let dir = Scratch::new("mesh");
+    dir.file("models/wheel/meshes/w.stl", "solid w\nendsolid w\n");
+    let path = dir.file(
+        "robot/m.sdf",
+        &model(
+            "1.9",
+            &format!("<link name=\"l\">{INERTIAL}\n<collision name=\"c\"><geometry><mesh><uri>model://wheel/meshes/w.stl</uri></mesh></geometry></collision>\n<visual name=\"v\"><geometry><mesh><uri>model://tyre/t.stl</uri></mesh></geometry></visual></link>"),
+        ),
+    );
+    let v = validate(&path, &options(vec![dir.0.join("models")])).unwrap();
+    let missing = findings(&v, "U501");
+    assert_eq!(missing.len(), 1, "{missing:?}");
+    assert_eq!(missing[0].line, Some(6));
+    assert!(
+        missing[0]
+            .help
+            .as_deref()
+            .unwrap()
+            .contains("models/tyre/t.stl"),
+        "{missing:?}"
+    );
+    // With no model folder anywhere, the help says where models are looked for.
+    let v = run(&path);
+    let missing = findings(&v, "U501");
+    assert_eq!(missing.len(), 2, "{missing:?}");
+    assert!(
+        missing[0]
+            .help
+            .as_deref()
+            .unwrap()
+            .contains("GZ_SIM_RESOURCE_PATH"),
+        "{missing:?}"
+    );
 }

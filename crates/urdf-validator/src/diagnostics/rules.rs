@@ -46,7 +46,7 @@ rules! {
     NOT_A_ROBOT = "U001" "not-a-robot" Critical {
         what: "The document's root element is not `<robot>`.",
         why: "URDF parsers (urdfdom, Pinocchio, MuJoCo) only accept a `<robot>` root; nothing else can be checked.",
-        fix: "Make `<robot name=\"...\">` the root element (SDFormat files, root `<sdf>`, are read as SDF). MJCF files need their own tools.",
+        fix: "Make `<robot name=\"...\">` the root element (a file whose root is `<sdf>` is read as SDFormat). MJCF files need their own tools.",
     }
     MISSING_ATTRIBUTE = "U002" "missing-attribute" Critical {
         what: "A required attribute is absent (a link or joint name, a joint's type, parent or child link, a mesh filename, a box size, ...).",

@@ -947,7 +947,6 @@ mod tests {
         for (uri, scheme) in [
             ("http://example.com/m.stl", "http"),
             ("https://example.com/m.stl", "https"),
-            ("model://robot/meshes/m.stl", "model"),
         ] {
             assert_eq!(
                 r.resolve(uri, dir),

@@ -635,14 +635,12 @@ impl<'a> Collector<'a> {
             );
             return None;
         };
-        for ignored in ["placement_frame"] {
-            if el.child(ignored).is_some() || el.node.attribute("merge") == Some("true") {
-                self.sink.report(
-                    &rules::SDF_NOT_READ,
-                    span,
-                    format!("<include> with merge or <{ignored}>: read as a nested model placed by its model frame"),
-                );
-            }
+        if el.child("placement_frame").is_some() || el.node.attribute("merge") == Some("true") {
+            self.sink.report(
+                &rules::SDF_NOT_READ,
+                span,
+                "<include> with merge or <placement_frame>: read as a nested model placed by its model frame".to_string(),
+            );
         }
         let version = self
             .versions
