@@ -116,6 +116,10 @@ fn a_joint_pose_is_relative_to_its_child_and_the_child_link_moves_to_the_joint_f
     let b = robot.links.iter().find(|l| l.name.value == "b").unwrap();
     assert!((b.inertial.as_ref().unwrap().origin.xyz[2] + 0.5).abs() < 1e-12);
     assert_eq!(joint.kind.as_ref().unwrap().value, JointKind::Revolute);
+    // <velocity> is optional in SDFormat: an INFO (U303), not urdfdom's CRITICAL (U302).
+    let v = run(&path);
+    assert!(findings(&v, "U302").is_empty(), "{:?}", v.report.findings);
+    assert_eq!(at_line(&v, "U303", 6).severity, Severity::Info);
 }
 
 #[test]
@@ -296,6 +300,18 @@ fn includes_are_bounded_and_their_findings_point_into_the_included_file() {
         .find(|f| f.message.contains("cycle"))
         .expect("an include cycle");
     assert!(cycle.file.as_deref().unwrap().ends_with("model.sdf"));
+    // One model included twice, under two names, is read once and nested twice.
+    let twice = dir.file(
+        "twice.sdf",
+        &model("1.9", &format!("<link name=\"base\">{INERTIAL}</link>\n<include><uri>model://arm</uri><name>left</name></include>\n<include><uri>model://arm</uri><name>right</name></include>")),
+    );
+    let v = validate(&twice, &models()).unwrap();
+    let names: Vec<&str> = v.report.links.iter().map(|l| l.name.as_str()).collect();
+    assert!(
+        names.contains(&"left::l") && names.contains(&"right::l"),
+        "{names:?}"
+    );
+    assert_eq!(v.sources.len(), 2, "the entry file and arm.sdf once");
     // A chain of 40 distinct includes stops at the depth bound.
     for i in 0..40 {
         dir.file(

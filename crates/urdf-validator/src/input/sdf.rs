@@ -68,6 +68,8 @@ pub struct SdfFiles {
     files: Vec<SdfFile>,
     /// `<include>` element start (shared span space) → what it resolved to.
     includes: HashMap<u32, IncludeTarget>,
+    /// Canonical path → index of the files read, so a model included twice is read once.
+    read: HashMap<PathBuf, usize>,
 }
 
 /// The XML options every SDFormat file is parsed with (bounded node count).
@@ -96,8 +98,10 @@ impl SdfFiles {
         let mut set = SdfFiles {
             files: Vec::new(),
             includes: HashMap::new(),
+            read: HashMap::new(),
         };
         set.push(path.to_path_buf(), text, None);
+        set.read.insert(canonical(path), 0);
         set.follow(0, &[canonical(path)], resolver);
         Ok(set)
     }
@@ -171,6 +175,9 @@ impl SdfFiles {
                 path.display()
             ));
         }
+        if let Some(&index) = self.read.get(&key) {
+            return IncludeTarget::File(index);
+        }
         if chain.len() > MAX_INCLUDE_DEPTH {
             return IncludeTarget::Unresolved(format!(
                 "'{uri}' is more than {MAX_INCLUDE_DEPTH} includes deep"
@@ -206,6 +213,7 @@ impl SdfFiles {
         }
         self.push(path, text, Some((from, at, uri.to_string())));
         let index = self.files.len() - 1;
+        self.read.insert(key.clone(), index);
         let mut deeper = chain.to_vec();
         deeper.push(key);
         self.follow(index, &deeper, resolver);

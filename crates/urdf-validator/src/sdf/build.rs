@@ -51,7 +51,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
             .entry(joint.child.as_str())
             .or_insert(joint.frame);
     }
-    let mut link_pose: HashMap<&str, Transform> = HashMap::new();
+    let mut link_frame: HashMap<&str, Transform> = HashMap::new();
     let mut links: Vec<Link> = Vec::new();
     for def in &scene.links {
         let at = graph.pose(&def.name).unwrap_or_else(Transform::identity);
@@ -60,7 +60,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
             urdf: urdf_frame.get(def.name.as_str()).copied().unwrap_or(at),
         };
         links.push(link::link(sink, &mut graph, def, &placement));
-        link_pose.insert(def.name.as_str(), placement.urdf);
+        link_frame.insert(def.name.as_str(), placement.urdf);
     }
     let world = scene.model_pose;
     let mut joints: Vec<Joint> = resolved
@@ -69,7 +69,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
             let parent_frame = if joint.parent == "world" {
                 world.inverse()
             } else {
-                link_pose
+                link_frame
                     .get(joint.parent.as_str())
                     .copied()
                     .unwrap_or_else(Transform::identity)
@@ -88,7 +88,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
         .collect();
     let off_origin = roots.iter().any(|l| {
         let at = world
-            * link_pose
+            * link_frame
                 .get(l.name.value.as_str())
                 .copied()
                 .unwrap_or_else(Transform::identity);
@@ -107,7 +107,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
                 );
             }
             let at = world
-                * link_pose
+                * link_frame
                     .get(root.name.value.as_str())
                     .copied()
                     .unwrap_or_else(Transform::identity);
