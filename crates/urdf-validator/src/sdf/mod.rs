@@ -4,10 +4,10 @@
 //! SDFormat file it was read from, so findings point at SDF lines.
 
 mod build;
-pub mod frames;
+mod frames;
 mod link;
-pub mod pose;
-pub mod scene;
+mod pose;
+mod scene;
 
 use roxmltree::Document;
 
