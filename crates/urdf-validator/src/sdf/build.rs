@@ -63,16 +63,19 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
         link_frame.insert(def.name.as_str(), placement.urdf);
     }
     let world = scene.model_pose;
+    let frame_of = |name: &str| {
+        link_frame
+            .get(name)
+            .copied()
+            .unwrap_or_else(Transform::identity)
+    };
     let mut joints: Vec<Joint> = resolved
         .iter()
         .map(|joint| {
             let parent_frame = if joint.parent == "world" {
                 world.inverse()
             } else {
-                link_frame
-                    .get(joint.parent.as_str())
-                    .copied()
-                    .unwrap_or_else(Transform::identity)
+                frame_of(&joint.parent)
             };
             urdf_joint(
                 joint,
@@ -87,11 +90,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
         .filter(|l| !urdf_frame.contains_key(l.name.value.as_str()))
         .collect();
     let off_origin = roots.iter().any(|l| {
-        let at = world
-            * link_frame
-                .get(l.name.value.as_str())
-                .copied()
-                .unwrap_or_else(Transform::identity);
+        let at = world * frame_of(&l.name.value);
         at.translation.vector.norm() > 1e-12 || at.rotation.angle() > 1e-12
     });
     let to_world = resolved.iter().any(|j| j.parent == "world");
@@ -106,11 +105,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
                     format!("link '{}' is joined to no other link (a free body in SDFormat): analysed fixed to the world", root.name.value),
                 );
             }
-            let at = world
-                * link_frame
-                    .get(root.name.value.as_str())
-                    .copied()
-                    .unwrap_or_else(Transform::identity);
+            let at = world * frame_of(&root.name.value);
             joints.push(fixed_to_world(root, &at));
         }
     }
