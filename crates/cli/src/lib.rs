@@ -416,6 +416,7 @@ fn options_for(
             ..Default::default()
         },
         simulators: args.simulator.iter().map(|&s| s.into()).collect(),
+        sdf_model: args.model.clone(),
     })
 }
 

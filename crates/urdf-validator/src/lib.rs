@@ -84,6 +84,9 @@ pub struct Options {
     pub deep: analysis::deep::DeepOptions,
     /// `--simulator`: the load profiles whose findings are added (what each importer does to the file).
     pub simulators: Vec<analysis::profiles::Simulator>,
+    /// `--model`: the model of an SDFormat world to analyse (default: its first non-static model with
+    /// joints).
+    pub sdf_model: Option<String>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -127,7 +130,7 @@ pub fn validate_text(
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
 fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = parse(&loaded)?;
+    let (robot, mut findings) = parse(&loaded, options)?;
     clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
@@ -197,9 +200,17 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
 }
 
 /// The parse stage of the loaded format: URDF text, or the SDFormat files.
-fn parse(loaded: &Loaded) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
+fn parse(
+    loaded: &Loaded,
+    options: &Options,
+) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
     match loaded.sdf() {
-        Some(files) => Ok(sdf::parse_sdf(files)),
+        Some(files) => sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| {
+            LoadError::Usage {
+                path: loaded.path.clone(),
+                message,
+            }
+        }),
         None => urdf::parse_urdf(loaded.text(), &loaded.path),
     }
 }

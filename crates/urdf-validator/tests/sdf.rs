@@ -85,7 +85,9 @@ fn at_line(v: &Validation, rule: &str, line: u32) -> FindingReport {
 
 fn robot(path: &Path) -> Robot {
     let loaded = Loaded::read(path, &[], &PackageResolver::new(Vec::new(), None, None)).unwrap();
-    urdf_validator::sdf::parse_sdf(loaded.sdf().unwrap()).0
+    urdf_validator::sdf::parse_sdf(loaded.sdf().unwrap(), None)
+        .unwrap()
+        .0
 }
 
 const INERTIAL: &str = "<inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>";
@@ -345,6 +347,24 @@ fn a_world_analyses_its_robot_and_names_the_models_left_out() {
     assert_eq!(v.report.robot_name, "robot");
     let left = at_line(&v, "U027", 2);
     assert!(left.message.contains("'ground'"), "{}", left.message);
+    // --model picks another one; a name the world does not hold is a usage error naming the models.
+    let mut chosen = options(Vec::new());
+    chosen.sdf_model = Some("ground".to_string());
+    let v = validate(&world, &chosen).unwrap();
+    assert_eq!(v.report.robot_name, "ground");
+    assert!(findings(&v, "U027")[0]
+        .message
+        .contains("left out: 'robot'"));
+    chosen.sdf_model = Some("robott".to_string());
+    match validate(&world, &chosen) {
+        Err(LoadError::Usage { message, .. }) => {
+            assert!(
+                message.contains("'ground', 'robot'") && message.contains("did you mean 'robot'"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
     // A static model alone is analysed fixed to the world, joints held.
     let alone = dir.file(
         "static.sdf",

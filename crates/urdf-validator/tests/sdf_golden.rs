@@ -29,7 +29,8 @@ fn data() -> PathBuf {
 /// after moving the world by `shift`; returns the number of values compared.
 fn compare(sdf: &Path, golden: &Value, shift: [f64; 3], model_paths: Vec<PathBuf>) -> usize {
     let loaded = Loaded::read(sdf, &[], &PackageResolver::new(model_paths, None, None)).unwrap();
-    let (robot, findings) = urdf_validator::sdf::parse_sdf(loaded.sdf().expect("SDFormat"));
+    let (robot, findings) =
+        urdf_validator::sdf::parse_sdf(loaded.sdf().expect("SDFormat"), None).unwrap();
     let critical: Vec<_> = findings
         .iter()
         .filter(|f| f.severity() == urdf_validator::diagnostics::Severity::Critical)

@@ -20,9 +20,10 @@ use scene::{Collector, El, Overrides, Scene, Sink, Version};
 /// The SDFormat versions read: 1.4 to 1.11.
 pub const SUPPORTED: (Version, Version) = ((1, 4), (1, 11));
 
-/// Parse the SDFormat `files` into the robot of their model (for a `<world>`: of its first non-static
-/// model with joints), with the findings of the reading.
-pub fn parse_sdf(files: &SdfFiles) -> (Robot, Vec<Finding>) {
+/// Parse the SDFormat `files` into the robot of their model (for a `<world>`: the model named `wanted`,
+/// else its first non-static model with joints), with the findings of the reading. The error names the
+/// models there are when none is named `wanted`.
+pub fn parse_sdf(files: &SdfFiles, wanted: Option<&str>) -> Result<(Robot, Vec<Finding>), String> {
     let docs: Vec<Option<Document>> = (0..files.len())
         .map(|i| Document::parse_with_options(files.text(i), xml_options()).ok())
         .collect();
@@ -48,7 +49,7 @@ pub fn parse_sdf(files: &SdfFiles) -> (Robot, Vec<Finding>) {
         file: 0,
         node: d.root_element(),
     }) else {
-        return (Robot::default(), sink.findings);
+        return Ok((Robot::default(), sink.findings));
     };
     let mut collector = Collector {
         sink,
@@ -56,7 +57,7 @@ pub fn parse_sdf(files: &SdfFiles) -> (Robot, Vec<Finding>) {
         versions: &versions,
         scene: Scene::default(),
     };
-    match pick_model(root, &mut collector) {
+    match pick_model(root, &mut collector, wanted)? {
         Some((model, overrides)) => collector.model(model, "", overrides, 0),
         None => {
             let span = collector.sink.span(root);
@@ -69,14 +70,14 @@ pub fn parse_sdf(files: &SdfFiles) -> (Robot, Vec<Finding>) {
                 span,
                 ..Robot::default()
             };
-            return (robot, collector.sink.findings);
+            return Ok((robot, collector.sink.findings));
         }
     }
     let Collector {
         mut sink, scene, ..
     } = collector;
     let robot = build::robot(&scene, &mut sink);
-    (robot, sink.findings)
+    Ok((robot, sink.findings))
 }
 
 /// `<sdf version>` of a file's root, read as `(major, minor)`; a missing, malformed or unsupported version
@@ -116,10 +117,17 @@ fn version(root: El, sink: &mut Sink) -> Version {
     }
 }
 
-/// The model to analyse: the `<model>` under `<sdf>`, or in the first `<world>` the first non-static model
-/// with joints (else the first model), with a U027 finding naming the models left out.
-fn pick_model<'a>(root: El<'a>, collector: &mut Collector<'a>) -> Option<(El<'a>, Overrides)> {
+/// The model to analyse: the `<model>` under `<sdf>`, or in the first `<world>` the model named `wanted`,
+/// else the first non-static model with joints (else the first model), with a U027 finding naming the
+/// models left out. The error lists the models when none is named `wanted`.
+fn pick_model<'a>(
+    root: El<'a>,
+    collector: &mut Collector<'a>,
+    wanted: Option<&str>,
+) -> Result<Option<(El<'a>, Overrides)>, String> {
     let models: Vec<El> = root.children("model").collect();
+    let mut candidates: Vec<(El, Overrides)> = Vec::new();
+    let world = root.child("world");
     if let Some(first) = models.first() {
         if let Some(second) = models.get(1) {
             let span = collector.sink.span(*second);
@@ -129,21 +137,27 @@ fn pick_model<'a>(root: El<'a>, collector: &mut Collector<'a>) -> Option<(El<'a>
                 "<sdf> holds more than one <model>: only the first is read".to_string(),
             );
         }
-        return Some((*first, Overrides::default()));
-    }
-    let world = root.child("world")?;
-    let mut candidates: Vec<(El, Overrides)> = Vec::new();
-    for child in world.node.children().filter(|n| n.is_element()) {
-        let child = El {
-            file: world.file,
-            node: child,
-        };
-        match child.node.tag_name().name() {
-            "model" => candidates.push((child, Overrides::default())),
-            "include" => candidates.extend(collector.included_model(child, "")),
-            _ => {}
+        candidates.push((*first, Overrides::default()));
+    } else if let Some(world) = world {
+        for child in world.node.children().filter(|n| n.is_element()) {
+            let child = El {
+                file: world.file,
+                node: child,
+            };
+            match child.node.tag_name().name() {
+                "model" => candidates.push((child, Overrides::default())),
+                "include" => candidates.extend(collector.included_model(child, "")),
+                _ => {}
+            }
         }
     }
+    let name = |(model, overrides): &(El, Overrides)| {
+        overrides
+            .name
+            .as_ref()
+            .map(|n| n.value.clone())
+            .unwrap_or_else(|| model.node.attribute("name").unwrap_or("").to_string())
+    };
     let is_static = |(model, overrides): &(El, Overrides)| {
         overrides.is_static.map(|(v, _)| v).unwrap_or_else(|| {
             model
@@ -153,17 +167,41 @@ fn pick_model<'a>(root: El<'a>, collector: &mut Collector<'a>) -> Option<(El<'a>
     };
     let has_joints =
         |(model, _): &(El, Overrides)| model.node.descendants().any(|n| n.has_tag_name("joint"));
-    let chosen = candidates
-        .iter()
-        .position(|c| !is_static(c) && has_joints(c))
-        .or_else(|| candidates.iter().position(|c| !is_static(c)))
-        .or_else(|| (!candidates.is_empty()).then_some(0))?;
-    let name = |(model, overrides): &(El, Overrides)| {
-        overrides
-            .name
-            .as_ref()
-            .map(|n| n.value.clone())
-            .unwrap_or_else(|| model.node.attribute("name").unwrap_or("").to_string())
+    let chosen = match wanted {
+        Some(wanted) => {
+            let names: Vec<String> = candidates.iter().map(name).collect();
+            let Some(i) = names.iter().position(|n| n == wanted) else {
+                let listed = names
+                    .iter()
+                    .map(|n| format!("'{n}'"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Err(format!(
+                    "--model {wanted}: no such model in the file (models: {}){}",
+                    if listed.is_empty() {
+                        "none".to_string()
+                    } else {
+                        listed
+                    },
+                    crate::diagnostics::suggest::did_you_mean(
+                        wanted,
+                        names.iter().map(String::as_str)
+                    )
+                ));
+            };
+            i
+        }
+        None => {
+            let found = candidates
+                .iter()
+                .position(|c| !is_static(c) && has_joints(c))
+                .or_else(|| candidates.iter().position(|c| !is_static(c)))
+                .or_else(|| (!candidates.is_empty()).then_some(0));
+            let Some(found) = found else {
+                return Ok(None);
+            };
+            found
+        }
     };
     let left_out: Vec<String> = candidates
         .iter()
@@ -172,7 +210,7 @@ fn pick_model<'a>(root: El<'a>, collector: &mut Collector<'a>) -> Option<(El<'a>
         .map(|(_, c)| format!("'{}'", name(c)))
         .collect();
     let picked = candidates.swap_remove(chosen);
-    if !left_out.is_empty() {
+    if let (Some(world), false) = (world, left_out.is_empty()) {
         let span = collector.sink.span(world);
         collector.sink.report(
             &rules::SDF_MODELS_LEFT_OUT,
@@ -185,5 +223,5 @@ fn pick_model<'a>(root: El<'a>, collector: &mut Collector<'a>) -> Option<(El<'a>
             ),
         );
     }
-    Some(picked)
+    Ok(Some(picked))
 }
