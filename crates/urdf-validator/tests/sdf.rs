@@ -499,3 +499,50 @@ fn model_uri_meshes_resolve_like_package_uris() {
         "{missing:?}"
     );
 }
+
+/// Every attribute value and element text of two test models replaced, one at a time, by hostile values
+/// (empty, NaN, huge, negative, a self reference, a scope separator): the reader never panics and
+/// the tree builds.
+#[test]
+fn hostile_values_never_panic() {
+    let hostile = [
+        "",
+        "nan",
+        "1e400",
+        "-1",
+        "0 0 0 0 0 0 0",
+        "__model__",
+        "a::b",
+        "world",
+        "x y z",
+    ];
+    let resolver = PackageResolver::new(Vec::new(), None, None);
+    let mut variants = 0;
+    for name in [
+        "frames_and_poses.sdf",
+        "nested_arm.sdf",
+        "legacy_1_5_axis.sdf",
+    ] {
+        let path = data().join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let mut ranges: Vec<std::ops::Range<usize>> = Vec::new();
+        for node in doc.descendants() {
+            ranges.extend(node.attributes().map(|a| a.range_value()));
+            if node.is_text() && !node.text().unwrap_or("").trim().is_empty() {
+                ranges.push(node.range());
+            }
+        }
+        for range in ranges {
+            for value in hostile {
+                let mutated = format!("{}{value}{}", &text[..range.start], &text[range.end..]);
+                let files =
+                    urdf_validator::input::sdf::SdfFiles::load(&path, mutated, &resolver).unwrap();
+                let (robot, _) = urdf_validator::sdf::parse_sdf(&files, None).unwrap();
+                let _ = urdf_validator::model::Model::build(&robot);
+                variants += 1;
+            }
+        }
+    }
+    assert!(variants > 500, "{variants}");
+}
