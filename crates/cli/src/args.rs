@@ -19,14 +19,18 @@ use clap::{Parser, ValueEnum};
                   `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`)."
 )]
 pub struct Args {
-    /// URDF or xacro files, or directories (every *.urdf below them, and every *.xacro with a <robot>
-    /// root that builds a robot), and xacro arguments as `name:=value`.
+    /// URDF, xacro or SDFormat files, or directories (every *.urdf, *.sdf and *.world below them, and
+    /// every *.xacro with a <robot> root that builds a robot), and xacro arguments as `name:=value`.
     #[arg(value_name = "URDF_OR_DIR")]
     pub inputs: Vec<PathBuf>,
 
     /// A xacro argument (repeatable): NAME=VALUE or NAME:=VALUE, as `name:=value` on the command line does.
     #[arg(long, value_name = "NAME=VALUE")]
     pub xacro_arg: Vec<String>,
+
+    /// The model of an SDFormat world to analyse (default: its first non-static model with joints).
+    #[arg(long, value_name = "NAME")]
+    pub model: Option<String>,
 
     /// Leave out named .xacro files that build no robot (macro libraries), as directory inputs do: for
     /// hooks that pass every changed file (pre-commit). Exit 0 when nothing else is left.

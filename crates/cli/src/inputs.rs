@@ -34,8 +34,9 @@ pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
 }
 
 /// Files named directly are kept as given (with `skip_libraries`, a named `*.xacro` that builds no robot,
-/// a macro library, is left out, as in directories); directories contribute every `*.urdf` below them and every
-/// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted; hidden folders and
+/// a macro library, is left out, as in directories); directories contribute every `*.urdf`, `*.sdf` and
+/// `*.world` below them and every `*.xacro` whose root element is `<robot>` (not the macro libraries it
+/// includes), sorted; hidden folders and
 /// files ignored by `.gitignore` are skipped. Inputs that
 /// do not exist come back as error lines.
 pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<String>) {
@@ -48,7 +49,7 @@ pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<St
             files[before..].sort();
             if files.len() == before {
                 errors.push(format!(
-                    "{}: directory holds no *.urdf file and no *.xacro robot",
+                    "{}: directory holds no *.urdf, *.sdf or *.world file and no *.xacro robot",
                     input.display()
                 ));
             }
@@ -71,7 +72,7 @@ pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<St
     (files, errors)
 }
 
-/// Every `*.urdf` and robot `*.xacro` below `dir`, skipping hidden folders and what `.gitignore` /
+/// Every `*.urdf`, `*.sdf`, `*.world` and robot `*.xacro` below `dir`, skipping hidden folders and what `.gitignore` /
 /// `.ignore` files exclude (build and install trees).
 fn collect_urdfs(dir: &Path, files: &mut Vec<PathBuf>) {
     let walk = ignore::WalkBuilder::new(dir)
@@ -87,7 +88,8 @@ fn collect_urdfs(dir: &Path, files: &mut Vec<PathBuf>) {
             .extension()
             .map(|e| e.to_ascii_lowercase())
             .unwrap_or_default();
-        if extension == "urdf" || (extension == "xacro" && is_robot_xacro(path)) {
+        let description = ["urdf", "sdf", "world"].iter().any(|e| extension == *e);
+        if description || (extension == "xacro" && is_robot_xacro(path)) {
             files.push(path.to_path_buf());
         }
     }

@@ -457,6 +457,7 @@ fn options_for(
             .as_deref()
             .map(|path| Baseline::load(path).map(std::sync::Arc::new))
             .transpose()?,
+        sdf_model: args.model.clone(),
     })
 }
 

@@ -582,3 +582,39 @@ fn simulator_names_are_checked_and_comma_lists_accepted() {
         assert!(rules.contains(&code), "{code} missing: {rules:?}");
     }
 }
+
+#[test]
+fn sdf_files_run_end_to_end_and_directories_pick_them_up() {
+    let sdf = repo_root().join("crates/urdf-validator/tests/data/sdf/nested_arm.sdf");
+    let result = run(&[sdf.to_str().unwrap(), "--no-write", "--samples", "500"]);
+    assert_eq!(result.status.code(), Some(0), "{}", text(&result.stdout));
+    assert!(text(&result.stdout).contains("[STATICS]"));
+    let dir = temp_dir();
+    let weak = r#"<?xml version="1.0"?>
+<sdf version="1.9">
+  <model name="weak">
+    <link name="base"/>
+    <joint name="fix" type="fixed"><parent>world</parent><child>base</child></joint>
+    <link name="arm"><inertial><pose>0.5 0 0 0 0 0</pose><mass>4</mass></inertial></link>
+    <joint name="shoulder" type="revolute">
+      <parent>base</parent><child>arm</child>
+      <axis><xyz>0 1 0</xyz><limit><lower>-1</lower><upper>1</upper>
+        <effort>2</effort><velocity>1</velocity></limit></axis>
+    </joint>
+  </model>
+</sdf>
+"#;
+    write(&dir, "weak.sdf", weak);
+    write(
+        &dir,
+        "empty.world",
+        "<sdf version=\"1.9\"><world name=\"w\"/></sdf>\n",
+    );
+    let result = run(&[dir.to_str().unwrap(), "--no-write", "--samples", "500"]);
+    let stdout = text(&result.stdout);
+    assert_eq!(result.status.code(), Some(2), "{stdout}");
+    // The undersized joint is found at its <effort> line; the world is validated too.
+    assert!(stdout.contains("weak.sdf:10:9  U701"), "{stdout}");
+    assert!(stdout.contains("empty.world"), "{stdout}");
+    assert!(stdout.contains("U020"), "{stdout}");
+}

@@ -1,11 +1,11 @@
-//! urdf-validator: physics-aware validation of URDF (and xacro) robot descriptions.
+//! urdf-validator: physics-aware validation of URDF (and xacro, and SDFormat) robot descriptions.
 //!
 //! The library is laid out by pipeline stage, each folder handing the next exactly what it needs:
 //!
 //! | stage | module | produces |
 //! |---|---|---|
 //! | load | [`input`] | the URDF text (xacro expanded), positions back into the files the user edits |
-//! | parse | [`urdf`] | a typed [`urdf::Robot`] with spans, and parse findings |
+//! | parse | [`urdf`], [`sdf`] | a typed [`urdf::Robot`] with spans (SDFormat read into the same type), and parse findings |
 //! | model | [`model`] | the kinematic tree, forward kinematics, mass properties |
 //! | assets | [`assets`] | meshes and their hulls, link supports, the SRDF: loaded once |
 //! | checks | `checks` (internal) | structural findings |
@@ -31,6 +31,7 @@ pub mod model;
 pub mod render;
 pub mod report;
 pub mod rng;
+pub mod sdf;
 pub mod task_query;
 pub mod timings;
 pub mod urdf;
@@ -85,6 +86,9 @@ pub struct Options {
     pub simulators: Vec<analysis::profiles::Simulator>,
     /// `--baseline`: findings it holds are not reported and do not count (shared by every file of a run).
     pub baseline: Option<std::sync::Arc<report::baseline::Baseline>>,
+    /// `--model`: the model of an SDFormat world to analyse (default: its first non-static model with
+    /// joints).
+    pub sdf_model: Option<String>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -115,6 +119,8 @@ pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError>
 }
 
 /// Validate URDF `text` that was read from `path` (used for positions, relative meshes and the report).
+/// The text is read as URDF whatever its root: SDFormat is read from files ([`validate`]), where its
+/// includes are.
 pub fn validate_text(
     text: String,
     path: &Path,
@@ -126,7 +132,7 @@ pub fn validate_text(
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
 fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = urdf::parse_urdf(loaded.text(), &loaded.path)?;
+    let (robot, mut findings) = parse(&loaded, options)?;
     clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
@@ -159,7 +165,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             })?;
         findings.extend(physics.findings.iter().cloned());
         let deep = analysis::deep::run(&analysis::deep::DeepInput {
-            text: loaded.text(),
+            urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
             robot: &robot,
             model: &model,
             assets: &assets,
@@ -194,6 +200,22 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     };
     let sources = loaded.into_sources();
     Ok(Validation { report, sources })
+}
+
+/// The parse stage of the loaded format: URDF text, or the SDFormat files.
+fn parse(
+    loaded: &Loaded,
+    options: &Options,
+) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
+    match loaded.sdf() {
+        Some(files) => sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| {
+            LoadError::Usage {
+                path: loaded.path.clone(),
+                message,
+            }
+        }),
+        None => urdf::parse_urdf(loaded.text(), &loaded.path),
+    }
 }
 
 /// `--payload-mass` at the link statics carries it at.

@@ -40,7 +40,11 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                             filename.span,
                             format!("{owner}: mesh '{}' not found", filename.value),
                         );
-                        finding = if looked.is_empty() {
+                        finding = if looked.is_empty() && filename.value.starts_with("model://") {
+                            finding.with_help(
+                                "no model folder of that name was found; set GZ_SIM_RESOURCE_PATH or pass --package-path DIR",
+                            )
+                        } else if looked.is_empty() {
                             finding.with_help(
                                 "no package folder of that name was found; pass --package-path DIR",
                             )

@@ -2,6 +2,7 @@
 
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
+use crate::input::Format;
 use crate::model::{JointId, Model};
 use crate::urdf::robot::{Joint, JointKind, Robot};
 
@@ -33,7 +34,14 @@ pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
         check_axis(joint, &owner, &mut findings);
         if kind.value.is_actuated() {
             let follower = model.mimic[JointId(i).0].is_some() || joint.mimic.is_some();
-            check_limit(joint, kind.value, &owner, follower, &mut findings);
+            check_limit(
+                joint,
+                kind.value,
+                &owner,
+                follower,
+                robot.format,
+                &mut findings,
+            );
         }
     }
     findings
@@ -73,6 +81,7 @@ fn check_limit(
     kind: JointKind,
     owner: &str,
     follower: bool,
+    format: Format,
     findings: &mut Vec<Finding>,
 ) {
     let kind_name = kind.as_str();
@@ -93,7 +102,14 @@ fn check_limit(
         return;
     };
     for (value, attr) in [(&limit.effort, "effort"), (&limit.velocity, "velocity")] {
-        if value.is_none() {
+        if value.is_none() && format == Format::Sdf {
+            // Optional in SDFormat (unlimited when absent).
+            findings.push(Finding::new(
+                &rules::MISSING_EFFORT_VELOCITY,
+                limit.span,
+                format!("{owner} ({kind_name}) declares no {attr} limit"),
+            ));
+        } else if value.is_none() {
             findings.push(Finding::new(
                 &rules::INCOMPLETE_LIMIT,
                 limit.span,

@@ -46,7 +46,7 @@ rules! {
     NOT_A_ROBOT = "U001" "not-a-robot" Critical {
         what: "The document's root element is not `<robot>`.",
         why: "URDF parsers (urdfdom, Pinocchio, MuJoCo) only accept a `<robot>` root; nothing else can be checked.",
-        fix: "Make `<robot name=\"...\">` the root element. SDF or MJCF files need their own tools.",
+        fix: "Make `<robot name=\"...\">` the root element (a file whose root is `<sdf>` is read as SDFormat). MJCF files need their own tools.",
     }
     MISSING_ATTRIBUTE = "U002" "missing-attribute" Critical {
         what: "A required attribute is absent (a link or joint name, a joint's type, parent or child link, a mesh filename, a box size, ...).",
@@ -102,6 +102,56 @@ rules! {
         what: "Whitespace (often blank lines left by a generator or a template) comes before the `<?xml ...?>` declaration.",
         why: "urdfdom (TinyXML2) skips it and loads the file, but XML requires the declaration to be the very first bytes: Python's xml and lxml (xacro, urdf_parser_py, yourdfpy), and most other XML tools refuse the file.",
         fix: "Delete everything before `<?xml`, or drop the declaration.",
+    }
+    SDF_STRUCTURE = "U020" "sdf-structure" Critical {
+        what: "The SDFormat document breaks a rule of its structure that sdformat (libsdformat, which Gazebo and Drake load SDF with) enforces: no `<model>` (or a `<world>` without one), a required element or attribute missing, a name used twice in one model, a reserved name (`world`, `__model__`, names starting and ending with `__`), a joint whose child is `world` or whose parent and child are the same link, a model without links.",
+        why: "sdformat refuses the file (`sdf::Errors`), so Gazebo and Drake do not load it; what is read here around the problem may not be what the author meant.",
+        fix: "Follow the message: it names the element and the rule (SDFormat specification, sdformat.org/spec).",
+    }
+    SDF_UNSUPPORTED_VERSION = "U021" "sdf-unsupported-version" Warn {
+        what: "`<sdf version>` is missing, malformed, or outside SDFormat 1.4–1.11, the versions this validator reads.",
+        why: "Pose, frame and axis semantics changed between versions (1.7 made joint axes default to the joint frame and added `relative_to`); a version outside 1.4–1.11 is read with the nearest supported rules, which may not be the author's. sdformat refuses a missing or malformed version.",
+        fix: "Declare the version the file is written for, e.g. `<sdf version=\"1.9\">`.",
+    }
+    SDF_FRAME_CYCLE = "U022" "sdf-frame-cycle" Critical {
+        what: "The `relative_to` or `attached_to` attributes (or a joint's default: its child) form a cycle, so a pose or a frame's link cannot be worked out.",
+        why: "sdformat refuses the file (`POSE_RELATIVE_TO_CYCLE`, `FRAME_ATTACHED_TO_CYCLE`); the poses on the cycle are not defined.",
+        fix: "Make one frame of the cycle relative to (attached to) a link or the model frame.",
+    }
+    SDF_UNDEFINED_FRAME = "U023" "sdf-undefined-frame" Critical {
+        what: "A `relative_to`, `attached_to`, `expressed_in`, `canonical_link`, or a joint's `<parent>`/`<child>`, names a frame that the model does not define.",
+        why: "sdformat refuses the file (`POSE_RELATIVE_TO_INVALID`, `JOINT_PARENT_LINK_INVALID`, ...); the pose or joint cannot be placed, so it is read as if the attribute were absent (or the joint left out).",
+        fix: "Fix the name (see the suggestion), or add the frame. Names in nested models are scoped: `arm::link`.",
+    }
+    SDF_INCLUDE_UNRESOLVED = "U024" "sdf-include-unresolved" Critical {
+        what: "An `<include>` whose `<uri>` cannot be read: the model is not found on `GZ_SIM_RESOURCE_PATH`, `IGN_GAZEBO_RESOURCE_PATH`, `SDF_PATH`, a `--package-path` folder or beside the file, its `model.config` names no readable file, the file is not well-formed, a web URI (Fuel), an include cycle, or an include chain more than 16 deep.",
+        why: "Gazebo refuses (or, for a Fuel URI, downloads) the model; without it the robot is incomplete, so every analysis here misses the included links.",
+        fix: "Set `GZ_SIM_RESOURCE_PATH` (or pass `--package-path`) to the folder holding the model folder, or fix the URI; break include cycles.",
+    }
+    SDF_JOINT_NOT_REPRESENTED = "U025" "sdf-joint-not-represented" Warn {
+        what: "A joint type outside the single-axis ones (ball, universal, revolute2, screw, gearbox), or a link joined to no other link (a free body, which SDFormat allows besides the model's root): analysed here as fixed.",
+        why: "The statics, stability and workspace analyses move revolute, continuous and prismatic joints only; a ball or universal joint held fixed hides the motion it allows and the torque it would need.",
+        fix: "Nothing to fix in the file if the joint is meant; read the analyses knowing the joint was held. Model a ball or universal joint as revolute joints in series to have it analysed.",
+    }
+    SDF_STATIC_MODEL = "U026" "sdf-static-model" Info {
+        what: "The model is `<static>`: it is analysed fixed to the world, with every joint held.",
+        why: "A static model never moves in Gazebo (its links get no dynamics), so joint torques and stability do not apply to it.",
+        fix: "Remove `<static>true</static>` if the robot is meant to move.",
+    }
+    SDF_MODELS_LEFT_OUT = "U027" "sdf-models-left-out" Info {
+        what: "The `<world>` holds several models: the first non-static model with joints is analysed, the others are listed.",
+        why: "One report is about one robot; the ground plane, tables and props of a world are not the robot.",
+        fix: "Validate the robot's own model file to analyse another model.",
+    }
+    SDF_NOT_READ = "U028" "sdf-not-read" Info {
+        what: "An SDFormat element this validator does not turn into the robot: a plane, heightmap, polyline or ellipsoid geometry, a `<frame>` in a file older than SDFormat 1.7, an `<include>` with `merge` or `placement_frame`, a nested static model.",
+        why: "What it describes is left out of the analyses (a plane collision does not count as a contact, for instance).",
+        fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
+    }
+    SDF_INVALID_VALUE = "U029" "sdf-invalid-value" Critical {
+        what: "An SDFormat value does not parse: a `<pose>` without 6 numbers (7 with `rotation_format=\"quat_xyzw\"`), a vector, a number or a boolean that is malformed, NaN or infinite.",
+        why: "sdformat refuses the file; read leniently, the value would silently change the physics.",
+        fix: "Write plain decimal numbers separated by spaces, e.g. `<pose>0 0 0.1 0 0 1.57</pose>`.",
     }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
@@ -174,7 +224,7 @@ rules! {
         fix: "Add both `effort` (N·m or N) and `velocity` (rad/s or m/s) from the actuator's datasheet.",
     }
     MISSING_EFFORT_VELOCITY = "U303" "missing-effort-velocity" Info {
-        what: "A continuous joint declares no effort or velocity limit.",
+        what: "A continuous joint declares no effort or velocity limit (or an SDFormat joint, where both are optional, declares no `<effort>` or `<velocity>`).",
         why: "Gravity-torque margins and controllers cannot be checked against an unknown motor.",
         fix: "Add `<limit effort=... velocity=.../>` from the actuator's datasheet.",
     }

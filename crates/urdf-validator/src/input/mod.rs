@@ -1,8 +1,9 @@
-//! The load stage: a file's text with the size limit applied, xacro expansion, `package://` resolution,
-//! SRDF files and meshes. Nothing here knows what a robot is; it hands text and geometry to the stages after it.
+//! The load stage: a file's text with the size limit applied, xacro expansion, SDFormat includes,
+//! `package://` and `model://` resolution, SRDF files and meshes. Nothing here knows what a robot is; it hands text and geometry to the stages after it.
 
 pub mod mesh;
 pub mod resolve;
+pub mod sdf;
 pub mod source;
 pub mod srdf;
 pub mod xacro;
@@ -128,6 +129,18 @@ enum Origin {
     Urdf(SourceText),
     /// The text was expanded from xacro sources.
     Xacro(xacro::Expanded),
+    /// An SDFormat file (root element `<sdf>`) and the files it includes.
+    Sdf(sdf::SdfFiles),
+}
+
+/// The description format of a loaded file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    /// URDF, possibly expanded from xacro.
+    #[default]
+    Urdf,
+    /// SDFormat.
+    Sdf,
 }
 
 impl Loaded {
@@ -144,7 +157,30 @@ impl Loaded {
                 origin: Origin::Xacro(expanded),
             });
         }
-        Ok(Loaded::from_text(read_text(path)?, path))
+        let text = read_text(path)?;
+        if sdf::is_sdf(&text) {
+            return Ok(Loaded {
+                path: path.to_path_buf(),
+                origin: Origin::Sdf(sdf::SdfFiles::load(path, text, resolver)?),
+            });
+        }
+        Ok(Loaded::from_text(text, path))
+    }
+
+    /// URDF or SDFormat.
+    pub fn format(&self) -> Format {
+        match &self.origin {
+            Origin::Urdf(_) | Origin::Xacro(_) => Format::Urdf,
+            Origin::Sdf(_) => Format::Sdf,
+        }
+    }
+
+    /// The SDFormat files, when the input is SDFormat.
+    pub fn sdf(&self) -> Option<&sdf::SdfFiles> {
+        match &self.origin {
+            Origin::Sdf(files) => Some(files),
+            _ => None,
+        }
     }
 
     /// URDF `text` as read from `path` (used for positions, relative meshes and the report).
@@ -155,11 +191,12 @@ impl Loaded {
         }
     }
 
-    /// The URDF text the parser reads.
+    /// The URDF text the parser reads (for SDFormat: the entry file's text).
     pub fn text(&self) -> &str {
         match &self.origin {
             Origin::Urdf(source) => source.text(),
             Origin::Xacro(expanded) => expanded.xml(),
+            Origin::Sdf(files) => files.text(0),
         }
     }
 
@@ -171,8 +208,8 @@ impl Loaded {
             .unwrap_or(Path::new("."))
     }
 
-    /// Where `span` of the URDF text is in the files the user edits (`None` when a xacro position
-    /// cannot be traced back).
+    /// Where `span` of the URDF text (or of the SDFormat files) is in the files the user edits (`None`
+    /// when a xacro position cannot be traced back).
     pub fn locate(&self, span: Span) -> Option<SourceLocation> {
         match &self.origin {
             Origin::Urdf(source) => {
@@ -188,13 +225,14 @@ impl Loaded {
                 })
             }
             Origin::Xacro(expanded) => expanded.locate(span),
+            Origin::Sdf(files) => files.locate(span),
         }
     }
 
     /// The xacro expander's warnings, located in the xacro sources (none for a URDF).
     pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
         match &self.origin {
-            Origin::Urdf(_) => Vec::new(),
+            Origin::Urdf(_) | Origin::Sdf(_) => Vec::new(),
             Origin::Xacro(expanded) => expanded.warnings(),
         }
     }
@@ -205,6 +243,7 @@ impl Loaded {
         match &self.origin {
             Origin::Urdf(source) => vec![(source.path().display().to_string(), source.text())],
             Origin::Xacro(expanded) => expanded.source_texts(),
+            Origin::Sdf(files) => files.source_texts(),
         }
     }
 
@@ -213,6 +252,7 @@ impl Loaded {
         match self.origin {
             Origin::Urdf(source) => vec![source],
             Origin::Xacro(expanded) => expanded.sources(),
+            Origin::Sdf(files) => files.into_sources(),
         }
     }
 }

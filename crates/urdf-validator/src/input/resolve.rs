@@ -4,6 +4,10 @@
 //! Package lookup order: explicit `--package-path` entries, then
 //! `ROS_PACKAGE_PATH`, then `AMENT_PREFIX_PATH`, then the ancestors of the
 //! URDF's directory.
+//!
+//! `model://NAME` (SDFormat) lookup order: `GZ_SIM_RESOURCE_PATH`, `IGN_GAZEBO_RESOURCE_PATH` and
+//! `SDF_PATH` entries, then the `--package-path` folders, then the ancestors of the file's directory
+//! (`A/NAME`, or `A` itself when named NAME).
 
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -20,6 +24,8 @@ pub struct PackageResolver {
     explicit: Vec<PathBuf>,
     ros_paths: Vec<PathBuf>,
     ament_prefixes: Vec<PathBuf>,
+    /// Gazebo model folders (`GZ_SIM_RESOURCE_PATH`, `IGN_GAZEBO_RESOURCE_PATH`, `SDF_PATH`), in order.
+    model_paths: Vec<PathBuf>,
     /// Package name -> candidate package roots from the explicit,
     /// `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH` sources (in order).
     cache: Arc<Mutex<HashMap<String, Vec<PathBuf>>>>,
@@ -64,16 +70,40 @@ impl PackageResolver {
                 .collect(),
             ros_paths: split_path_list(ros_package_path),
             ament_prefixes: split_path_list(ament_prefix_path),
+            model_paths: Vec::new(),
             cache: Arc::default(),
             walk_cache: Arc::default(),
         }
     }
 
-    /// Same, reading the two environment variables from the process environment.
+    /// Same, reading `ROS_PACKAGE_PATH`, `AMENT_PREFIX_PATH` and the Gazebo model path variables
+    /// (`GZ_SIM_RESOURCE_PATH`, `IGN_GAZEBO_RESOURCE_PATH`, `SDF_PATH`) from the process environment.
     pub fn from_env(package_paths: Vec<PathBuf>) -> Self {
-        let ros = std::env::var("ROS_PACKAGE_PATH").ok();
-        let ament = std::env::var("AMENT_PREFIX_PATH").ok();
+        let var = |name| std::env::var(name).ok();
+        let ros = var("ROS_PACKAGE_PATH");
+        let ament = var("AMENT_PREFIX_PATH");
+        let models = [
+            "GZ_SIM_RESOURCE_PATH",
+            "IGN_GAZEBO_RESOURCE_PATH",
+            "SDF_PATH",
+        ]
+        .map(var);
         Self::new(package_paths, ros.as_deref(), ament.as_deref())
+            .with_model_paths(models.iter().map(Option::as_deref))
+    }
+
+    /// Add Gazebo model folders, each value a `PATH`-style list (`GZ_SIM_RESOURCE_PATH`, ...), searched
+    /// in order for `model://NAME`.
+    pub fn with_model_paths<'a>(
+        mut self,
+        lists: impl IntoIterator<Item = Option<&'a str>>,
+    ) -> Self {
+        for list in lists {
+            for path in split_path_list(list) {
+                push_unique(&mut self.model_paths, path);
+            }
+        }
+        self
     }
 
     /// Resolve a URI as it appears in a `<mesh filename="...">` (or any
@@ -90,6 +120,8 @@ impl PackageResolver {
             self.resolve_package(rest, urdf_dir)
         } else if scheme.eq_ignore_ascii_case("file") {
             resolve_file_uri(rest, urdf_dir)
+        } else if scheme.eq_ignore_ascii_case("model") {
+            self.resolve_model(rest, urdf_dir)
         } else {
             Resolution::Unsupported(format!("URI scheme '{scheme}' cannot be resolved offline"))
         }
@@ -124,6 +156,113 @@ impl PackageResolver {
             }
         }
         (None, searched)
+    }
+
+    /// The folder of Gazebo model `name` (`model://name`), searched from `start_dir`, and every folder
+    /// tried, in order.
+    pub fn find_model_searched(
+        &self,
+        name: &str,
+        start_dir: &Path,
+    ) -> (Option<PathBuf>, Vec<PathBuf>) {
+        let mut searched = Vec::new();
+        if !valid_package_name(name) {
+            return (None, searched);
+        }
+        for root in self.model_roots(name, start_dir) {
+            if searched.contains(&root) {
+                continue;
+            }
+            let found = root.is_dir();
+            searched.push(root.clone());
+            if found {
+                return (Some(root), searched);
+            }
+        }
+        (None, searched)
+    }
+
+    /// The SDFormat file an `<include><uri>` names, for a file in `dir`: `model://NAME[/path]`, `file://`
+    /// or a plain path, to a file or to a model folder (then its `model.config` decides, see
+    /// [`model_sdf_file`]). The error says what was tried.
+    pub fn resolve_include(&self, uri: &str, dir: &Path) -> Result<PathBuf, String> {
+        let uri = uri.trim();
+        let target = match split_scheme(uri) {
+            Some((scheme, rest)) if scheme.eq_ignore_ascii_case("model") => {
+                let (name, inner) = rest.split_once('/').unwrap_or((rest, ""));
+                match self.find_model_searched(name, dir) {
+                    (Some(folder), _) => folder.join(inner.trim_start_matches('/')),
+                    (None, searched) => {
+                        return Err(format!(
+                            "model '{name}' not found; looked in {} (set GZ_SIM_RESOURCE_PATH or pass --package-path with the folder holding it)",
+                            list_paths(&searched)
+                        ))
+                    }
+                }
+            }
+            Some((scheme, rest)) if scheme.eq_ignore_ascii_case("file") => {
+                absolute_or_relative(Path::new(&percent_decode(rest)), dir)
+            }
+            Some((scheme, _)) => {
+                return Err(format!(
+                    "URI scheme '{scheme}' cannot be resolved offline (download the model and use model:// or a path)"
+                ))
+            }
+            None => absolute_or_relative(Path::new(uri), dir),
+        };
+        if target.is_file() {
+            Ok(target)
+        } else if target.is_dir() {
+            model_sdf_file(&target)
+        } else {
+            Err(format!("{} does not exist", target.display()))
+        }
+    }
+
+    /// Resolve the part of a `model://` URI after the scheme.
+    fn resolve_model(&self, rest: &str, dir: &Path) -> Resolution {
+        let (name, file) = rest.split_once('/').unwrap_or((rest, ""));
+        let file = file.trim_start_matches('/');
+        if !valid_package_name(name) || file.is_empty() {
+            return Resolution::Unsupported(format!(
+                "model://{rest} does not name a file inside a model folder"
+            ));
+        }
+        let mut searched = Vec::new();
+        for root in self.model_roots(name, dir) {
+            let candidate = root.join(file);
+            if searched.contains(&candidate) {
+                continue;
+            }
+            if candidate.is_file() {
+                return Resolution::Found(candidate);
+            }
+            searched.push(candidate);
+        }
+        Resolution::NotFound { searched }
+    }
+
+    /// Candidate folders of model `name`: the Gazebo model paths, the `--package-path` folders, then the
+    /// ancestors of `start_dir`.
+    fn model_roots(&self, name: &str, start_dir: &Path) -> Vec<PathBuf> {
+        let mut roots = Vec::new();
+        for dir in self.model_paths.iter().chain(&self.explicit) {
+            push_unique(&mut roots, dir.join(name));
+            if dir_basename_is(dir, name) {
+                push_unique(&mut roots, dir.clone());
+            }
+        }
+        let abs = std::path::absolute(start_dir).unwrap_or_else(|_| start_dir.to_path_buf());
+        for ancestor in normalize_lexically(&abs).ancestors().take(MAX_WALK_UP) {
+            let child = ancestor.join(name);
+            if child.is_dir() {
+                push_unique(&mut roots, child);
+            }
+            if ancestor.file_name().is_some_and(|n| n == name) {
+                push_unique(&mut roots, ancestor.to_path_buf());
+            }
+        }
+        roots
     }
 
     /// Whether any package folder is configured (`--package-path`, `ROS_PACKAGE_PATH` or
@@ -298,6 +437,79 @@ fn percent_decode(s: &str) -> String {
         i += 1;
     }
     String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
+/// `a, b, c` for a message (`nowhere` when empty).
+fn list_paths(paths: &[PathBuf]) -> String {
+    if paths.is_empty() {
+        return "no folder: GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, SDF_PATH and --package-path are unset, and no folder of that name is above the file".to_string();
+    }
+    paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The newest SDFormat version this validator reads; `model.config` entries above it are passed over.
+pub const NEWEST_SDF_VERSION: (u32, u32) = (1, 11);
+
+/// Largest `model.config` read.
+const MAX_MODEL_CONFIG_BYTES: u64 = 1024 * 1024;
+
+/// The SDFormat file of the Gazebo model folder `dir`: the `<sdf version>` entry of its `model.config`
+/// with the highest version not above [`NEWEST_SDF_VERSION`] (else the highest), or `model.sdf` when
+/// there is no `model.config`.
+pub fn model_sdf_file(dir: &Path) -> Result<PathBuf, String> {
+    let config = dir.join("model.config");
+    if !config.is_file() {
+        let fallback = dir.join("model.sdf");
+        return if fallback.is_file() {
+            Ok(fallback)
+        } else {
+            Err(format!(
+                "{} holds neither model.config nor model.sdf",
+                dir.display()
+            ))
+        };
+    }
+    let unreadable = |why: String| format!("{}: {why}", config.display());
+    let size = std::fs::metadata(&config)
+        .map_err(|e| unreadable(e.to_string()))?
+        .len();
+    if size > MAX_MODEL_CONFIG_BYTES {
+        return Err(unreadable(format!("{size} bytes; not a model.config")));
+    }
+    let text = std::fs::read_to_string(&config).map_err(|e| unreadable(e.to_string()))?;
+    let doc = roxmltree::Document::parse(&text).map_err(|e| unreadable(e.to_string()))?;
+    let version = |node: roxmltree::Node| -> (u32, u32) {
+        node.attribute("version")
+            .and_then(|v| v.trim().split_once('.'))
+            .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)))
+            .unwrap_or((0, 0))
+    };
+    let entries: Vec<((u32, u32), &str)> = doc
+        .root_element()
+        .children()
+        .filter(|n| n.has_tag_name("sdf"))
+        .filter_map(|n| Some((version(n), n.text()?.trim())))
+        .filter(|(_, file)| !file.is_empty())
+        .collect();
+    let best = entries
+        .iter()
+        .filter(|(v, _)| *v <= NEWEST_SDF_VERSION)
+        .max_by_key(|(v, _)| *v)
+        .or_else(|| entries.iter().max_by_key(|(v, _)| *v))
+        .ok_or_else(|| unreadable("no <sdf> entry names a file".to_string()))?;
+    let file = dir.join(best.1);
+    if file.is_file() {
+        Ok(file)
+    } else {
+        Err(unreadable(format!(
+            "names {}, which does not exist",
+            file.display()
+        )))
+    }
 }
 
 /// Split a `PATH`-style list, dropping empty entries.
@@ -735,7 +947,6 @@ mod tests {
         for (uri, scheme) in [
             ("http://example.com/m.stl", "http"),
             ("https://example.com/m.stl", "https"),
-            ("model://robot/meshes/m.stl", "model"),
         ] {
             assert_eq!(
                 r.resolve(uri, dir),
@@ -843,5 +1054,56 @@ mod tests {
             Resolution::Found(p) => assert!(p.ends_with("meshes/bases/burger_base.stl")),
             other => panic!("expected Found, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn model_uris_resolve_through_the_gazebo_paths_then_package_paths_then_upwards() {
+        let t = TempTree::new();
+        let mesh = t.file("gz/arm/meshes/a.stl");
+        t.file("pp/arm/meshes/a.stl");
+        let r = PackageResolver::new(vec![t.path("pp")], None, None)
+            .with_model_paths([Some(t.path("gz").to_str().unwrap())]);
+        assert_eq!(
+            r.resolve("model://arm/meshes/a.stl", &t.dir("x")),
+            Resolution::Found(mesh)
+        );
+        let beside = t.file("world/models/../wheel/w.dae");
+        let found = empty_resolver().resolve("model://wheel/w.dae", &t.dir("world/models"));
+        assert_eq!(
+            found,
+            Resolution::Found(t.path("world/wheel/w.dae")),
+            "{beside:?}"
+        );
+        assert!(matches!(
+            empty_resolver().resolve("model://absent/m.stl", &t.dir("x")),
+            Resolution::NotFound { .. }
+        ));
+    }
+
+    #[test]
+    fn model_config_picks_the_newest_supported_sdf() {
+        let t = TempTree::new();
+        let dir = t.dir("m");
+        fs::write(
+            dir.join("model.config"),
+            "<model><sdf version=\"1.5\">old.sdf</sdf><sdf version=\"1.10\">new.sdf</sdf><sdf version=\"2.0\">future.sdf</sdf></model>",
+        )
+        .unwrap();
+        for f in ["old.sdf", "new.sdf", "future.sdf"] {
+            t.file(&format!("m/{f}"));
+        }
+        assert_eq!(model_sdf_file(&dir), Ok(dir.join("new.sdf")));
+        let bare = t.dir("bare");
+        assert!(model_sdf_file(&bare).is_err());
+        t.file("bare/model.sdf");
+        assert_eq!(model_sdf_file(&bare), Ok(bare.join("model.sdf")));
+        assert_eq!(
+            empty_resolver().resolve_include("m", &t.0),
+            Ok(dir.join("new.sdf"))
+        );
+        assert!(empty_resolver()
+            .resolve_include("https://fuel.gazebosim.org/x", &t.0)
+            .unwrap_err()
+            .contains("offline"));
     }
 }

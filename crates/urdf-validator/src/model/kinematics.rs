@@ -7,6 +7,10 @@ use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::{Joint, JointKind, Link, Pose};
 
+/// Widest prismatic range sampled, in metres: wider is a placeholder for "unlimited" (SDFormat's
+/// default limits are ±1e16), not a travel.
+pub const MAX_PRISMATIC_TRAVEL: f64 = 1e3;
+
 /// A joint's numbers: what kinematics needs, with non-finite input replaced by zero (the parser already
 /// reported it).
 #[derive(Clone, Debug)]
@@ -112,9 +116,8 @@ impl JointData {
         match (self.kind, self.range()) {
             (JointKind::Continuous, _) => Some((-PI, PI)),
             (JointKind::Revolute, Some((lo, hi))) if hi - lo >= TAU => Some((-PI, PI)),
-            (JointKind::Revolute | JointKind::Prismatic, Some((lo, hi)))
-                if (hi - lo).is_finite() =>
-            {
+            (JointKind::Revolute, Some((lo, hi))) if (hi - lo).is_finite() => Some((lo, hi)),
+            (JointKind::Prismatic, Some((lo, hi))) if hi - lo <= MAX_PRISMATIC_TRAVEL => {
                 Some((lo, hi))
             }
             _ => None,
@@ -249,4 +252,26 @@ pub fn forward_kinematics_links(model: &Model, q: &[f64], links: &[LinkId], data
 /// World position of `link`'s frame origin.
 pub fn link_origin(data: &Data, link: LinkId) -> Vector3<f64> {
     data.link_placement[link.0].translation.vector
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn prismatic(lower: f64, upper: f64) -> JointData {
+        JointData {
+            kind: JointKind::Prismatic,
+            placement: Isometry3::identity(),
+            axis: Vector3::z(),
+            lower: Some(lower),
+            upper: Some(upper),
+            effort: None,
+        }
+    }
+
+    #[test]
+    fn a_placeholder_prismatic_range_is_not_sampled() {
+        assert_eq!(prismatic(-0.1, 0.2).sampling_interval(), Some((-0.1, 0.2)));
+        assert_eq!(prismatic(-1e16, 1e16).sampling_interval(), None);
+    }
 }

@@ -24,6 +24,8 @@ pub struct Robot {
     pub gazebo: Vec<GazeboBlock>,
     /// `<ros2_control>` blocks.
     pub ros2_control: Vec<Ros2Control>,
+    /// The format it was read from: SDFormat leaves effort and velocity limits optional, URDF does not.
+    pub format: crate::input::Format,
 }
 
 /// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians), or `xyz` + `quat_xyzw` (URDF 1.1).

@@ -46,6 +46,8 @@ pub enum BridgeError {
     Cancelled,
     /// The bridge ended without a readable reply.
     Crashed(String),
+    /// The input is SDFormat: the pass hands MuJoCo URDF text, which there is none of.
+    NotUrdf,
 }
 
 impl BridgeError {
@@ -64,6 +66,7 @@ impl BridgeError {
             ),
             BridgeError::Cancelled => "the MuJoCo pass was cancelled".to_string(),
             BridgeError::Crashed(why) => format!("the MuJoCo pass failed: {why}"),
+            BridgeError::NotUrdf => "the MuJoCo pass does not run on SDFormat input yet (it hands MuJoCo the URDF text); validate the URDF the SDF was made from, or load the SDF in Gazebo".to_string(),
         }
     }
 }

@@ -57,8 +57,8 @@ impl Default for DeepOptions {
 
 /// What the deep pass reads.
 pub struct DeepInput<'a> {
-    /// The text the robot was parsed from.
-    pub text: &'a str,
+    /// The URDF text the robot was parsed from; `None` for SDFormat input, which the pass does not read yet.
+    pub urdf_text: Option<&'a str>,
     /// The robot.
     pub robot: &'a Robot,
     /// Its tree.
@@ -85,6 +85,17 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
         return None;
     }
     let trigger = if automatic { "automatic" } else { "requested" };
+    let Some(text) = input.urdf_text else {
+        // MuJoCo is handed URDF text; for SDFormat input there is none (yet): say so when asked.
+        return input.options.requested.then(|| {
+            not_run(
+                input,
+                trigger,
+                std::path::Path::new(""),
+                &BridgeError::NotUrdf,
+            )
+        });
+    };
     let model = input.model;
     let q = &physics.q;
     let mut configurations = vec![(physics.statics.pose.clone(), q.clone())];
@@ -102,7 +113,7 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
             .root
             .is_some_and(|r| input.robot.links[r.0].name.value == "world");
     let job = job::build(&job::JobInput {
-        text: input.text,
+        text,
         robot: input.robot,
         model,
         assets: input.assets,
@@ -171,6 +182,7 @@ fn not_run(
     };
     let (python, version) = match error {
         BridgeError::NoMujoco { python, .. } => (Some(python.clone()), None),
+        BridgeError::NotUrdf => (None, None),
         _ => (Some(interpreter.display().to_string()), None),
     };
     let section = DeepSection {

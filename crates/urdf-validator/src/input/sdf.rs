@@ -1,0 +1,352 @@
+//! SDFormat input: the entry file and every file its `<include>`s pull in, read once with bounded depth,
+//! count and size, laid end to end in one span space so a [`Span`] names a file and a place in it.
+//!
+//! Findings inside an included file are located in that file, with the `<include>` chain as their stack
+//! (`in model://arm included at world.sdf:12:5`), as xacro findings carry their include stack.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use crate::input::resolve::PackageResolver;
+use crate::input::source::{SourceText, Span};
+use crate::input::xacro::SourceLocation;
+use crate::input::{read_text, LoadError, MAX_FILE_BYTES};
+
+/// Deepest chain of `<include>`s followed (entry file at depth 0).
+pub const MAX_INCLUDE_DEPTH: usize = 16;
+
+/// Most files read for one input (the entry file and its includes).
+pub const MAX_INCLUDED_FILES: usize = 256;
+
+/// True when `text`'s root element is `<sdf>` (whatever the file is called).
+pub fn is_sdf(text: &str) -> bool {
+    let mut rest = text.trim_start_matches('\u{feff}');
+    loop {
+        rest = rest.trim_start();
+        let skip_to = |rest: &str, end: &str| rest.find(end).map(|i| i + end.len());
+        let skipped = if rest.starts_with("<?") {
+            skip_to(rest, "?>")
+        } else if rest.starts_with("<!--") {
+            skip_to(rest, "-->")
+        } else if rest.starts_with("<!") {
+            skip_to(rest, ">")
+        } else {
+            let Some(after) = rest.strip_prefix("<sdf") else {
+                return false;
+            };
+            return after.starts_with(|c: char| c.is_whitespace() || c == '>' || c == '/');
+        };
+        match skipped.and_then(|i| rest.get(i..)) {
+            Some(after) => rest = after,
+            None => return false,
+        }
+    }
+}
+
+/// One file of the set.
+#[derive(Debug)]
+struct SdfFile {
+    source: SourceText,
+    /// Where its byte 0 is in the shared span space.
+    base: u32,
+    /// The file and `<include>` element (span in the shared space) that pulled it in, and the URI.
+    included_at: Option<(usize, Span, String)>,
+}
+
+/// What one `<include>` element resolved to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum IncludeTarget {
+    /// The index of the included file.
+    File(usize),
+    /// Why it could not be read (not found, unreadable, malformed, a cycle, too deep).
+    Unresolved(String),
+}
+
+/// The entry SDFormat file and its includes.
+#[derive(Debug)]
+pub struct SdfFiles {
+    files: Vec<SdfFile>,
+    /// `<include>` element start (shared span space) → what it resolved to.
+    includes: HashMap<u32, IncludeTarget>,
+    /// Canonical path → index of the files read, so a model included twice is read once.
+    read: HashMap<PathBuf, usize>,
+}
+
+/// The XML options every SDFormat file is parsed with (bounded node count).
+pub fn xml_options<'o>() -> roxmltree::ParsingOptions<'o> {
+    roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: 5_000_000,
+        ..roxmltree::ParsingOptions::default()
+    }
+}
+
+impl SdfFiles {
+    /// Read the entry file's `text` (from `path`) and, transitively, every file an `<include>` names.
+    /// A malformed entry file is an error; a problem with an included file is recorded for its
+    /// `<include>` ([`SdfFiles::include`]).
+    pub fn load(path: &Path, text: String, resolver: &PackageResolver) -> Result<Self, LoadError> {
+        if let Err(e) = roxmltree::Document::parse_with_options(&text, xml_options()) {
+            let pos = e.pos();
+            return Err(LoadError::Xml {
+                path: path.to_path_buf(),
+                line: pos.row,
+                column: pos.col,
+                message: e.to_string(),
+            });
+        }
+        let mut set = SdfFiles {
+            files: Vec::new(),
+            includes: HashMap::new(),
+            read: HashMap::new(),
+        };
+        set.push(path.to_path_buf(), text, None);
+        set.read.insert(canonical(path), 0);
+        set.follow(0, &[canonical(path)], resolver);
+        Ok(set)
+    }
+
+    fn push(&mut self, path: PathBuf, text: String, included_at: Option<(usize, Span, String)>) {
+        let base = self.files.last().map_or(0, |f| {
+            f.base
+                .saturating_add(len32(f.source.text()))
+                .saturating_add(1)
+        });
+        self.files.push(SdfFile {
+            source: SourceText::new(path, text),
+            base,
+            included_at,
+        });
+    }
+
+    /// Resolve and read the includes of file `index`; `chain` holds the canonical paths from the entry
+    /// file down to it (a cycle is an include of one of them).
+    fn follow(&mut self, index: usize, chain: &[PathBuf], resolver: &PackageResolver) {
+        let Some(file) = self.files.get(index) else {
+            return;
+        };
+        let dir = parent_dir(file.source.path()).to_path_buf();
+        let base = file.base;
+        let Ok(doc) = roxmltree::Document::parse_with_options(file.source.text(), xml_options())
+        else {
+            return;
+        };
+        let includes: Vec<(Span, String)> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("include"))
+            .map(|n| {
+                let uri = n
+                    .children()
+                    .find(|c| c.has_tag_name("uri"))
+                    .and_then(|u| u.text())
+                    .unwrap_or("")
+                    .trim()
+                    .to_string();
+                (shift(Span::from_range(n.range()), base), uri)
+            })
+            .collect();
+        drop(doc);
+        for (at, uri) in includes {
+            let target = self.read_include(index, at, &uri, &dir, chain, resolver);
+            self.includes.insert(at.start, target);
+        }
+    }
+
+    fn read_include(
+        &mut self,
+        from: usize,
+        at: Span,
+        uri: &str,
+        dir: &Path,
+        chain: &[PathBuf],
+        resolver: &PackageResolver,
+    ) -> IncludeTarget {
+        if uri.is_empty() {
+            return IncludeTarget::Unresolved("<include> has no <uri>".to_string());
+        }
+        let path = match resolver.resolve_include(uri, dir) {
+            Ok(path) => path,
+            Err(why) => return IncludeTarget::Unresolved(format!("cannot resolve '{uri}': {why}")),
+        };
+        let key = canonical(&path);
+        if chain.contains(&key) {
+            return IncludeTarget::Unresolved(format!(
+                "'{uri}' ({}) includes itself: an include cycle",
+                path.display()
+            ));
+        }
+        if let Some(&index) = self.read.get(&key) {
+            return IncludeTarget::File(index);
+        }
+        if chain.len() > MAX_INCLUDE_DEPTH {
+            return IncludeTarget::Unresolved(format!(
+                "'{uri}' is more than {MAX_INCLUDE_DEPTH} includes deep"
+            ));
+        }
+        if self.files.len() >= MAX_INCLUDED_FILES {
+            return IncludeTarget::Unresolved(format!(
+                "more than {MAX_INCLUDED_FILES} files included; '{uri}' is not read"
+            ));
+        }
+        let text = match read_text(&path) {
+            Ok(text) => text,
+            Err(e) => return IncludeTarget::Unresolved(e.to_string()),
+        };
+        let total: u64 = self
+            .files
+            .iter()
+            .map(|f| f.source.text().len() as u64)
+            .sum();
+        if total + text.len() as u64 > MAX_FILE_BYTES {
+            return IncludeTarget::Unresolved(format!(
+                "the included files exceed {MAX_FILE_BYTES} bytes; '{uri}' is not read"
+            ));
+        }
+        if let Err(e) = roxmltree::Document::parse_with_options(&text, xml_options()) {
+            let pos = e.pos();
+            return IncludeTarget::Unresolved(format!(
+                "{}:{}:{}: not well-formed XML: {e}",
+                path.display(),
+                pos.row,
+                pos.col
+            ));
+        }
+        self.push(path, text, Some((from, at, uri.to_string())));
+        let index = self.files.len() - 1;
+        self.read.insert(key.clone(), index);
+        let mut deeper = chain.to_vec();
+        deeper.push(key);
+        self.follow(index, &deeper, resolver);
+        IncludeTarget::File(index)
+    }
+
+    /// How many files were read (the entry file is index 0).
+    pub fn len(&self) -> usize {
+        self.files.len()
+    }
+
+    /// Always false: the entry file is always there.
+    pub fn is_empty(&self) -> bool {
+        self.files.is_empty()
+    }
+
+    /// The text of file `index`.
+    pub fn text(&self, index: usize) -> &str {
+        self.files.get(index).map_or("", |f| f.source.text())
+    }
+
+    /// The path of file `index` as read.
+    pub fn path(&self, index: usize) -> &Path {
+        self.files
+            .get(index)
+            .map_or(Path::new(""), |f| f.source.path())
+    }
+
+    /// A span of file `index` (as roxmltree gives it) in the shared span space.
+    pub fn span(&self, index: usize, range: std::ops::Range<usize>) -> Span {
+        shift(
+            Span::from_range(range),
+            self.files.get(index).map_or(0, |f| f.base),
+        )
+    }
+
+    /// What the `<include>` element at `span` (shared span space) resolved to.
+    pub fn include(&self, span: Span) -> Option<&IncludeTarget> {
+        self.includes.get(&span.start)
+    }
+
+    /// The file holding shared-space byte `at`, and the offset inside it.
+    fn file_at(&self, at: u32) -> Option<(&SdfFile, usize)> {
+        let index = self
+            .files
+            .partition_point(|f| f.base <= at)
+            .checked_sub(1)?;
+        let file = self.files.get(index)?;
+        Some((file, (at - file.base) as usize))
+    }
+
+    /// Where `span` is: file, line, column, and the chain of `<include>`s that read the file.
+    pub fn locate(&self, span: Span) -> Option<SourceLocation> {
+        let (file, start) = self.file_at(span.start)?;
+        let end = (span.end.saturating_sub(file.base) as usize).max(start);
+        let (line, column) = file.source.line_col(start);
+        let (end_line, end_column) = file.source.line_col(end);
+        let mut stack = Vec::new();
+        let mut at = file.included_at.as_ref();
+        while let Some((from, include, uri)) = at {
+            let Some(parent) = self.files.get(*from) else {
+                break;
+            };
+            let (line, col) = parent
+                .source
+                .line_col((include.start.saturating_sub(parent.base)) as usize);
+            stack.push(format!(
+                "in {uri} included at {}:{line}:{col}",
+                parent.source.path().display()
+            ));
+            at = parent.included_at.as_ref();
+            if stack.len() > MAX_INCLUDE_DEPTH + 1 {
+                break;
+            }
+        }
+        Some(SourceLocation {
+            file: file.source.path().display().to_string(),
+            line,
+            column,
+            end_line,
+            end_column,
+            stack,
+        })
+    }
+
+    /// The files as (path as findings name it, text), entry file first.
+    pub fn source_texts(&self) -> Vec<(String, &str)> {
+        self.files
+            .iter()
+            .map(|f| (f.source.path().display().to_string(), f.source.text()))
+            .collect()
+    }
+
+    /// The files' texts, for snippets.
+    pub fn into_sources(self) -> Vec<SourceText> {
+        self.files.into_iter().map(|f| f.source).collect()
+    }
+}
+
+fn shift(span: Span, base: u32) -> Span {
+    Span {
+        start: span.start.saturating_add(base),
+        end: span.end.saturating_add(base),
+    }
+}
+
+fn len32(text: &str) -> u32 {
+    u32::try_from(text.len()).unwrap_or(u32::MAX)
+}
+
+fn parent_dir(path: &Path) -> &Path {
+    path.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// The path with symlinks and `..` resolved when it exists (for cycle detection).
+fn canonical(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sdf_root_is_found_after_the_prolog() {
+        assert!(is_sdf(
+            "<?xml version='1.0'?>\n<!-- c -->\n<sdf version='1.9'/>"
+        ));
+        assert!(is_sdf("<sdf>"));
+        assert!(!is_sdf("<robot name='r'/>"));
+        assert!(!is_sdf("<sdfx/>"));
+        assert!(!is_sdf("<?xml"));
+    }
+}

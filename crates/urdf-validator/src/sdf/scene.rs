@@ -1,0 +1,697 @@
+//! One `<model>` — its links, joints, frames, nested models and includes — read into a flat scene of
+//! named frames, every name scoped from the analysed model (`arm::link` for link `link` of nested model
+//! `arm`). Poses stay as written (relative to a named frame); [`super::frames`] resolves them.
+
+use std::collections::HashMap;
+
+use roxmltree::{Document, Node};
+
+use super::pose::{self, Transform};
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules::{self, Rule};
+use crate::input::sdf::{IncludeTarget, SdfFiles};
+use crate::input::source::{Span, Spanned};
+
+/// An SDFormat version, `(major, minor)`.
+pub type Version = (u32, u32);
+
+/// First version with `relative_to`, `attached_to`, `<frame>` semantics and joint axes in the joint frame.
+pub const FRAME_SEMANTICS: Version = (1, 7);
+
+/// Deepest nesting of `<model>`s followed (includes count too).
+const MAX_NESTING: usize = 32;
+
+/// An element and the file holding it.
+#[derive(Clone, Copy, Debug)]
+pub struct El<'a> {
+    /// Index of the file in [`SdfFiles`].
+    pub file: usize,
+    /// The element.
+    pub node: Node<'a, 'a>,
+}
+
+impl<'a> El<'a> {
+    /// The first child element named `tag`.
+    pub fn child(&self, tag: &str) -> Option<El<'a>> {
+        self.node
+            .children()
+            .find(|n| n.is_element() && n.has_tag_name(tag))
+            .map(|node| El {
+                file: self.file,
+                node,
+            })
+    }
+
+    /// Every child element named `tag`.
+    pub fn children(&self, tag: &'a str) -> impl Iterator<Item = El<'a>> + 'a {
+        let file = self.file;
+        self.node
+            .children()
+            .filter(move |n| n.is_element() && n.has_tag_name(tag))
+            .map(move |node| El { file, node })
+    }
+
+    /// The trimmed text of the element.
+    pub fn text(&self) -> &'a str {
+        self.node.text().unwrap_or("").trim()
+    }
+}
+
+/// A reference to a frame by name, resolved to its scoped name.
+#[derive(Clone, Debug)]
+pub struct Ref {
+    /// The scoped name (`""` for the analysed model's frame, `world` for the world).
+    pub name: String,
+    /// As written, for messages.
+    pub written: String,
+    /// The attribute or element that names it (the element owning it for defaults).
+    pub span: Span,
+    /// Frame used when the name does not exist (the enclosing model's frame).
+    pub fallback: String,
+}
+
+/// What a frame is.
+#[derive(Clone, Debug)]
+pub enum Kind {
+    /// A `<link>`.
+    Link,
+    /// A `<joint>`: attached to its child.
+    Joint {
+        /// `<child>`.
+        child: Ref,
+    },
+    /// A `<frame>`.
+    Frame {
+        /// `attached_to` (default: the enclosing model frame).
+        attached_to: Ref,
+    },
+    /// A nested `<model>`: attached to its canonical link.
+    Model {
+        /// `canonical_link`, or its first link.
+        canonical: Option<Ref>,
+    },
+}
+
+/// One named frame of the scene.
+#[derive(Clone, Debug)]
+pub struct FrameDef {
+    /// What it is.
+    pub kind: Kind,
+    /// Its `<pose>` relative to `relative_to`.
+    pub pose: Transform,
+    /// The frame its pose is relative to.
+    pub relative_to: Ref,
+    /// The element defining it.
+    pub span: Span,
+}
+
+/// A `<link>` to turn into a URDF link.
+#[derive(Clone, Debug)]
+pub struct LinkDef<'a> {
+    /// Scoped name.
+    pub name: String,
+    /// The `name` attribute.
+    pub name_span: Span,
+    /// The element.
+    pub el: El<'a>,
+    /// Scope prefix of its model (`""` or `arm::`).
+    pub scope: String,
+    /// Version of its file.
+    pub version: Version,
+}
+
+/// A `<joint>` to turn into a URDF joint.
+#[derive(Clone, Debug)]
+pub struct JointDef<'a> {
+    /// Scoped name.
+    pub name: String,
+    /// The `name` attribute.
+    pub name_span: Span,
+    /// The element.
+    pub el: El<'a>,
+    /// Scope prefix of its model.
+    pub scope: String,
+    /// Version of its file.
+    pub version: Version,
+    /// `<parent>`.
+    pub parent: Option<Ref>,
+    /// `<child>`.
+    pub child: Option<Ref>,
+}
+
+/// The analysed model, flattened.
+#[derive(Debug, Default)]
+pub struct Scene<'a> {
+    /// Scoped name → frame (links, joints, frames, nested models). The model frame is `""`.
+    pub frames: HashMap<String, FrameDef>,
+    /// Links in document order.
+    pub links: Vec<LinkDef<'a>>,
+    /// Joints in document order.
+    pub joints: Vec<JointDef<'a>>,
+    /// The model's canonical link.
+    pub canonical: Option<Ref>,
+    /// The model's name.
+    pub name: Option<Spanned<String>>,
+    /// The `<model>` element.
+    pub span: Span,
+    /// The model's pose in the world.
+    pub model_pose: Transform,
+    /// `<static>true</static>` (or the including `<include>` says so).
+    pub is_static: bool,
+    /// The `<static>` element, when written.
+    pub static_span: Option<Span>,
+}
+
+/// What an `<include>` overrides in the model it pulls in.
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    /// `<name>`.
+    pub name: Option<Spanned<String>>,
+    /// `<pose>`, with its `relative_to`.
+    pub pose: Option<(Transform, Option<Ref>, Span)>,
+    /// `<static>`.
+    pub is_static: Option<(bool, Span)>,
+}
+
+/// The scope prefix's model frame: `arm::` → `arm`, `""` → `""`.
+pub fn model_frame(scope: &str) -> String {
+    scope.strip_suffix("::").unwrap_or(scope).to_string()
+}
+
+/// The scoped name of `written` referred to from `scope`: `__model__` is the scope's model frame, `world`
+/// the world.
+pub fn scoped(scope: &str, written: &str) -> String {
+    if written == "world" {
+        return "world".to_string();
+    }
+    let full = format!("{scope}{written}");
+    if full == "__model__" {
+        String::new()
+    } else if let Some(model) = full.strip_suffix("::__model__") {
+        model.to_string()
+    } else {
+        full
+    }
+}
+
+/// Where findings go, with the files their spans point into.
+pub struct Sink<'a> {
+    /// The files.
+    pub files: &'a SdfFiles,
+    /// Findings so far.
+    pub findings: Vec<Finding>,
+}
+
+impl<'a> Sink<'a> {
+    /// The span of an element in the shared span space.
+    pub fn span(&self, el: El<'_>) -> Span {
+        self.files.span(el.file, el.node.range())
+    }
+
+    /// The span of attribute `name` of `el` (its value), or the element's.
+    pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
+        el.node.attribute_node(name).map_or_else(
+            || self.span(el),
+            |a| self.files.span(el.file, a.range_value()),
+        )
+    }
+
+    /// Record a finding.
+    pub fn report(&mut self, rule: &'static Rule, span: Span, message: String) {
+        self.findings.push(Finding::new(rule, span, message));
+    }
+
+    /// `value`, or a U029 finding at `el` and `None`.
+    pub fn value<T>(&mut self, el: El<'_>, value: Result<T, String>) -> Option<T> {
+        match value {
+            Ok(v) => Some(v),
+            Err(why) => {
+                let span = self.span(el);
+                self.report(&rules::SDF_INVALID_VALUE, span, why);
+                None
+            }
+        }
+    }
+
+    /// The `<pose>` child of `el` (identity when absent or unreadable) and its explicit `relative_to`
+    /// (read from SDFormat 1.7 on), resolved in `scope`.
+    pub fn pose_of(
+        &mut self,
+        el: El<'_>,
+        scope: &str,
+        version: Version,
+    ) -> (Transform, Option<Ref>, Span) {
+        let Some(pose_el) = el.child("pose") else {
+            return (Transform::identity(), None, self.span(el));
+        };
+        let span = self.span(pose_el);
+        let node = pose_el.node;
+        let transform = pose::pose_text(
+            pose_el.text(),
+            node.attribute("rotation_format"),
+            node.attribute("degrees"),
+        );
+        let transform = self
+            .value(pose_el, transform)
+            .unwrap_or_else(Transform::identity);
+        let relative_to = node
+            .attribute("relative_to")
+            .filter(|r| !r.is_empty() && version >= FRAME_SEMANTICS)
+            .map(|r| self.reference(pose_el, "relative_to", r, scope));
+        (transform, relative_to, span)
+    }
+
+    /// A reference written in attribute `attr` of `el`.
+    pub fn reference(&self, el: El<'_>, attr: &str, written: &str, scope: &str) -> Ref {
+        Ref {
+            name: scoped(scope, written),
+            written: written.to_string(),
+            span: self.attr_span(el, attr),
+            fallback: model_frame(scope),
+        }
+    }
+}
+
+/// Reads models into a [`Scene`], collecting findings.
+pub struct Collector<'a> {
+    /// Findings and files.
+    pub sink: Sink<'a>,
+    /// Each file parsed (`None` for a file that does not parse; the load stage already said so).
+    pub docs: &'a [Option<Document<'a>>],
+    /// Each file's version.
+    pub versions: &'a [Version],
+    /// The scene being built.
+    pub scene: Scene<'a>,
+}
+
+impl<'a> Collector<'a> {
+    /// A reference written as the text of element `el`.
+    fn text_reference(&self, el: El<'a>, scope: &str) -> Ref {
+        Ref {
+            name: scoped(scope, el.text()),
+            written: el.text().to_string(),
+            span: self.sink.span(el),
+            fallback: model_frame(scope),
+        }
+    }
+
+    /// A default reference to `name` (no attribute written).
+    fn implicit(&self, name: String, span: Span, scope: &str) -> Ref {
+        Ref {
+            written: name.clone(),
+            name,
+            span,
+            fallback: model_frame(scope),
+        }
+    }
+
+    /// Register frame `name`; a name used twice in one scope is U020.
+    fn define(&mut self, name: &str, def: FrameDef, legacy: bool) {
+        if self.scene.frames.contains_key(name) {
+            if !legacy {
+                self.sink.report(
+                    &rules::SDF_STRUCTURE,
+                    def.span,
+                    format!("the name '{name}' is used by two elements of one model (links, joints, frames and nested models share one name space)"),
+                );
+            }
+            return;
+        }
+        self.scene.frames.insert(name.to_string(), def);
+    }
+
+    /// The `name` attribute of `el`, checked: present, not reserved.
+    fn name(&mut self, el: El<'a>, what: &str) -> Option<(String, Span)> {
+        let span = self.sink.attr_span(el, "name");
+        let Some(name) = el.node.attribute("name").filter(|n| !n.is_empty()) else {
+            let at = self.sink.span(el);
+            self.sink.report(
+                &rules::SDF_STRUCTURE,
+                at,
+                format!("<{what}> without a name attribute"),
+            );
+            return None;
+        };
+        if name == "world"
+            || (name.starts_with("__") && name.ends_with("__"))
+            || name.contains("::")
+        {
+            self.sink.report(
+                &rules::SDF_STRUCTURE,
+                span,
+                format!("<{what} name=\"{name}\">: the name is reserved ('world', '__…__') or holds the scope separator '::'"),
+            );
+        }
+        Some((name.to_string(), span))
+    }
+
+    /// Read model `el` whose contents are named with prefix `scope` (`""` for the analysed model).
+    pub fn model(&mut self, el: El<'a>, scope: &str, overrides: Overrides, depth: usize) {
+        let version = self
+            .versions
+            .get(el.file)
+            .copied()
+            .unwrap_or(FRAME_SEMANTICS);
+        let legacy = version < FRAME_SEMANTICS;
+        let (own_pose, own_relative, pose_span) =
+            self.sink.pose_of(el, &parent_scope(scope), version);
+        let (pose, relative_to, pose_span) =
+            overrides
+                .pose
+                .clone()
+                .unwrap_or((own_pose, own_relative, pose_span));
+        let static_el = el.child("static");
+        let own_static = static_el
+            .and_then(|s| {
+                let value = pose::boolean(s.text(), "<static>");
+                self.sink.value(s, value)
+            })
+            .map(|v| (v, static_el.map(|s| self.sink.span(s)).unwrap_or_default()));
+        let is_static = overrides.is_static.or(own_static);
+        let span = self.sink.span(el);
+        if scope.is_empty() {
+            self.scene.span = span;
+            self.scene.model_pose = pose;
+            self.scene.name = overrides.name.clone().or_else(|| {
+                el.node.attribute("name").map(|n| Spanned {
+                    value: n.to_string(),
+                    span: self.sink.attr_span(el, "name"),
+                })
+            });
+            if let Some((value, at)) = is_static {
+                self.scene.is_static = value;
+                self.scene.static_span = Some(at);
+            }
+        } else if is_static.is_some_and(|(value, _)| value) {
+            let at = is_static.map_or(span, |(_, at)| at);
+            self.sink.report(
+                &rules::SDF_NOT_READ,
+                at,
+                format!(
+                    "nested model '{}' is static: analysed as part of the moving model",
+                    model_frame(scope)
+                ),
+            );
+        }
+        if depth > MAX_NESTING {
+            self.sink.report(
+                &rules::SDF_STRUCTURE,
+                span,
+                format!("models nested more than {MAX_NESTING} deep: the inner ones are not read"),
+            );
+            return;
+        }
+        let mut first_link: Option<Ref> = None;
+        let mut first_nested: Option<String> = None;
+        for child in el.node.children().filter(Node::is_element) {
+            let child = El {
+                file: el.file,
+                node: child,
+            };
+            match child.node.tag_name().name() {
+                "link" => {
+                    if let Some(name) = self.link(child, scope, version) {
+                        first_link.get_or_insert(name);
+                    }
+                }
+                "joint" => self.joint(child, scope, version),
+                "frame" => self.frame(child, scope, version),
+                "model" => {
+                    if let Some((name, _)) = self.name(child, "model") {
+                        let inner = format!("{scope}{name}::");
+                        self.model(child, &inner, Overrides::default(), depth + 1);
+                        first_nested.get_or_insert(format!("{scope}{name}"));
+                    }
+                }
+                "include" => {
+                    if let Some(name) = self.include(child, scope, depth) {
+                        first_nested.get_or_insert(name);
+                    }
+                }
+                _ => {}
+            }
+        }
+        let canonical = match el.node.attribute("canonical_link").filter(|_| !legacy) {
+            Some(written) => Some(self.sink.reference(el, "canonical_link", written, scope)),
+            None => first_link.or_else(|| {
+                let nested = first_nested?;
+                match &self.scene.frames.get(&nested)?.kind {
+                    Kind::Model { canonical } => canonical.clone(),
+                    _ => None,
+                }
+            }),
+        };
+        if canonical.is_none() {
+            self.sink.report(
+                &rules::SDF_STRUCTURE,
+                span,
+                format!(
+                    "model '{}' has no link (sdformat: a model must have at least one link)",
+                    el.node.attribute("name").unwrap_or("")
+                ),
+            );
+        }
+        if scope.is_empty() {
+            self.scene.canonical = canonical;
+        } else {
+            let parent = parent_scope(scope);
+            let relative_to =
+                relative_to.unwrap_or_else(|| self.implicit(model_frame(&parent), span, &parent));
+            let def = FrameDef {
+                kind: Kind::Model { canonical },
+                pose,
+                relative_to,
+                span: pose_span,
+            };
+            self.define(&model_frame(scope), def, legacy);
+        }
+    }
+
+    /// A `<link>`: its frame and the link to build; returns a reference to it.
+    fn link(&mut self, el: El<'a>, scope: &str, version: Version) -> Option<Ref> {
+        let (name, name_span) = self.name(el, "link")?;
+        let full = format!("{scope}{name}");
+        let (pose, relative_to, pose_span) = self.sink.pose_of(el, scope, version);
+        let relative_to =
+            relative_to.unwrap_or_else(|| self.implicit(model_frame(scope), pose_span, scope));
+        self.define(
+            &full,
+            FrameDef {
+                kind: Kind::Link,
+                pose,
+                relative_to,
+                span: pose_span,
+            },
+            version < FRAME_SEMANTICS,
+        );
+        self.scene.links.push(LinkDef {
+            name: full.clone(),
+            name_span,
+            el,
+            scope: scope.to_string(),
+            version,
+        });
+        Some(self.implicit(full, name_span, scope))
+    }
+
+    /// A `<joint>`: its frame (attached to its child) and the joint to build.
+    fn joint(&mut self, el: El<'a>, scope: &str, version: Version) {
+        let Some((name, name_span)) = self.name(el, "joint") else {
+            return;
+        };
+        let full = format!("{scope}{name}");
+        let parent = el.child("parent").map(|p| self.text_reference(p, scope));
+        let child = el.child("child").map(|c| self.text_reference(c, scope));
+        let span = self.sink.span(el);
+        for (tag, found) in [("parent", &parent), ("child", &child)] {
+            if found.as_ref().is_none_or(|r| r.written.is_empty()) {
+                self.sink.report(
+                    &rules::SDF_STRUCTURE,
+                    span,
+                    format!("joint '{full}' has no <{tag}>"),
+                );
+            }
+        }
+        if el.node.attribute("type").is_none() {
+            self.sink.report(
+                &rules::SDF_STRUCTURE,
+                span,
+                format!("joint '{full}' has no type attribute"),
+            );
+        }
+        let (pose, relative_to, pose_span) = self.sink.pose_of(el, scope, version);
+        if let Some(child) = child.clone().filter(|c| !c.written.is_empty()) {
+            let relative_to = relative_to.unwrap_or_else(|| child.clone());
+            self.define(
+                &full,
+                FrameDef {
+                    kind: Kind::Joint { child },
+                    pose,
+                    relative_to,
+                    span: pose_span,
+                },
+                version < FRAME_SEMANTICS,
+            );
+        }
+        self.scene.joints.push(JointDef {
+            name: full,
+            name_span,
+            el,
+            scope: scope.to_string(),
+            version,
+            parent,
+            child,
+        });
+    }
+
+    /// A `<frame>` (SDFormat 1.7 on).
+    fn frame(&mut self, el: El<'a>, scope: &str, version: Version) {
+        if version < FRAME_SEMANTICS {
+            let span = self.sink.span(el);
+            self.sink.report(
+                &rules::SDF_NOT_READ,
+                span,
+                format!(
+                    "<frame> in an SDFormat {}.{} file: frame semantics start with 1.7; not read",
+                    version.0, version.1
+                ),
+            );
+            return;
+        }
+        let Some((name, _)) = self.name(el, "frame") else {
+            return;
+        };
+        let attached_to = match el.node.attribute("attached_to").filter(|a| !a.is_empty()) {
+            Some(written) => self.sink.reference(el, "attached_to", written, scope),
+            None => self.implicit(model_frame(scope), self.sink.span(el), scope),
+        };
+        let (pose, relative_to, pose_span) = self.sink.pose_of(el, scope, version);
+        let relative_to = relative_to.unwrap_or_else(|| attached_to.clone());
+        self.define(
+            &format!("{scope}{name}"),
+            FrameDef {
+                kind: Kind::Frame { attached_to },
+                pose,
+                relative_to,
+                span: pose_span,
+            },
+            false,
+        );
+    }
+
+    /// An `<include>` inside a model: the included model nested under its (possibly overridden) name.
+    /// Returns the nested model's scoped name.
+    fn include(&mut self, el: El<'a>, scope: &str, depth: usize) -> Option<String> {
+        let (model, overrides) = self.included_model(el, scope)?;
+        let name = overrides
+            .name
+            .as_ref()
+            .map(|n| n.value.clone())
+            .or_else(|| model.node.attribute("name").map(str::to_string))?;
+        let inner = format!("{scope}{name}::");
+        self.model(model, &inner, overrides, depth + 1);
+        Some(format!("{scope}{name}"))
+    }
+
+    /// The `<model>` an `<include>` pulls in and what the include overrides; a finding when it cannot be
+    /// read.
+    pub fn included_model(&mut self, el: El<'a>, scope: &str) -> Option<(El<'a>, Overrides)> {
+        let span = self.sink.span(el);
+        let file = match self.sink.files.include(span) {
+            Some(IncludeTarget::File(file)) => *file,
+            Some(IncludeTarget::Unresolved(why)) => {
+                let why = why.clone();
+                self.sink.report(
+                    &rules::SDF_INCLUDE_UNRESOLVED,
+                    span,
+                    format!("<include> not read: {why}"),
+                );
+                return None;
+            }
+            None => {
+                self.sink.report(
+                    &rules::SDF_INCLUDE_UNRESOLVED,
+                    span,
+                    "<include> not read".to_string(),
+                );
+                return None;
+            }
+        };
+        let root = self.docs.get(file)?.as_ref()?.root_element();
+        let root = El { file, node: root };
+        let model = if root.node.has_tag_name("model") {
+            Some(root)
+        } else {
+            root.child("model")
+        };
+        let Some(model) = model else {
+            self.sink.report(
+                &rules::SDF_INCLUDE_UNRESOLVED,
+                span,
+                format!(
+                    "<include>: {} holds no <model>",
+                    self.sink.files.path(file).display()
+                ),
+            );
+            return None;
+        };
+        if el.child("placement_frame").is_some() || el.node.attribute("merge") == Some("true") {
+            self.sink.report(
+                &rules::SDF_NOT_READ,
+                span,
+                "<include> with merge or <placement_frame>: read as a nested model placed by its model frame".to_string(),
+            );
+        }
+        let version = self
+            .versions
+            .get(el.file)
+            .copied()
+            .unwrap_or(FRAME_SEMANTICS);
+        let name = el.child("name").map(|n| Spanned {
+            value: n.text().to_string(),
+            span: self.sink.span(n),
+        });
+        let pose = el
+            .child("pose")
+            .map(|_| self.sink.pose_of(el, scope, version));
+        let is_static = el.child("static").and_then(|s| {
+            let value = pose::boolean(s.text(), "<static>");
+            let at = self.sink.span(s);
+            self.sink.value(s, value).map(|v| (v, at))
+        });
+        Some((
+            model,
+            Overrides {
+                name,
+                pose,
+                is_static,
+            },
+        ))
+    }
+}
+
+/// The scope enclosing `scope`: `a::b::` → `a::`, `a::` → `""`.
+fn parent_scope(scope: &str) -> String {
+    let inner = scope.strip_suffix("::").unwrap_or(scope);
+    match inner.rfind("::") {
+        Some(i) => inner[..i + 2].to_string(),
+        None => String::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_scoped_from_the_analysed_model() {
+        assert_eq!(scoped("", "__model__"), "");
+        assert_eq!(scoped("arm::", "__model__"), "arm");
+        assert_eq!(scoped("", "arm::__model__"), "arm");
+        assert_eq!(scoped("arm::", "link"), "arm::link");
+        assert_eq!(scoped("arm::", "world"), "world");
+        assert_eq!(parent_scope("a::b::"), "a::");
+        assert_eq!(parent_scope("a::"), "");
+        assert_eq!(model_frame("a::b::"), "a::b");
+    }
+}

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The SDFormat goldens against their oracle: installs Drake (PyPI drake==1.51.1) in a throw-away venv under
+# target/ and regenerates the goldens in memory (scripts/oracle/sdf_golden.py --check); exits 1 when a
+# committed golden differs from what Drake computes now. The Rust test tests/sdf_golden.rs compares our
+# reader to the committed goldens to 1e-9, so together they tie our values to Drake's.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+venv="${DRAKE_VENV:-$repo_root/target/drake-venv}"
+if [[ ! -x "$venv/bin/python" ]]; then
+    echo "test-oracles: creating $venv (drake==1.51.1)"
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install -q --disable-pip-version-check drake==1.51.1
+fi
+"$venv/bin/python" -c "import pydrake; from importlib.metadata import version; print('drake', version('drake'))"
+"$venv/bin/python" scripts/oracle/sdf_golden.py --check
