@@ -98,8 +98,11 @@ fn run(argv: &[OsString]) -> Result<u8, String> {
         args.config.clone().or_else(|| crate::config::discover(new))
     };
     let meshes = crate::mesh_cache(args.no_cache);
-    let options =
+    let mut options =
         crate::configured_options(&args, &matches, config.as_deref(), &xacro_args, &meshes)?;
+    // Both sides whole: a baseline names NEW's path, so it would hide NEW's known findings and not OLD's, and
+    // they would all look fixed.
+    options.baseline = None;
     let timeout = crate::timeout_of(&args)?;
     let side = |path: &Path| report_of(path, &options, timeout);
     let diff = compare(&side(old)?, &side(new)?);
@@ -129,6 +132,12 @@ fn report_of(
         if value.get("overall_status").is_none() || value.get("findings").is_none() {
             return Err(format!(
                 "{}: not a report written by urdf_validate (no overall_status or findings)",
+                path.display()
+            ));
+        }
+        if value.get("baseline").is_some_and(|b| !b.is_null()) {
+            return Err(format!(
+                "{}: written with --baseline, so its findings leave out the baselined ones; diff needs a report written without --baseline",
                 path.display()
             ));
         }

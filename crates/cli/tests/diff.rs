@@ -197,3 +197,50 @@ fn the_exit_code_says_whether_new_is_worse() {
         assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr}");
     }
 }
+
+#[test]
+fn a_configured_baseline_hides_findings_on_neither_side() {
+    // The baseline names weak.urdf (NEW): applied, it would hide NEW's U701 but not OLD's copy of it, and
+    // the U701 would look fixed.
+    let dir = temp_dir();
+    std::fs::write(dir.join("weak.urdf"), arm("3")).unwrap();
+    std::fs::write(dir.join("weak_base.urdf"), arm("3")).unwrap();
+    let written = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["weak.urdf", "--quiet", "--no-write", "--samples", "500"])
+        .args(["--write-baseline", "baseline.json"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(written.status.code(), Some(0), "{written:?}");
+    std::fs::write(
+        dir.join("urdf-validate.toml"),
+        "baseline = \"baseline.json\"\n",
+    )
+    .unwrap();
+    let same = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["diff", "weak_base.urdf", "weak.urdf", "--format", "json"])
+        .args(["--samples", "500"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(same.status.code(), Some(0), "{same:?}");
+    let json: Value = serde_json::from_slice(&same.stdout).unwrap();
+    assert_eq!(
+        json["findings_removed"],
+        Value::Array(Vec::new()),
+        "{json:#}"
+    );
+    assert_eq!(json["findings_added"], Value::Array(Vec::new()), "{json:#}");
+
+    // A report written with --baseline leaves findings out: refused with one line.
+    let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["weak.urdf", "--quiet", "--samples", "500"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{output:?}");
+    let refused = diff(&dir, &["weak_validation.json", "weak.urdf"]);
+    assert_eq!(refused.status.code(), Some(2), "{refused:?}");
+    let stderr = String::from_utf8_lossy(&refused.stderr).into_owned();
+    assert!(stderr.contains("written with --baseline"), "{stderr}");
+}

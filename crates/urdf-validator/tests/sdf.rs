@@ -333,6 +333,90 @@ fn includes_are_bounded_and_their_findings_point_into_the_included_file() {
 }
 
 #[test]
+fn a_model_included_many_times_at_every_level_stops_at_the_model_budget() {
+    // Three levels of 100 includes each would be a million models read from four small files.
+    let dir = Scratch::new("fanout");
+    let includes = |name: &str| {
+        (0..100)
+            .map(|i| format!("<include><uri>model://{name}</uri><name>{name}_{i}</name></include>"))
+            .collect::<String>()
+    };
+    dir.file(
+        "models/c/model.sdf",
+        &model("1.9", &format!("<link name=\"l\">{INERTIAL}</link>")),
+    );
+    for (name, inner) in [("b", "c"), ("a", "b")] {
+        dir.file(
+            &format!("models/{name}/model.sdf"),
+            &model(
+                "1.9",
+                &format!("<link name=\"l\">{INERTIAL}</link>{}", includes(inner)),
+            ),
+        );
+    }
+    let top = dir.file(
+        "top.sdf",
+        &model(
+            "1.9",
+            &format!("<link name=\"l\">{INERTIAL}</link>{}", includes("a")),
+        ),
+    );
+    let v = validate(&top, &options(vec![dir.0.join("models")])).unwrap();
+    let budget = findings(&v, "U020");
+    assert!(
+        budget
+            .iter()
+            .any(|f| f.message.contains("more than 10000 models")),
+        "{budget:?}"
+    );
+    // One link per model read (and a root): about the budget, not a million.
+    assert!(v.report.links.len() < 10_100, "{}", v.report.links.len());
+}
+
+#[test]
+fn an_empty_canonical_link_means_the_first_link() {
+    let dir = Scratch::new("canonical");
+    let text = model(
+        "1.9",
+        &format!(
+            "<link name=\"base\">{INERTIAL}</link>\n<frame name=\"f\" attached_to=\"__model__\"/>"
+        ),
+    )
+    .replace(
+        "<model name=\"m\">",
+        "<model name=\"m\" canonical_link=\"\">",
+    );
+    let path = dir.file("m.sdf", &text);
+    let v = run(&path);
+    for rule in ["U022", "U023"] {
+        assert!(
+            findings(&v, rule).is_empty(),
+            "{rule}: {:?}",
+            v.report.findings
+        );
+    }
+}
+
+#[test]
+fn a_box_without_size_and_a_mesh_without_uri_are_findings() {
+    let dir = Scratch::new("shapes");
+    let path = dir.file(
+        "m.sdf",
+        &model(
+            "1.9",
+            &format!("<link name=\"base\">{INERTIAL}\n<collision name=\"c\"><geometry><box/></geometry></collision>\n<visual name=\"v\"><geometry><mesh/></geometry></visual></link>"),
+        ),
+    );
+    let v = run(&path);
+    let messages: Vec<&str> = findings(&v, "U020")
+        .iter()
+        .map(|f| f.message.as_str())
+        .collect();
+    assert!(messages.contains(&"<box> without <size>"), "{messages:?}");
+    assert!(messages.contains(&"<mesh> without <uri>"), "{messages:?}");
+}
+
+#[test]
 fn a_world_analyses_its_robot_and_names_the_models_left_out() {
     let dir = Scratch::new("world");
     let world = dir.file(

@@ -226,7 +226,7 @@ rules! {
     MISSING_EFFORT_VELOCITY = "U303" "missing-effort-velocity" Info {
         what: "A continuous joint declares no effort or velocity limit (or an SDFormat joint, where both are optional, declares no `<effort>` or `<velocity>`).",
         why: "Gravity-torque margins and controllers cannot be checked against an unknown motor.",
-        fix: "Add `<limit effort=... velocity=.../>` from the actuator's datasheet.",
+        fix: "Add `<limit effort=... velocity=.../>` (SDFormat: `<axis><limit><effort>…</effort><velocity>…</velocity></limit></axis>`) from the actuator's datasheet.",
     }
     INVERTED_LIMITS = "U304" "inverted-limits" Warn {
         what: "A joint's lower limit is greater than its upper limit.",

@@ -76,7 +76,7 @@ pub struct SdfFiles {
 pub fn xml_options<'o>() -> roxmltree::ParsingOptions<'o> {
     roxmltree::ParsingOptions {
         allow_dtd: true,
-        nodes_limit: 5_000_000,
+        nodes_limit: crate::urdf::parse::MAX_NODES,
         ..roxmltree::ParsingOptions::default()
     }
 }

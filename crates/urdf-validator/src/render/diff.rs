@@ -52,7 +52,7 @@ fn tables(diff: &ReportDiff) -> Vec<Table> {
         .map(|j| {
             let margin = |f: &Option<JointFigures>| f.as_ref().and_then(|f| f.margin);
             let trend = match (margin(&j.figures.old), margin(&j.figures.new)) {
-                (Some(a), Some(b)) => format!("margin {:+.0}%", (b / a - 1.0) * 100.0),
+                (Some(a), Some(b)) if a > 0.0 => format!("margin {:+.0}%", (b / a - 1.0) * 100.0),
                 _ => String::new(),
             };
             [
@@ -221,7 +221,33 @@ pub fn render_diff_markdown(diff: &ReportDiff) -> String {
     out
 }
 
-/// Text safe inside a Markdown table cell.
+/// Text safe inside a Markdown table cell of a pull-request comment: no column break, no line break, no
+/// mention (`@team`), no HTML tag, no code span or emphasis started by the file's names.
 fn cell(text: &str) -> String {
-    text.replace('|', "\\|").replace('\n', " ")
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '|' | '@' | '<' | '>' | '`' | '*' | '[' | ']' | '\\' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '\n' | '\r' => out.push(' '),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cell;
+
+    #[test]
+    fn markdown_cells_cannot_break_the_table_mention_or_inject_html() {
+        assert_eq!(
+            cell("joint|x @org/team <img src=x> `code` *b* [l](u)\nnext"),
+            "joint\\|x \\@org/team \\<img src=x\\> \\`code\\` \\*b\\* \\[l\\](u) next"
+        );
+        assert_eq!(cell("r_elbow_flex_joint"), "r_elbow_flex_joint");
+    }
 }

@@ -14,7 +14,7 @@
 //! A report JSON written by `urdf_validate` (`<robot>_validation.json`, or a JSON array of them) also
 //! serves as a baseline; reports older than the `element` field match on rule, severity and message key.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Component, Path, PathBuf};
 
 use schemars::JsonSchema;
@@ -86,6 +86,9 @@ pub fn message_key(message: &str) -> String {
 /// The element paths of one URDF text: the element holding a byte, as `robot/link[@name='arm']/inertial`.
 pub struct ElementPaths<'a> {
     doc: Option<roxmltree::Document<'a>>,
+    /// The root element's element children (byte range, node), in document order: searched by halving,
+    /// since a robot has thousands of them and each finding looks one up.
+    top: Vec<(std::ops::Range<usize>, roxmltree::NodeId)>,
 }
 
 impl<'a> ElementPaths<'a> {
@@ -93,29 +96,44 @@ impl<'a> ElementPaths<'a> {
     pub fn new(text: &'a str) -> Self {
         let options = roxmltree::ParsingOptions {
             allow_dtd: true,
-            nodes_limit: 5_000_000,
+            nodes_limit: crate::urdf::parse::MAX_NODES,
             ..Default::default()
         };
-        ElementPaths {
-            doc: roxmltree::Document::parse_with_options(text, options).ok(),
-        }
+        let doc = roxmltree::Document::parse_with_options(text, options).ok();
+        let top = doc
+            .as_ref()
+            .map(|d| {
+                d.root_element()
+                    .children()
+                    .filter(roxmltree::Node::is_element)
+                    .map(|c| (c.range(), c.id()))
+                    .collect()
+            })
+            .unwrap_or_default();
+        ElementPaths { doc, top }
     }
 
     /// The path of the innermost element whose text holds the start of `span`.
     pub fn at(&self, span: Span) -> Option<String> {
         let byte = span.start as usize;
-        let mut node = self.doc.as_ref()?.root_element();
-        if !node.range().contains(&byte) {
+        let doc = self.doc.as_ref()?;
+        let root = doc.root_element();
+        if !root.range().contains(&byte) {
             return None;
         }
-        let mut path = step(node);
-        while let Some(child) = node
-            .children()
-            .find(|c| c.is_element() && c.range().contains(&byte))
-        {
+        let mut path = step(root);
+        let after = self.top.partition_point(|(range, _)| range.end <= byte);
+        let mut next = self
+            .top
+            .get(after)
+            .filter(|(range, _)| range.contains(&byte))
+            .and_then(|(_, id)| doc.get_node(*id));
+        while let Some(child) = next {
             path.push('/');
             path.push_str(&step(child));
-            node = child;
+            next = child
+                .children()
+                .find(|c| c.is_element() && c.range().contains(&byte));
         }
         Some(path)
     }
@@ -374,6 +392,15 @@ pub fn apply<T>(
     file: &Path,
 ) -> (Vec<(T, FindingReport)>, BaselineSummary) {
     let mut left: Vec<BaselineEntry> = robot.map(|r| r.findings.clone()).unwrap_or_default();
+    // Entries by what they match, in file order: one lookup per finding, not a scan of the baseline.
+    let mut by_print: HashMap<(&str, Severity, &str, Option<&str>), Vec<usize>> = HashMap::new();
+    for (index, e) in left.iter().enumerate() {
+        by_print
+            .entry((&e.rule, e.severity, &e.key, e.element.as_deref()))
+            .or_default()
+            .push(index);
+    }
+    let mut counts: Vec<usize> = left.iter().map(|e| e.count).collect();
     let mut matched = vec![false; findings.len()];
     for wildcard in [false, true] {
         for (index, (_, report)) in findings.iter().enumerate() {
@@ -381,22 +408,27 @@ pub fn apply<T>(
                 continue;
             }
             let print = Fingerprint::of(report);
-            let entry = left.iter_mut().find(|e| {
-                e.count > 0
-                    && e.rule == print.rule
-                    && e.severity == print.severity
-                    && e.key == print.key
-                    && if wildcard {
-                        e.element.is_none()
-                    } else {
-                        e.element == print.element
-                    }
-            });
-            if let Some(entry) = entry {
-                entry.count -= 1;
+            let element = if wildcard {
+                None
+            } else {
+                print.element.as_deref()
+            };
+            let entry = by_print
+                .get(&(
+                    print.rule.as_str(),
+                    print.severity,
+                    print.key.as_str(),
+                    element,
+                ))
+                .and_then(|entries| entries.iter().find(|&&e| counts[e] > 0));
+            if let Some(&entry) = entry {
+                counts[entry] -= 1;
                 matched[index] = true;
             }
         }
+    }
+    for (entry, count) in left.iter_mut().zip(counts) {
+        entry.count = count;
     }
     let mut new = Vec::new();
     let mut baselined = Vec::new();

@@ -15,6 +15,7 @@ use crate::input::source::Span;
 pub struct FrameGraph<'s, 'a> {
     scene: &'s Scene<'a>,
     poses: HashMap<String, Option<Transform>>,
+    links: HashMap<String, Option<String>>,
     reported: HashSet<(Span, &'static str)>,
     /// Findings: cycles and undefined names, once each.
     pub findings: Vec<Finding>,
@@ -26,6 +27,7 @@ impl<'s, 'a> FrameGraph<'s, 'a> {
         FrameGraph {
             scene,
             poses: HashMap::new(),
+            links: HashMap::new(),
             reported: HashSet::new(),
             findings: Vec::new(),
         }
@@ -46,6 +48,13 @@ impl<'s, 'a> FrameGraph<'s, 'a> {
     pub fn target(&mut self, reference: &Ref) -> String {
         if self.exists(&reference.name) {
             return reference.name.clone();
+        }
+        // Once per reference: the suggestion scans every frame name.
+        if self
+            .reported
+            .contains(&(reference.span, rules::SDF_UNDEFINED_FRAME.code))
+        {
+            return reference.fallback.clone();
         }
         let help = did_you_mean(
             &reference.name,
@@ -102,26 +111,32 @@ impl<'s, 'a> FrameGraph<'s, 'a> {
     }
 
     /// The link frame `name` is attached to (`world` for the world); `None` on a cycle, or for a model
-    /// without links.
+    /// without links. Memoised for every frame on the way, so a chain of n frames costs O(n) in all.
     pub fn link_of(&mut self, name: &str) -> Option<String> {
-        let mut seen: HashSet<String> = HashSet::new();
+        let mut visited: Vec<String> = Vec::new();
+        let mut on_chain: HashSet<String> = HashSet::new();
         let mut current = name.to_string();
-        loop {
+        let link = loop {
             if current == "world" {
-                return Some(current);
+                break Some(current);
+            }
+            if let Some(known) = self.links.get(&current) {
+                break known.clone();
             }
             let next = if current.is_empty() {
                 self.scene.canonical.clone()
             } else {
-                let def = self.scene.frames.get(&current)?;
+                let Some(def) = self.scene.frames.get(&current) else {
+                    break None;
+                };
                 match &def.kind {
-                    Kind::Link => return Some(current),
+                    Kind::Link => break Some(current),
                     Kind::Joint { child } => Some(child.clone()),
                     Kind::Frame { attached_to } => Some(attached_to.clone()),
                     Kind::Model { canonical } => canonical.clone(),
                 }
             };
-            if !seen.insert(current.clone()) {
+            if !on_chain.insert(current.clone()) {
                 let span = self
                     .scene
                     .frames
@@ -132,9 +147,17 @@ impl<'s, 'a> FrameGraph<'s, 'a> {
                     span,
                     format!("'{current}' is attached to a chain of frames that comes back to it, so it is attached to no link"),
                 );
-                return None;
+                break None;
             }
-            current = self.target(&next?);
+            visited.push(current.clone());
+            let Some(next) = next else {
+                break None;
+            };
+            current = self.target(&next);
+        };
+        for frame in visited {
+            self.links.insert(frame, link.clone());
         }
+        link
     }
 }

@@ -137,21 +137,25 @@ fn geometry(sink: &mut Sink, el: El) -> Option<Spanned<Geometry>> {
         return None;
     };
     let span = sink.span(shape);
-    let read = |sink: &mut Sink, tag: &str| -> Option<f64> {
-        let Some(c) = shape.child(tag) else {
+    let required = |sink: &mut Sink, tag: &str| {
+        let found = shape.child(tag);
+        if found.is_none() {
             sink.report(
                 &rules::SDF_STRUCTURE,
                 span,
                 format!("<{}> without <{tag}>", shape.node.tag_name().name()),
             );
-            return None;
-        };
+        }
+        found
+    };
+    let read = |sink: &mut Sink, tag: &str| -> Option<f64> {
+        let c = required(sink, tag)?;
         let value = pose::number(c.text(), &format!("<{tag}>"));
         sink.value(c, value)
     };
     let value = match shape.node.tag_name().name() {
         "box" => {
-            let size = shape.child("size")?;
+            let size = required(sink, "size")?;
             let value = pose::vector3(size.text(), "<size>");
             Geometry::Box {
                 size: sink.value(size, value)?,
@@ -169,7 +173,7 @@ fn geometry(sink: &mut Sink, el: El) -> Option<Spanned<Geometry>> {
             radius: read(sink, "radius")?,
         },
         "mesh" => {
-            let uri = shape.child("uri")?;
+            let uri = required(sink, "uri")?;
             let scale = match shape.child("scale") {
                 Some(s) => {
                     let value = pose::vector3(s.text(), "<scale>");

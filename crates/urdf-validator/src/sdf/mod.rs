@@ -56,6 +56,7 @@ pub fn parse_sdf(files: &SdfFiles, wanted: Option<&str>) -> Result<(Robot, Vec<F
         docs: &docs,
         versions: &versions,
         scene: Scene::default(),
+        models_read: 0,
     };
     match pick_model(root, &mut collector, wanted)? {
         Some((model, overrides)) => collector.model(model, "", overrides, 0),

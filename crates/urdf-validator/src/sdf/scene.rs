@@ -21,6 +21,10 @@ pub const FRAME_SEMANTICS: Version = (1, 7);
 /// Deepest nesting of `<model>`s followed (includes count too).
 const MAX_NESTING: usize = 32;
 
+/// Most `<model>`s read in one file, includes expanded: a file included a thousand times by a file included
+/// a thousand times would otherwise be read a million times (untrusted input: bounded work).
+pub const MAX_MODELS: usize = 10_000;
+
 /// An element and the file holding it.
 #[derive(Clone, Copy, Debug)]
 pub struct El<'a> {
@@ -282,6 +286,8 @@ pub struct Collector<'a> {
     pub versions: &'a [Version],
     /// The scene being built.
     pub scene: Scene<'a>,
+    /// `<model>`s read so far (nested and included ones too), against [`MAX_MODELS`].
+    pub models_read: usize,
 }
 
 impl<'a> Collector<'a> {
@@ -347,6 +353,18 @@ impl<'a> Collector<'a> {
 
     /// Read model `el` whose contents are named with prefix `scope` (`""` for the analysed model).
     pub fn model(&mut self, el: El<'a>, scope: &str, overrides: Overrides, depth: usize) {
+        self.models_read += 1;
+        if self.models_read > MAX_MODELS {
+            if self.models_read == MAX_MODELS + 1 {
+                let span = self.sink.span(el);
+                self.sink.report(
+                    &rules::SDF_STRUCTURE,
+                    span,
+                    format!("more than {MAX_MODELS} models once includes are expanded: this one and the rest are not read"),
+                );
+            }
+            return;
+        }
         let version = self
             .versions
             .get(el.file)
@@ -431,7 +449,12 @@ impl<'a> Collector<'a> {
                 _ => {}
             }
         }
-        let canonical = match el.node.attribute("canonical_link").filter(|_| !legacy) {
+        let canonical = match el
+            .node
+            .attribute("canonical_link")
+            // Unset or empty: the first link, as the spec says.
+            .filter(|c| !legacy && !c.is_empty())
+        {
             Some(written) => Some(self.sink.reference(el, "canonical_link", written, scope)),
             None => first_link.or_else(|| {
                 let nested = first_nested?;

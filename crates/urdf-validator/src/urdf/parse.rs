@@ -12,7 +12,7 @@ use crate::input::LoadError;
 use crate::urdf::robot::*;
 
 /// Largest number of XML nodes accepted.
-const MAX_NODES: u32 = 5_000_000;
+pub(crate) const MAX_NODES: u32 = 5_000_000;
 
 /// Parse URDF text. `path` is only used in error messages.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<(Robot, Vec<Finding>), LoadError> {
