@@ -130,6 +130,17 @@ def test_validate_string_resolves_relative_paths_from_base_dir(example: Path) ->
     assert any(f["severity"] == "CRITICAL" for f in bad.findings)
 
 
+def test_sdf_files_and_sdf_text_give_the_same_report() -> None:
+    from conftest import REPO
+
+    sdf = REPO / "crates" / "urdf-validator" / "tests" / "data" / "sdf" / "nested_arm.sdf"
+    from_file = urdf_validator.validate(sdf, samples=500)
+    from_text = urdf_validator.validate_string(sdf.read_text(), base_dir=sdf.parent, name=sdf.name, samples=500)
+    assert from_file.statics is not None and from_file.statics["joints"]
+    assert from_text.statics["joints"] == from_file.statics["joints"]
+    assert [f["rule"] for f in from_text.findings] == [f["rule"] for f in from_file.findings]
+
+
 def test_reports_pickle_and_serialise(example: Path) -> None:
     report = urdf_validator.validate(example, samples=500)
     again = pickle.loads(pickle.dumps(report))

@@ -118,16 +118,19 @@ pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError>
     run(loaded, options, clock)
 }
 
-/// Validate URDF `text` that was read from `path` (used for positions, relative meshes and the report).
-/// The text is read as URDF whatever its root: SDFormat is read from files ([`validate`]), where its
-/// includes are.
+/// Validate URDF or SDFormat `text` that was read from `path` (used for positions, relative meshes and
+/// includes, and the report). SDFormat is told by its `<sdf>` root, as [`validate`] tells it.
 pub fn validate_text(
     text: String,
     path: &Path,
     options: &Options,
 ) -> Result<Validation, LoadError> {
     let clock = Stopwatch::reporting_to(options.progress.clone());
-    run(Loaded::from_text(text, path), options, clock)
+    run(
+        Loaded::from_document(text, path, &options.resolver)?,
+        options,
+        clock,
+    )
 }
 
 /// The pipeline: parse → model → assets → checks → analyses → report.

@@ -10,7 +10,7 @@ use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::{LoadError, Loaded};
 use urdf_validator::report::FindingReport;
 use urdf_validator::urdf::robot::{JointKind, Robot};
-use urdf_validator::{validate, Options, Validation};
+use urdf_validator::{validate, validate_text, Options, Validation};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sdf")
@@ -629,4 +629,29 @@ fn hostile_values_never_panic() {
         }
     }
     assert!(variants > 500, "{variants}");
+}
+
+#[test]
+fn sdf_text_validates_as_the_file_does() {
+    let path = data().join("nested_arm.sdf");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let from_file = validate(&path, &options(Vec::new())).unwrap().report;
+    let from_text = validate_text(text, &path, &options(Vec::new()))
+        .unwrap()
+        .report;
+    assert_eq!(
+        from_text.statics.as_ref().map(|s| s.joints.len()),
+        from_file.statics.as_ref().map(|s| s.joints.len())
+    );
+    assert!(from_text
+        .statics
+        .as_ref()
+        .is_some_and(|s| !s.joints.is_empty()));
+    let rules = |r: &urdf_validator::report::Report| {
+        r.findings
+            .iter()
+            .map(|f| (f.rule.clone(), f.line))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(rules(&from_text), rules(&from_file));
 }

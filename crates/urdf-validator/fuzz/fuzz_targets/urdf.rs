@@ -1,6 +1,7 @@
-//! URDF text → the whole validation pipeline (parse, rules, physics, statics, stability, workspace,
-//! self-collision). Mesh references resolve against an empty sandbox folder and a resolver without
-//! package paths, so runs stay fast and independent of the machine's files (absolute paths excepted).
+//! URDF or SDFormat text (an `<sdf>` root; the seeds hold both) → the whole validation pipeline (parse,
+//! rules, physics, statics, stability, workspace, self-collision). Mesh references resolve against an empty
+//! sandbox folder and a resolver without package paths, so runs stay fast and independent of the machine's
+//! files (absolute paths excepted).
 #![no_main]
 
 use std::path::PathBuf;

@@ -157,7 +157,16 @@ impl Loaded {
                 origin: Origin::Xacro(expanded),
             });
         }
-        let text = read_text(path)?;
+        Loaded::from_document(read_text(path)?, path, resolver)
+    }
+
+    /// A URDF or SDFormat document `text` read from `path` (SDFormat by its `<sdf>` root: its includes are
+    /// read from `path`'s folder and through `resolver`).
+    pub fn from_document(
+        text: String,
+        path: &Path,
+        resolver: &resolve::PackageResolver,
+    ) -> Result<Loaded, LoadError> {
         if sdf::is_sdf(&text) {
             return Ok(Loaded {
                 path: path.to_path_buf(),
