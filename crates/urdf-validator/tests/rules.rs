@@ -359,11 +359,11 @@ fn every_rule_in_the_registry_has_a_case() {
 rule_case! {
     u001_not_a_robot, "U001",
     fires: r#"<?xml version="1.0"?>
-<sdf version="1.6">
-  <model name="m"/>
-</sdf>
+<mujoco model="m">
+  <worldbody/>
+</mujoco>
 "#,
-    at: (2, 1, "<sdf"),
+    at: (2, 1, "<mujoco"),
     clean: r#"<?xml version="1.0"?>
 <robot name="m">
   <link name="base"/>
@@ -1968,12 +1968,12 @@ fn an_error_on_a_later_line_reports_that_line() {
 }
 
 #[test]
-fn an_sdf_root_is_u001_not_an_error() {
-    let urdf = r#"<sdf version="1.7"><model name="m"><link name="l"/></model></sdf>"#;
+fn an_mjcf_root_is_u001_not_an_error() {
+    let urdf = r#"<mujoco model="m"><worldbody><body name="b"/></worldbody></mujoco>"#;
     let r = report(urdf);
     let hit = the_one(&r.findings, "U001");
     assert_eq!(hit.severity, Severity::Critical);
-    assert!(hit.message.contains("<sdf>"), "{}", hit.message);
+    assert!(hit.message.contains("<mujoco>"), "{}", hit.message);
     assert_eq!((hit.line, hit.column), (Some(1), Some(1)));
     // Nothing else is checked on a document that is not a robot.
     assert_eq!(r.findings.len(), 1, "{}", describe(&r.findings));
