@@ -7,8 +7,6 @@
 use std::fmt;
 use std::str::FromStr;
 
-use nalgebra::{Matrix3, SymmetricEigen};
-
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::model::{LinkId, Model};
@@ -107,21 +105,6 @@ fn declared_mass(link: &Link) -> Option<f64> {
         .and_then(|i| i.mass.as_ref())
         .map(|m| m.value)
         .filter(|m| m.is_finite())
-}
-
-/// Principal moments, ascending; `None` when a component is not finite.
-fn principal_moments(inertia: &Inertia) -> Option<[f64; 3]> {
-    let m = inertia.matrix();
-    if m.iter().flatten().any(|v| !v.is_finite()) {
-        return None;
-    }
-    let mut values: Vec<f64> = SymmetricEigen::new(Matrix3::from_fn(|r, c| m[r][c]))
-        .eigenvalues
-        .iter()
-        .copied()
-        .collect();
-    values.sort_by(f64::total_cmp);
-    Some([values[0], values[1], values[2]])
 }
 
 fn link_name(robot: &Robot, link: LinkId) -> &str {
@@ -255,7 +238,7 @@ fn mujoco_mass_ok(link: &Link) -> bool {
             let moments = inertial
                 .inertia
                 .as_ref()
-                .and_then(principal_moments)
+                .and_then(Inertia::principal_moments)
                 .unwrap_or([0.0; 3]);
             mass >= MJ_MINVAL && moments.iter().all(|&m| m >= MJ_MINVAL)
         }
@@ -281,7 +264,7 @@ fn mujoco(robot: &Robot, model: &Model) -> Vec<Finding> {
         // Checked per link, fused ones included: PR2's fixed `sensor_mount_link` is refused (--deep, U741).
         let fused = is_fixed(robot, model, id);
         if let Some(inertia) = link.inertial.as_ref().and_then(|i| i.inertia.as_ref()) {
-            if let Some([a, b, c]) = principal_moments(inertia) {
+            if let Some([a, b, c]) = inertia.principal_moments() {
                 if a >= 0.0 && a + b < c {
                     findings.push(Finding::new(
                         &rules::MUJOCO_INERTIA_TRIANGLE,

@@ -11,7 +11,7 @@
 //! position limits (equal, or mirrored: `[l, u]` against `[−u, −l]`), effort and velocity. A difference
 //! above the tolerances below is a U770 finding naming the pair and the difference; a true twin gives none.
 
-use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+use nalgebra::Vector3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
@@ -343,18 +343,13 @@ fn link_differences(a: &Link, b: &Link) -> Vec<String> {
     differences
 }
 
-/// The inertia tensor's eigenvalues, ascending (frame-independent, so flipped frames compare).
+/// The principal moments of a link's inertia tensor (frame-independent, so flipped frames compare).
 fn principal_moments(link: &Link) -> Option<[f64; 3]> {
-    let i = link.inertial.as_ref()?.inertia.as_ref()?;
-    let tensor = Matrix3::new(
-        i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz,
-    );
-    if tensor.iter().any(|v| !v.is_finite()) {
-        return None;
-    }
-    let mut moments: [f64; 3] = SymmetricEigen::new(tensor).eigenvalues.into();
-    moments.sort_by(f64::total_cmp);
-    Some(moments)
+    link.inertial
+        .as_ref()?
+        .inertia
+        .as_ref()?
+        .principal_moments()
 }
 
 /// Limits, effort and velocity of two mirrored joints, beyond the tolerances.

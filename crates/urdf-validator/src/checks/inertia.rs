@@ -1,8 +1,6 @@
 //! Mass and inertia plausibility: missing inertials on moving links, signs, positive definiteness and the
 //! triangle inequality on the principal moments.
 
-use nalgebra::{Matrix3, SymmetricEigen};
-
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::model::{LinkId, Model};
@@ -62,26 +60,10 @@ pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
     findings
 }
 
-/// Principal moments, ascending; `None` when a component is not finite.
-pub fn principal_moments(inertia: &Inertia) -> Option<[f64; 3]> {
-    let m = inertia.matrix();
-    if m.iter().flatten().any(|v| !v.is_finite()) {
-        return None;
-    }
-    let matrix = Matrix3::from_fn(|r, c| m[r][c]);
-    let mut values: Vec<f64> = SymmetricEigen::new(matrix)
-        .eigenvalues
-        .iter()
-        .copied()
-        .collect();
-    values.sort_by(f64::total_cmp);
-    Some([values[0], values[1], values[2]])
-}
-
 /// One finding at most per tensor: the most basic problem wins (zero, then not positive definite, then the
 /// triangle inequality), since each implies noise in the next.
 fn check_tensor(inertia: &Inertia, owner: &str, moving_with_mass: bool) -> Option<Finding> {
-    let [a, b, c] = principal_moments(inertia)?;
+    let [a, b, c] = inertia.principal_moments()?;
     let components = [
         inertia.ixx,
         inertia.ixy,
@@ -151,7 +133,7 @@ mod tests {
 
     #[test]
     fn principal_moments_of_a_rotated_tensor() {
-        let m = principal_moments(&tensor(2.0, 2.0, 1.0, 1.0)).unwrap();
+        let m = tensor(2.0, 2.0, 1.0, 1.0).principal_moments().unwrap();
         assert!(
             (m[0] - 1.0).abs() < 1e-12 && (m[1] - 1.0).abs() < 1e-12 && (m[2] - 3.0).abs() < 1e-12
         );

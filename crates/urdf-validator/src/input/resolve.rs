@@ -228,18 +228,7 @@ impl PackageResolver {
                 "model://{rest} does not name a file inside a model folder"
             ));
         }
-        let mut searched = Vec::new();
-        for root in self.model_roots(name, dir) {
-            let candidate = root.join(file);
-            if searched.contains(&candidate) {
-                continue;
-            }
-            if candidate.is_file() {
-                return Resolution::Found(candidate);
-            }
-            searched.push(candidate);
-        }
-        Resolution::NotFound { searched }
+        first_file(self.model_roots(name, dir), file)
     }
 
     /// Candidate folders of model `name`: the Gazebo model paths, the `--package-path` folders, then the
@@ -295,18 +284,7 @@ impl PackageResolver {
                 "package://{package} URI names no file inside the package"
             ));
         }
-        let mut searched = Vec::new();
-        for root in self.package_roots(package, urdf_dir) {
-            let candidate = root.join(file);
-            if searched.contains(&candidate) {
-                continue;
-            }
-            if candidate.is_file() {
-                return Resolution::Found(candidate);
-            }
-            searched.push(candidate);
-        }
-        Resolution::NotFound { searched }
+        first_file(self.package_roots(package, urdf_dir), file)
     }
 
     /// All candidate roots for `package`, in search order: the cached
@@ -526,6 +504,22 @@ fn split_path_list(value: Option<&str>) -> Vec<PathBuf> {
 /// A package name usable as a single path component.
 fn valid_package_name(name: &str) -> bool {
     !name.is_empty() && name != "." && name != ".." && !name.contains(['/', '\\', '\0'])
+}
+
+/// `file` in the first of `roots` holding it, or every distinct place looked at.
+fn first_file(roots: Vec<PathBuf>, file: &str) -> Resolution {
+    let mut searched = Vec::new();
+    for root in roots {
+        let candidate = root.join(file);
+        if searched.contains(&candidate) {
+            continue;
+        }
+        if candidate.is_file() {
+            return Resolution::Found(candidate);
+        }
+        searched.push(candidate);
+    }
+    Resolution::NotFound { searched }
 }
 
 fn push_unique(list: &mut Vec<PathBuf>, path: PathBuf) {

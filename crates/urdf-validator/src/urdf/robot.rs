@@ -105,6 +105,18 @@ impl Inertia {
             [self.ixz, self.iyz, self.izz],
         ]
     }
+
+    /// The principal moments (the tensor's eigenvalues), ascending; `None` when a component is not finite.
+    pub fn principal_moments(&self) -> Option<[f64; 3]> {
+        let m = self.matrix();
+        if m.iter().flatten().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let tensor = nalgebra::Matrix3::from_fn(|r, c| m[r][c]);
+        let mut values: [f64; 3] = nalgebra::SymmetricEigen::new(tensor).eigenvalues.into();
+        values.sort_by(f64::total_cmp);
+        Some(values)
+    }
 }
 
 /// A `<visual>` or `<collision>`.
