@@ -14,6 +14,7 @@ use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
 use parry3d_f64::shape::SupportMap;
 
 use crate::assets::supports::Support;
+use crate::input::mesh::surface::{self, SurfaceEdges};
 
 /// Two shapes closer than this (metres) are in contact: touching counts as colliding.
 pub const CONTACT_DISTANCE: f64 = 1e-6;
@@ -100,13 +101,14 @@ fn cube_direction(cell: usize) -> Vector {
 const CLIMB_FROM: usize = 16;
 
 impl Hull {
-    /// The hull of `points` (its vertices or more; the support map is the same). `triangles`: a
-    /// triangulation of the hull's surface by index into `points` when one is known (the mesh loader
-    /// builds one per mesh file), else parry's quickhull builds it; either is checked before it is used.
-    pub fn new(points: Vec<Vector>, triangles: Option<&[[u32; 3]]>) -> Hull {
+    /// The hull of `points` (its vertices or more; the support map is the same). `surface`: a closed
+    /// convex triangulation of the hull by index into `points`, already checked (the mesh loader checks
+    /// one per mesh file, see [`MeshData::hull_triangles`](crate::input::mesh::MeshData)); without one,
+    /// parry's quickhull builds it here and it is checked before it is used.
+    pub fn new(points: Vec<Vector>, surface: Option<&[[u32; 3]]>) -> Hull {
         if points.len() >= CLIMB_FROM {
-            let built = match triangles.filter(|t| !t.is_empty()) {
-                Some(triangles) => Self::from_triangles(&points, triangles),
+            let built = match surface.filter(|t| !t.is_empty()) {
+                Some(triangles) => Self::from_surface(&points, triangles),
                 None => Self::triangulated(&points),
             };
             if let Some(hull) = built {
@@ -130,9 +132,9 @@ impl Hull {
         Self::checked(points, vertices, &triangles)
     }
 
-    /// [`triangulated`](Self::triangulated) with the triangles given by index into `points`: the points
-    /// no triangle names are left out of the vertices (and checked to be inside).
-    fn from_triangles(points: &[Vector], triangles: &[[u32; 3]]) -> Option<Hull> {
+    /// The hull of a checked closed convex triangulation given by index into `points`: the points no
+    /// triangle names (inside, as the check found) are left out of the vertices.
+    fn from_surface(points: &[Vector], triangles: &[[u32; 3]]) -> Option<Hull> {
         let mut slot = vec![u32::MAX; points.len()];
         let mut vertices = Vec::new();
         let mut renumbered = Vec::with_capacity(triangles.len());
@@ -148,105 +150,24 @@ impl Hull {
             }
             renumbered.push(corner);
         }
-        Self::checked(points, vertices, &renumbered)
+        Self::with_edges(vertices, &renumbered)
     }
 
     /// The hull of `vertices` and `triangles` (a triangulation of the hull of `points`) with its edges,
     /// when the surface is closed and convex and holds every point.
     fn checked(points: &[Vector], vertices: Vec<Vector>, triangles: &[[u32; 3]]) -> Option<Hull> {
-        let n = vertices.len();
-        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 3);
-        for t in triangles {
-            if t.iter().any(|&v| v as usize >= n) {
-                return None;
-            }
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                edges.push((a.min(b), a.max(b)));
-            }
-        }
-        edges.sort_unstable();
-        // Closed: every edge is shared by exactly two triangles.
-        let closed = edges
-            .chunks(2)
-            .all(|pair| pair.len() == 2 && pair[0] == pair[1])
-            && edges.windows(3).all(|w| w[0] != w[2]);
-        if !closed || n < 4 {
+        if !surface::is_closed_convex(points, &vertices, triangles) {
             return None;
         }
-        let centroid = vertices.iter().copied().sum::<Vector>() / n as f64;
-        let planes: Vec<Option<(Vector, Vector)>> = triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| vertices[v as usize]);
-                let mut normal = (b - a).cross(c - a);
-                if normal.dot(centroid - a) > 0.0 {
-                    normal = -normal;
-                }
-                normal.try_normalize().map(|normal| (normal, a))
-            })
-            .collect();
-        let outside = |plane: &Option<(Vector, Vector)>, p: Vector| {
-            plane.is_some_and(|(normal, a)| normal.dot(p - a) > 1e-9)
-        };
-        if planes.iter().all(Option::is_some) {
-            // A closed surface convex across every edge is convex: checked in O(faces). Its vertices are
-            // then inside every face's plane; only the input points that are not vertices (quickhull drops
-            // points on edges and faces) are checked against every plane. A degenerate (zero-area) face
-            // could hide a fold from its neighbours: then every point is checked.
-            let mut sides: Vec<((u32, u32), usize)> = Vec::with_capacity(triangles.len() * 3);
-            for (index, t) in triangles.iter().enumerate() {
-                for k in 0..3 {
-                    let (a, b) = (t[k], t[(k + 1) % 3]);
-                    sides.push(((a.min(b), a.max(b)), index));
-                }
-            }
-            sides.sort_unstable();
-            for pair in sides.chunks(2) {
-                let [(edge, first), (_, second)] = [pair[0], pair[1]];
-                let opposite = |t: usize| {
-                    let v = triangles[t]
-                        .into_iter()
-                        .find(|&v| v != edge.0 && v != edge.1);
-                    vertices[v.unwrap_or(edge.0) as usize]
-                };
-                if outside(&planes[first], opposite(second))
-                    || outside(&planes[second], opposite(first))
-                {
-                    return None;
-                }
-            }
-            if vertices.len() != points.len() {
-                let bits = |p: &Vector| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-                let mut on_surface: Vec<[u64; 3]> = vertices.iter().map(bits).collect();
-                on_surface.sort_unstable();
-                let inner = points
-                    .iter()
-                    .filter(|p| on_surface.binary_search(&bits(p)).is_err());
-                for &p in inner {
-                    if planes.iter().any(|plane| outside(plane, p)) {
-                        return None;
-                    }
-                }
-            }
-        } else if planes
-            .iter()
-            .any(|plane| points.iter().any(|&p| outside(plane, p)))
-        {
-            return None;
-        }
-        edges.dedup();
-        let mut adjacency = vec![Vec::new(); n];
-        for (a, b) in edges {
-            adjacency[a as usize].push(b);
-            adjacency[b as usize].push(a);
-        }
-        let mut offsets = vec![0];
-        let mut neighbours = Vec::new();
-        for list in adjacency {
-            neighbours.extend(list);
-            offsets.push(neighbours.len());
-        }
+        Self::with_edges(vertices, triangles)
+    }
+
+    /// The hull of `vertices` with the edges of `triangles`, a closed convex triangulation of them.
+    fn with_edges(vertices: Vec<Vector>, triangles: &[[u32; 3]]) -> Option<Hull> {
+        let SurfaceEdges {
+            offsets,
+            neighbours,
+        } = SurfaceEdges::of(vertices.len(), triangles)?;
         let mut hull = Hull {
             points: vertices,
             offsets,

@@ -15,7 +15,7 @@ use std::time::UNIX_EPOCH;
 use super::{MeshData, MeshOptions, UpAxis, UpAxisPolicy};
 
 /// First bytes of every entry.
-const MAGIC: &[u8; 8] = b"UVMESH02";
+const MAGIC: &[u8; 8] = b"UVMESH03";
 
 /// Largest entry read (a hull has at most a few hundred thousand vertices).
 const MAX_ENTRY_BYTES: u64 = 256 * 1024 * 1024;

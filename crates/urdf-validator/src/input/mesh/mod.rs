@@ -23,6 +23,7 @@
 //! parry3d-f64's quickhull after an affine normalisation (see [`MeshData::hull`]).
 
 mod disk_cache;
+pub(crate) mod surface;
 
 use std::collections::{HashMap, HashSet};
 use std::fmt;
@@ -98,8 +99,9 @@ pub struct MeshData {
     /// outside the hull by more than 1.3e-7 of the mesh's bounding-box diagonal.
     pub hull: Vec<[f64; 3]>,
     /// A triangulation of the hull's surface (indices into `hull`, by parry's quickhull on the hull
-    /// vertices), so collision shapes can climb along its edges without triangulating each placed copy
-    /// again; empty when it could not be built (consumers then build their own, or scan).
+    /// vertices), checked once here to be closed and convex and to hold every hull vertex, so collision
+    /// shapes climb along its edges without triangulating or checking each placed copy again; empty when
+    /// it could not be built or failed the check (consumers then build their own, or scan).
     pub hull_triangles: Vec<[u32; 3]>,
     /// Axis-aligned bounds (min, max) of `vertices`.
     pub aabb: ([f64; 3], [f64; 3]),
@@ -1465,10 +1467,9 @@ fn to_parry(p: [f64; 3]) -> parry3d_f64::math::Vector {
 
 type HullResult = (Vec<parry3d_f64::math::Vector>, Vec<[u32; 3]>);
 
-/// parry's quickhull, with its known panics on degenerate input (dimforge/parry#49) turned into `None`
-/// as a last resort (the inputs here are whitened and non-flat, so this is not expected to trigger).
-/// The triangles of the hull of `hull` (its vertices), by index into `hull`; empty when quickhull fails or
-/// returns a point it was not given.
+/// The triangles of the hull of `hull` (its vertices), by index into `hull`; empty when quickhull fails,
+/// returns a point it was not given, or gives a surface that is not closed and convex around every
+/// point of `hull` ([`surface::is_closed_convex`]).
 fn triangulate(hull: &[[f64; 3]]) -> Vec<[u32; 3]> {
     if hull.len() < 4 {
         return Vec::new();
@@ -1477,6 +1478,9 @@ fn triangulate(hull: &[[f64; 3]]) -> Vec<[u32; 3]> {
     let Some((vertices, triangles)) = run_hull(&points) else {
         return Vec::new();
     };
+    if !surface::is_closed_convex(&points, &vertices, &triangles) {
+        return Vec::new();
+    }
     let index: HashMap<[u64; 3], u32> = hull
         .iter()
         .enumerate()
@@ -1499,6 +1503,8 @@ fn triangulate(hull: &[[f64; 3]]) -> Vec<[u32; 3]> {
         .unwrap_or_default()
 }
 
+/// parry's quickhull, with its known panics on degenerate input (dimforge/parry#49) turned into `None`
+/// as a last resort (the inputs here are whitened and non-flat, so this is not expected to trigger).
 fn run_hull(points: &[parry3d_f64::math::Vector]) -> Option<HullResult> {
     std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points))
         .ok()?
