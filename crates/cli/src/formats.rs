@@ -206,9 +206,7 @@ pub fn emit(
     }
     let mut ok = true;
     if plan.text {
-        let mut stdout = anstream::stdout().lock();
-        let _ = write!(stdout, "{}", text_document(args, outcomes, true));
-        drop(stdout);
+        print_styled(&text_document(args, outcomes, true));
     } else {
         for outcome in outcomes {
             if let Err(error) = &outcome.validation {
@@ -244,8 +242,7 @@ pub fn emit(
         if let Some(document) = document {
             match target {
                 Target::Stdout => {
-                    let mut stdout = anstream::stdout().lock();
-                    let _ = stdout.write_all(document.as_bytes());
+                    print_styled(&document);
                 }
                 Target::File(path) => {
                     let document = anstream::adapter::strip_str(&document).to_string();
@@ -285,6 +282,15 @@ pub fn emit(
 
 /// The text report of every outcome and, for a batch or `--quiet`, the summary table. `errors`: also
 /// print load and write errors on stderr, in order.
+/// Print `text` to stdout in one write, its ANSI styles kept or stripped as `anstream` decides for stdout
+/// (a line-buffered stdout would make a system call per line); a closed pipe is ignored.
+fn print_styled(text: &str) {
+    let choice = anstream::AutoStream::choice(&std::io::stdout());
+    let mut styled = anstream::AutoStream::new(Vec::with_capacity(text.len()), choice);
+    let _ = styled.write_all(text.as_bytes());
+    let _ = std::io::stdout().lock().write_all(&styled.into_inner());
+}
+
 fn text_document(args: &Args, outcomes: &[Outcome], errors: bool) -> String {
     let mut out = String::new();
     let mut stderr = anstream::stderr().lock();
@@ -307,14 +313,14 @@ fn text_document(args: &Args, outcomes: &[Outcome], errors: bool) -> String {
             Ok(_) => {}
             Err(error) if errors => {
                 // Keep stdout and stderr in order on a terminal.
-                let _ = anstream::stdout().lock().write_all(out.as_bytes());
+                print_styled(&out);
                 out.clear();
                 let _ = writeln!(stderr, "error: {error}");
             }
             Err(_) => {}
         }
         if let (Some(error), true) = (&outcome.write_error, errors) {
-            let _ = anstream::stdout().lock().write_all(out.as_bytes());
+            print_styled(&out);
             out.clear();
             let _ = writeln!(stderr, "error: {error}");
         }

@@ -211,25 +211,34 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     };
     let bases = outputs::report_bases(&files, args.output_dir.as_deref());
     let progress = progress::Bar::for_batch(files.len());
-    let outcomes: Vec<Outcome> = files
-        .par_iter()
-        .zip(bases.par_iter())
-        .zip(config_of.par_iter())
-        .map(|((file, base), config)| {
-            let options = groups
-                .iter()
-                .find(|(p, _)| p == config)
-                .map(|(_, options)| options);
-            let outcome = match options {
-                Some(options) => {
-                    outputs::validate_one(file, base, options, &files_to_write, timeout)
-                }
-                None => outputs::Outcome::not_configured(file),
-            };
-            progress.tick(file);
-            outcome
-        })
-        .collect();
+    let validate_file = |((file, base), config): ((&PathBuf, &PathBuf), &Option<PathBuf>)| {
+        let options = groups
+            .iter()
+            .find(|(p, _)| p == config)
+            .map(|(_, options)| options);
+        let outcome = match options {
+            Some(options) => outputs::validate_one(file, base, options, &files_to_write, timeout),
+            None => outputs::Outcome::not_configured(file),
+        };
+        progress.tick(file);
+        outcome
+    };
+    // Files in parallel; a single file on this thread (the stages parallelise their own heavy work).
+    let outcomes: Vec<Outcome> = if files.len() > 1 {
+        files
+            .par_iter()
+            .zip(bases.par_iter())
+            .zip(config_of.par_iter())
+            .map(validate_file)
+            .collect()
+    } else {
+        files
+            .iter()
+            .zip(bases.iter())
+            .zip(config_of.iter())
+            .map(validate_file)
+            .collect()
+    };
     progress.finish();
     let single_file = paths.len() == 1 && !paths[0].is_dir();
     let written = formats::emit(

@@ -135,7 +135,19 @@ pub fn validate_text(
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
 fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
-    let (robot, mut findings) = parse(&loaded, options)?;
+    // A URDF's XML document is read once: the parse reads the robot from it, the report element paths.
+    let urdf_text = loaded
+        .sdf()
+        .is_none()
+        .then(|| urdf::parse::UrdfText::new(loaded.text()));
+    let document = urdf_text
+        .as_ref()
+        .map(|text| text.document(&loaded.path))
+        .transpose()?;
+    let (robot, mut findings) = match (&urdf_text, &document) {
+        (Some(text), Some(document)) => text.parse(document),
+        _ => parse_sdf(&loaded, options)?,
+    };
     clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
     findings.extend(tree_findings);
@@ -189,6 +201,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     };
     let report = report::build(Outcome {
         loaded: &loaded,
+        document: document.as_ref(),
         robot: &robot,
         model: &model,
         findings,
@@ -205,20 +218,19 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     Ok(Validation { report, sources })
 }
 
-/// The parse stage of the loaded format: URDF text, or the SDFormat files.
-fn parse(
+/// The parse stage of SDFormat files.
+fn parse_sdf(
     loaded: &Loaded,
     options: &Options,
 ) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
-    match loaded.sdf() {
-        Some(files) => sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| {
-            LoadError::Usage {
-                path: loaded.path.clone(),
-                message,
-            }
-        }),
-        None => urdf::parse_urdf(loaded.text(), &loaded.path),
-    }
+    let files = loaded.sdf().ok_or_else(|| LoadError::Usage {
+        path: loaded.path.clone(),
+        message: "not an SDFormat file".to_string(),
+    })?;
+    sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| LoadError::Usage {
+        path: loaded.path.clone(),
+        message,
+    })
 }
 
 /// `--payload-mass` at the link statics carries it at.

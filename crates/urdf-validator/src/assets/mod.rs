@@ -1,24 +1,34 @@
 //! The assets stage: everything outside the URDF that the checks and analyses read, loaded once.
 //!
-//! Every mesh URI of every link (visual and collision) is resolved once, every distinct file is read and
-//! reduced to its convex hull once (in parallel, through the run's shared [`MeshCache`]), every link's
-//! ground-contact [`LinkSupports`] are built once from those hulls, and the SRDF is found and read once.
-//! The checks report what could not be loaded (once per mesh element); the analyses only borrow.
+//! Every mesh URI of every link (visual and collision) is resolved once. The meshes the links' contact and
+//! collision shapes are made of are read and reduced to their convex hulls once, in parallel, through the
+//! run's shared [`MeshCache`]; every link's ground-contact [`LinkSupports`] are built once from those
+//! hulls, and the SRDF is found and read once. Any other mesh is read on first use (the checks only need
+//! its bounds, which the disk cache gives without its points). The checks report what could not be
+//! loaded (once per mesh element); the analyses only borrow.
 
 pub(crate) mod supports;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use rayon::prelude::*;
 
-use crate::input::mesh::{MeshCache, MeshData, MeshError};
+use crate::input::mesh::{MeshCache, MeshData, MeshError, MeshSummary};
 use crate::input::resolve::{PackageResolver, Resolution};
 use crate::input::srdf::{self, Srdf};
-use crate::urdf::robot::{Geometry, Robot};
+use crate::urdf::robot::{Geometry, Robot, Shape};
 
 pub use supports::{link_supports, LinkSupports, MeshPoints, Support};
+
+/// The mesh file a shape names, as written.
+fn mesh_uri(shape: &Shape) -> Option<&String> {
+    match shape.geometry.as_ref().map(|g| &g.value) {
+        Some(Geometry::Mesh { filename, .. }) => Some(&filename.value),
+        _ => None,
+    }
+}
 
 /// A loaded mesh, or why it could not be loaded.
 pub type LoadedMesh = Arc<Result<MeshData, MeshError>>;
@@ -41,8 +51,10 @@ pub struct AssetSource<'a> {
 pub struct Assets {
     /// How each mesh URI resolved, by the URI as written.
     resolutions: HashMap<String, Resolution>,
-    /// Each resolved mesh file, loaded.
-    meshes: HashMap<PathBuf, LoadedMesh>,
+    /// Each resolved mesh file, loaded on first use (those the supports are made of while loading).
+    meshes: HashMap<PathBuf, OnceLock<LoadedMesh>>,
+    /// Where meshes are loaded from.
+    cache: MeshCache,
     /// Per link (indexed like `Robot::links`): its collision shapes (its visuals when it has none).
     pub supports: Vec<LinkSupports>,
     /// The SRDF (`--srdf`, else `<stem>.srdf` or `<robot name>.srdf` beside the URDF), read once.
@@ -50,7 +62,8 @@ pub struct Assets {
 }
 
 impl Assets {
-    /// Resolve and load every mesh the robot names, build every link's supports and read the SRDF.
+    /// Resolve every mesh the robot names, load those the links' supports are made of (in parallel), build
+    /// every link's supports and read the SRDF. Other meshes load on first use.
     pub fn load(robot: &Robot, source: &AssetSource) -> Assets {
         let urdf_dir = source
             .urdf_path
@@ -58,33 +71,55 @@ impl Assets {
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let mut resolutions = HashMap::new();
+        // The meshes links' supports are made of (their collisions, or their visuals without any).
+        let mut support_uris = Vec::new();
         for link in &robot.links {
-            for shape in link.visuals.iter().chain(&link.collisions) {
-                if let Some(Geometry::Mesh { filename, .. }) =
-                    shape.geometry.as_ref().map(|g| &g.value)
-                {
-                    resolutions
-                        .entry(filename.value.clone())
-                        .or_insert_with(|| source.resolver.resolve(&filename.value, urdf_dir));
-                }
+            for uri in link
+                .visuals
+                .iter()
+                .chain(&link.collisions)
+                .filter_map(mesh_uri)
+            {
+                resolutions
+                    .entry(uri.clone())
+                    .or_insert_with(|| source.resolver.resolve(uri, urdf_dir));
             }
+            let supported = if link.collisions.is_empty() {
+                &link.visuals
+            } else {
+                &link.collisions
+            };
+            support_uris.extend(supported.iter().filter_map(mesh_uri));
         }
-        let mut files: Vec<&PathBuf> = resolutions
+        let meshes: HashMap<PathBuf, OnceLock<LoadedMesh>> = resolutions
             .values()
             .filter_map(|r| match r {
-                Resolution::Found(path) => Some(path),
+                Resolution::Found(path) => Some((path.clone(), OnceLock::new())),
                 _ => None,
             })
             .collect();
-        files.sort_unstable();
-        files.dedup();
-        let meshes: HashMap<PathBuf, LoadedMesh> = files
-            .into_par_iter()
-            .map(|path| (path.clone(), source.meshes.get(path)))
+        let mut needed: Vec<(&PathBuf, &OnceLock<LoadedMesh>)> = support_uris
+            .into_iter()
+            .filter_map(|uri| match resolutions.get(uri) {
+                Some(Resolution::Found(path)) => meshes.get_key_value(path),
+                _ => None,
+            })
             .collect();
+        needed.sort_unstable_by_key(|(path, _)| *path);
+        needed.dedup_by_key(|(path, _)| *path);
+        let load = |(path, cell): (&PathBuf, &OnceLock<LoadedMesh>)| {
+            cell.get_or_init(|| source.meshes.get(path));
+        };
+        // One mesh or none: no thread pool is started for it (a short run's start-up counts).
+        if needed.len() > 1 {
+            needed.into_par_iter().for_each(load);
+        } else {
+            needed.into_iter().for_each(load);
+        }
         let mut assets = Assets {
             resolutions,
             meshes,
+            cache: source.meshes.clone(),
             supports: Vec::new(),
             srdf: None,
         };
@@ -103,10 +138,30 @@ impl Assets {
         self.resolutions.get(uri)
     }
 
-    /// The mesh a URI names, loaded (or why not); `None` when the URI does not resolve to a file.
+    /// The mesh a URI names, loaded (or why not) on first use; `None` when the URI does not resolve to a
+    /// file.
     pub fn mesh(&self, uri: &str) -> Option<&LoadedMesh> {
+        let (path, cell) = self.mesh_cell(uri)?;
+        Some(cell.get_or_init(|| self.cache.get(path)))
+    }
+
+    /// What the checks read of the mesh a URI names, without loading its points when the disk cache
+    /// knows the mesh; `None` when the URI does not resolve to a file.
+    pub fn mesh_summary(&self, uri: &str) -> Option<Result<MeshSummary, MeshError>> {
+        let (path, cell) = self.mesh_cell(uri)?;
+        Some(match cell.get() {
+            Some(mesh) => mesh
+                .as_ref()
+                .as_ref()
+                .map(MeshData::summary)
+                .map_err(Clone::clone),
+            None => self.cache.summary(path),
+        })
+    }
+
+    fn mesh_cell(&self, uri: &str) -> Option<(&PathBuf, &OnceLock<LoadedMesh>)> {
         match self.resolutions.get(uri)? {
-            Resolution::Found(path) => self.meshes.get(path),
+            Resolution::Found(path) => self.meshes.get_key_value(path),
             _ => None,
         }
     }

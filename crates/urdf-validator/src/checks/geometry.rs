@@ -153,8 +153,7 @@ fn check_mesh(
     scale: [f64; 3],
     robot_size: f64,
 ) -> Option<Finding> {
-    let loaded = assets.mesh(&filename.value)?;
-    let mesh = match loaded.as_ref() {
+    let mesh = match assets.mesh_summary(&filename.value)? {
         Ok(mesh) => mesh,
         Err(error) => {
             return Some(Finding::new(

@@ -83,25 +83,29 @@ pub fn message_key(message: &str) -> String {
     out
 }
 
-/// The element paths of one URDF text: the element holding a byte, as `robot/link[@name='arm']/inertial`.
-pub struct ElementPaths<'a> {
-    doc: Option<roxmltree::Document<'a>>,
+/// The XML document of `text` for [`ElementPaths`]; `None` when `text` is not XML.
+pub fn document(text: &str) -> Option<roxmltree::Document<'_>> {
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: crate::urdf::parse::MAX_NODES,
+        ..Default::default()
+    };
+    roxmltree::Document::parse_with_options(text, options).ok()
+}
+
+/// The element paths of one URDF document: the element holding a byte, as
+/// `robot/link[@name='arm']/inertial`.
+pub struct ElementPaths<'a, 'input> {
+    doc: Option<&'a roxmltree::Document<'input>>,
     /// The root element's element children (byte range, node), in document order: searched by halving,
     /// since a robot has thousands of them and each finding looks one up.
     top: Vec<(std::ops::Range<usize>, roxmltree::NodeId)>,
 }
 
-impl<'a> ElementPaths<'a> {
-    /// Index `text` (the URDF the spans point into). A text that is not XML gives no paths.
-    pub fn new(text: &'a str) -> Self {
-        let options = roxmltree::ParsingOptions {
-            allow_dtd: true,
-            nodes_limit: crate::urdf::parse::MAX_NODES,
-            ..Default::default()
-        };
-        let doc = roxmltree::Document::parse_with_options(text, options).ok();
+impl<'a, 'input> ElementPaths<'a, 'input> {
+    /// Index the document the spans point into (none: no paths).
+    pub fn of(doc: Option<&'a roxmltree::Document<'input>>) -> Self {
         let top = doc
-            .as_ref()
             .map(|d| {
                 d.root_element()
                     .children()
@@ -116,7 +120,7 @@ impl<'a> ElementPaths<'a> {
     /// The path of the innermost element whose text holds the start of `span`.
     pub fn at(&self, span: Span) -> Option<String> {
         let byte = span.start as usize;
-        let doc = self.doc.as_ref()?;
+        let doc = self.doc?;
         let root = doc.root_element();
         if !root.range().contains(&byte) {
             return None;
@@ -533,7 +537,8 @@ mod tests {
     #[test]
     fn element_paths_name_the_element() {
         let text = "<robot name='r'>\n<link name='a'><inertial><mass value='1'/></inertial></link>\n<joint name='j'><limit effort='3'/></joint><gazebo reference='a'/><gazebo><x/></gazebo><gazebo/></robot>";
-        let paths = ElementPaths::new(text);
+        let doc = document(text);
+        let paths = ElementPaths::of(doc.as_ref());
         let at = |needle: &str| {
             let start = text.find(needle).map(|i| i as u32).unwrap_or(u32::MAX);
             paths.at(Span { start, end: start })
@@ -551,7 +556,8 @@ mod tests {
             Some("robot[@name='r']/gazebo[@reference='a']")
         );
         assert_eq!(at("<x/>").as_deref(), Some("robot[@name='r']/gazebo[2]/x"));
-        assert_eq!(ElementPaths::new("not xml").at(Span::default()), None);
+        let doc = document("not xml");
+        assert_eq!(ElementPaths::of(doc.as_ref()).at(Span::default()), None);
     }
 
     fn finding(rule: &str, element: Option<&str>, message: &str) -> ((), FindingReport) {

@@ -13,6 +13,9 @@ use crate::urdf::Robot;
 pub struct Outcome<'a> {
     /// The file as loaded (positions, xacro warnings).
     pub loaded: &'a Loaded,
+    /// The XML document of a URDF as the parse stage read it (element paths come from it); `None` for
+    /// SDFormat, whose entry file is read again here.
+    pub document: Option<&'a roxmltree::Document<'a>>,
     /// The parsed robot.
     pub robot: &'a Robot,
     /// Its tree.
@@ -31,6 +34,7 @@ pub struct Outcome<'a> {
 pub fn build(outcome: Outcome) -> Report {
     let Outcome {
         loaded,
+        document,
         robot,
         model,
         findings,
@@ -38,7 +42,11 @@ pub fn build(outcome: Outcome) -> Report {
         settings,
         baseline,
     } = outcome;
-    let paths = ElementPaths::new(loaded.text());
+    let reread = match document {
+        Some(_) => None,
+        None => baseline::document(loaded.text()),
+    };
+    let paths = ElementPaths::of(document.or(reread.as_ref()));
     let mut pairs: Vec<(Finding, FindingReport)> = findings
         .into_iter()
         .map(|finding| {

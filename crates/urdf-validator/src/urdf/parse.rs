@@ -16,42 +16,66 @@ pub(crate) const MAX_NODES: u32 = 5_000_000;
 
 /// Parse URDF text. `path` is only used in error messages.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<(Robot, Vec<Finding>), LoadError> {
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: true,
-        nodes_limit: MAX_NODES,
-        ..Default::default()
-    };
-    let mut early = Vec::new();
-    let late = late_declaration(text);
-    let text = match &late {
-        Some((blanked, declaration)) => {
-            early.push(
-                Finding::new(
+    let prepared = UrdfText::new(text);
+    let doc = prepared.document(path)?;
+    Ok(prepared.parse(&doc))
+}
+
+/// URDF text ready for the XML parser (a misplaced `<?xml ...?>` declaration blanked out, byte offsets
+/// unchanged), with the findings about the text itself. The pipeline parses its XML document once and
+/// keeps it for the report's element paths.
+pub struct UrdfText<'t> {
+    text: std::borrow::Cow<'t, str>,
+    findings: Vec<Finding>,
+}
+
+impl<'t> UrdfText<'t> {
+    /// Prepare `text`.
+    pub fn new(text: &'t str) -> Self {
+        match late_declaration(text) {
+            Some((blanked, declaration)) => UrdfText {
+                text: blanked.into(),
+                findings: vec![Finding::new(
                     &rules::LATE_XML_DECLARATION,
-                    *declaration,
+                    declaration,
                     "whitespace before the <?xml ...?> declaration: urdfdom accepts it, strict XML parsers (xacro, Python's xml, lxml) refuse the file",
                 )
-                .with_help("delete everything before `<?xml`"),
-            );
-            blanked.as_str()
+                .with_help("delete everything before `<?xml`")],
+            },
+            None => UrdfText {
+                text: text.into(),
+                findings: Vec::new(),
+            },
         }
-        None => text,
-    };
-    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| {
-        let pos = e.pos();
-        LoadError::Xml {
-            path: path.to_path_buf(),
-            line: pos.row,
-            column: pos.col,
-            message: e.to_string(),
-        }
-    })?;
-    let mut parser = Parser {
-        findings: early,
-        ..Parser::default()
-    };
-    let robot = parser.robot(doc.root_element());
-    Ok((robot, parser.findings))
+    }
+
+    /// The XML document; an error names `path` and where the XML breaks.
+    pub fn document(&self, path: &Path) -> Result<roxmltree::Document<'_>, LoadError> {
+        let options = roxmltree::ParsingOptions {
+            allow_dtd: true,
+            nodes_limit: MAX_NODES,
+            ..Default::default()
+        };
+        roxmltree::Document::parse_with_options(&self.text, options).map_err(|e| {
+            let pos = e.pos();
+            LoadError::Xml {
+                path: path.to_path_buf(),
+                line: pos.row,
+                column: pos.col,
+                message: e.to_string(),
+            }
+        })
+    }
+
+    /// The robot of `doc` (this text's [`document`](Self::document)) and every finding.
+    pub fn parse(&self, doc: &roxmltree::Document) -> (Robot, Vec<Finding>) {
+        let mut parser = Parser {
+            findings: self.findings.clone(),
+            ..Parser::default()
+        };
+        let robot = parser.robot(doc.root_element());
+        (robot, parser.findings)
+    }
 }
 
 /// XML whitespace (the `S` production).

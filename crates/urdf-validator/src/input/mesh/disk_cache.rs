@@ -2,8 +2,9 @@
 //! counts) kept on disk between runs, so validating the same robot again does not parse its COLLADA
 //! files and build their hulls again (most of a run's time on mesh-heavy robots).
 //!
-//! An entry is keyed by the mesh file's canonical path, size and modification time, the loader options
-//! and this library's version: editing or replacing a mesh, or upgrading the tool, makes a new entry.
+//! An entry is keyed by the mesh file's identity (device and inode on Unix, else its canonical path), size
+//! and modification time, the loader options and this library's version: editing or replacing a mesh, or
+//! upgrading the tool, makes a new entry.
 //! Entries are read defensively (a magic number, the full key, bounded sizes, finite numbers); anything
 //! unexpected is a miss and the mesh is loaded from its file. Writes go to a temporary file renamed into
 //! place, so concurrent runs never see half an entry. Failing to read or write the cache is never an error.
@@ -12,10 +13,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::UNIX_EPOCH;
 
-use super::{MeshData, MeshOptions, UpAxis, UpAxisPolicy};
+use super::{MeshData, MeshOptions, MeshSummary, UpAxis, UpAxisPolicy};
 
 /// First bytes of every entry.
 const MAGIC: &[u8; 8] = b"UVMESH03";
+
+/// Bytes of an entry before its points, besides the key: magic, key length, bounds, triangle count, up
+/// axis, hull flag.
+const HEADER_BYTES: usize = 8 + 8 + 6 * 8 + 8 + 1 + 1;
 
 /// Largest entry read (a hull has at most a few hundred thousand vertices).
 const MAX_ENTRY_BYTES: u64 = 256 * 1024 * 1024;
@@ -58,6 +63,20 @@ impl DiskCache {
         decode(&std::fs::read(file).ok()?, &key)
     }
 
+    /// What the cached entry for the file at `path` says of the mesh without its points (only the
+    /// entry's first bytes are read), if there is an entry.
+    pub fn read_summary(&self, path: &Path, options: &MeshOptions) -> Option<MeshSummary> {
+        use std::io::Read;
+        let key = key(path, options)?;
+        let file = std::fs::File::open(self.entry_path(&key)).ok()?;
+        let mut head = Vec::with_capacity(HEADER_BYTES + key.len());
+        file.take((HEADER_BYTES + key.len()) as u64)
+            .read_to_end(&mut head)
+            .ok()?;
+        let (summary, _) = decode_header(&mut Reader { bytes: &head }, &key)?;
+        Some(summary)
+    }
+
     /// Keep `mesh`, loaded from the file at `path`, for later runs (best effort: errors are ignored).
     pub fn write(&self, path: &Path, options: &MeshOptions, mesh: &MeshData) {
         let Some(key) = key(path, options) else {
@@ -80,10 +99,25 @@ impl DiskCache {
     }
 }
 
-/// What identifies a mesh file's content and how it is loaded; `None` when the file cannot be examined.
-fn key(path: &Path, options: &MeshOptions) -> Option<String> {
+/// The file behind `path` and its metadata: on Unix its device and inode (one `stat`, where resolving the
+/// canonical path costs a system call per path component), elsewhere its canonical path.
+#[cfg(unix)]
+fn identity(path: &Path) -> Option<(String, std::fs::Metadata)> {
+    use std::os::unix::fs::MetadataExt;
+    let meta = std::fs::metadata(path).ok()?;
+    Some((format!("inode {}:{}", meta.dev(), meta.ino()), meta))
+}
+
+#[cfg(not(unix))]
+fn identity(path: &Path) -> Option<(String, std::fs::Metadata)> {
     let canonical = std::fs::canonicalize(path).ok()?;
     let meta = std::fs::metadata(&canonical).ok()?;
+    Some((canonical.display().to_string(), meta))
+}
+
+/// What identifies a mesh file's content and how it is loaded; `None` when the file cannot be examined.
+fn key(path: &Path, options: &MeshOptions) -> Option<String> {
+    let (file, meta) = identity(path)?;
     let modified = meta.modified().ok()?.duration_since(UNIX_EPOCH).ok()?;
     let up_axis = match options.up_axis {
         UpAxisPolicy::Honour => "honour",
@@ -91,8 +125,7 @@ fn key(path: &Path, options: &MeshOptions) -> Option<String> {
     };
     // The entry format is part of the key: builds with different formats keep separate entries.
     Some(format!(
-        "{}\n{}\n{}.{:09}\n{up_axis}\n{}\n{}",
-        canonical.display(),
+        "{file}\n{}\n{}.{:09}\n{up_axis}\n{}\n{}",
         meta.len(),
         modified.as_secs(),
         modified.subsec_nanos(),
@@ -148,9 +181,9 @@ fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
     out
 }
 
-/// Reads an entry back; `None` unless it is complete, well-formed and for `key`.
-fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
-    let mut reader = Reader { bytes };
+/// Reads an entry's header (up to its points): the summary and whether the points are the hull; `None`
+/// unless it is well-formed and for `key`.
+fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> {
     if reader.take(MAGIC.len())? != MAGIC {
         return None;
     }
@@ -161,6 +194,9 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
     let mut bounds = [0.0; 6];
     for v in &mut bounds {
         *v = reader.f64()?;
+    }
+    if !bounds.iter().all(|v| v.is_finite()) {
+        return None;
     }
     let triangles = usize::try_from(reader.u64()?).ok()?;
     let declared_up_axis = match reader.take(1)?[0] {
@@ -175,6 +211,22 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         1 => true,
         _ => return None,
     };
+    let aabb = (
+        [bounds[0], bounds[1], bounds[2]],
+        [bounds[3], bounds[4], bounds[5]],
+    );
+    let summary = MeshSummary {
+        aabb,
+        triangles,
+        declared_up_axis,
+    };
+    Some((summary, hull_known))
+}
+
+/// Reads an entry back; `None` unless it is complete, well-formed and for `key`.
+fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
+    let mut reader = Reader { bytes };
+    let (summary, hull_known) = decode_header(&mut reader, key)?;
     let count = usize::try_from(reader.u64()?).ok()?;
     if count.checked_mul(24)? > reader.bytes.len() {
         return None;
@@ -196,18 +248,9 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         }
         hull_triangles.push(t);
     }
-    if !points
-        .iter()
-        .flatten()
-        .chain(&bounds)
-        .all(|v| v.is_finite())
-    {
+    if !points.iter().flatten().all(|v| v.is_finite()) {
         return None;
     }
-    let aabb = (
-        [bounds[0], bounds[1], bounds[2]],
-        [bounds[3], bounds[4], bounds[5]],
-    );
     // Only what the analyses read of a mesh is kept: with a hull, its vertices stand for the vertices.
     let (vertices, hull) = if hull_known {
         (points.clone(), points)
@@ -218,9 +261,9 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         vertices,
         hull,
         hull_triangles,
-        aabb,
-        triangles,
-        declared_up_axis,
+        aabb: summary.aabb,
+        triangles: summary.triangles,
+        declared_up_axis: summary.declared_up_axis,
     })
 }
 

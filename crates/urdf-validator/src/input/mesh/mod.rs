@@ -113,6 +113,28 @@ pub struct MeshData {
     pub declared_up_axis: Option<UpAxis>,
 }
 
+/// What the checks read of a mesh, without its points: cheap to get from the disk cache.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshSummary {
+    /// Axis-aligned bounds (min, max) of the vertices ([`MeshData::aabb`]).
+    pub aabb: ([f64; 3], [f64; 3]),
+    /// Triangle count as read ([`MeshData::triangles`]).
+    pub triangles: usize,
+    /// The declared COLLADA up axis ([`MeshData::declared_up_axis`]).
+    pub declared_up_axis: Option<UpAxis>,
+}
+
+impl MeshData {
+    /// The mesh without its points.
+    pub fn summary(&self) -> MeshSummary {
+        MeshSummary {
+            aabb: self.aabb,
+            triangles: self.triangles,
+            declared_up_axis: self.declared_up_axis,
+        }
+    }
+}
+
 /// A COLLADA up axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum UpAxis {
@@ -257,6 +279,30 @@ impl MeshCache {
         }
         let loaded = Arc::new(self.load(path));
         Arc::clone(self.lock().entry(path.to_path_buf()).or_insert(loaded))
+    }
+
+    /// The mesh at `path` without its points (or why it could not be loaded): from this cache when it
+    /// holds the mesh, else from the disk cache's entry header alone, else loaded whole (and kept).
+    pub fn summary(&self, path: &Path) -> Result<MeshSummary, MeshError> {
+        if let Some(entry) = self.lock().get(path) {
+            return entry
+                .as_ref()
+                .as_ref()
+                .map(MeshData::summary)
+                .map_err(Clone::clone);
+        }
+        if let Some(summary) = self
+            .disk
+            .as_ref()
+            .and_then(|disk| disk.read_summary(path, &self.options))
+        {
+            return Ok(summary);
+        }
+        self.get(path)
+            .as_ref()
+            .as_ref()
+            .map(MeshData::summary)
+            .map_err(Clone::clone)
     }
 
     /// The mesh at `path` from the disk cache, else from its file (then kept in the disk cache).
