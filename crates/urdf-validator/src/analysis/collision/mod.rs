@@ -101,6 +101,10 @@ pub struct PairSet {
     pairs: Vec<(LinkId, LinkId)>,
     /// Every link of `pairs`, once, sorted: the link of each slot.
     links: Vec<LinkId>,
+    /// The slots whose links the set's joints move (every slot when the set has no joints).
+    moving: Vec<u32>,
+    /// Per slot: whether its link moves (is in `moving`).
+    slot_moves: Vec<bool>,
     /// Per pair: the slots of its links and the sum of their bounding radii (the broad phase reads only
     /// this, from memory laid out in pair order).
     broad: Vec<(u32, u32, f64)>,
@@ -249,6 +253,12 @@ pub struct CheckScratch {
     axis: Vec<Vector>,
     simplex: VoronoiSimplex,
     sweep: SweepScratch,
+    /// The links a pair set's joints do not move keep their placements between checks
+    /// ([`CheckScratch::holding_fixed`]).
+    hold_fixed: bool,
+    /// With `hold_fixed`: `centre` holds every slot's centre from an earlier check, and whether every
+    /// fixed slot's placement was usable.
+    fixed_usable: Option<bool>,
 }
 
 impl CheckScratch {
@@ -261,18 +271,34 @@ impl CheckScratch {
             axis: Vec::new(),
             simplex: VoronoiSimplex::new(),
             sweep: SweepScratch::default(),
+            hold_fixed: false,
+            fixed_usable: None,
+        }
+    }
+
+    /// Scratch for a sequence of checks of one pair set in which only the links its joints move change
+    /// placement (a sampler varying those joints, every other link held): the bounding spheres and shape
+    /// placements of the other links are computed at the first check and kept.
+    pub fn holding_fixed(model: &CollisionModel) -> Self {
+        CheckScratch {
+            hold_fixed: true,
+            ..CheckScratch::new(model)
         }
     }
 
     /// Start a new pose: every cached shape placement becomes stale.
     fn next_pose(&mut self) {
         self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
+        if self.stamp == 0 || self.stamp == HELD {
             self.placed.iter_mut().for_each(|p| p.0 = 0);
             self.stamp = 1;
         }
     }
 }
+
+/// The stamp of a shape placement kept across poses (a link held in place, see
+/// [`CheckScratch::holding_fixed`]).
+const HELD: u32 = u32::MAX;
 
 /// A shape in the world.
 #[derive(Clone, Copy, Debug)]
@@ -451,7 +477,9 @@ impl CollisionModel {
 
     /// A pair set, largest links first: big links (a base, a torso) are the likeliest to be hit, and
     /// [`check`](Self::check) stops at the first contact.
-    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>) -> PairSet {
+    /// `moves`: per link, whether its placement changes with the set's joints (`None`: every link may
+    /// move).
+    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>, moves: Option<&[bool]>) -> PairSet {
         let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
         pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
         let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
@@ -462,6 +490,13 @@ impl CollisionModel {
             .iter()
             .map(|&pair| (slot(pair.0), slot(pair.1), size(pair)))
             .collect();
+        let slot_moves: Vec<bool> = links
+            .iter()
+            .map(|l| moves.is_none_or(|m| m.get(l.0).copied().unwrap_or(true)))
+            .collect();
+        let moving = (0..links.len() as u32)
+            .filter(|&slot| slot_moves[slot as usize])
+            .collect();
         let sweep = (pairs.len() > SWEEP_FROM_PAIRS_PER_LINK * links.len()).then(|| {
             let radius = links.iter().map(|l| self.bodies[l.0].radius).collect();
             SweepIndex::new(&broad, radius)
@@ -469,6 +504,8 @@ impl CollisionModel {
         PairSet {
             pairs,
             links,
+            moving,
+            slot_moves,
             broad,
             sweep,
         }
@@ -548,6 +585,7 @@ impl CollisionModel {
             self.geometric_pairs()
                 .filter(|&(a, b)| self.allowed(a, b).is_none())
                 .collect(),
+            None,
         )
     }
 
@@ -576,13 +614,30 @@ impl CollisionModel {
                 break;
             }
         }
+        // A link moves when a varying joint lies between it and its root.
+        let moves: Vec<bool> = (0..self.bodies.len())
+            .map(|link| self.path_has(LinkId(link), self.root_of(link), |j| varies[j.0]))
+            .collect();
         self.pair_set(
             self.geometric_pairs()
                 .filter(|&(a, b)| {
                     self.allowed(a, b).is_none() && self.path_has(a, b, |j| varies[j.0])
                 })
                 .collect(),
+            Some(&moves),
         )
+    }
+
+    /// The root of `link`'s tree.
+    fn root_of(&self, link: usize) -> LinkId {
+        let mut link = link;
+        for _ in 0..self.parent.len() {
+            match self.parent[link] {
+                Some((_, parent)) => link = parent.0,
+                None => break,
+            }
+        }
+        LinkId(link)
     }
 
     /// Pairs (not yet allowed) in contact with every link at `placements` (world placements indexed by
@@ -642,16 +697,40 @@ impl CollisionModel {
     ) -> PoseCheck {
         scratch.next_pose();
         let mut result = PoseCheck::default();
-        let mut all_usable = true;
-        scratch.centre.clear();
-        scratch.centre.extend(pairs.links.iter().map(|link| {
-            let placement = placements.get(link.0).filter(|p| usable(p));
-            all_usable &= placement.is_some();
-            placement.map_or(Vector3::repeat(f64::NAN), |p| {
+        let centre_of = |link: LinkId| {
+            placements.get(link.0).filter(|p| usable(p)).map(|p| {
                 p.transform_point(&Point3::from(self.bodies[link.0].centre))
                     .coords
             })
-        }));
+        };
+        let held = match scratch.fixed_usable {
+            Some(usable) if scratch.hold_fixed && scratch.centre.len() == pairs.links.len() => {
+                Some(usable)
+            }
+            _ => None,
+        };
+        let mut all_usable = true;
+        if let Some(fixed_usable) = held {
+            // Only the moving slots' centres change.
+            all_usable = fixed_usable;
+            for &slot in &pairs.moving {
+                let centre = centre_of(pairs.links[slot as usize]);
+                all_usable &= centre.is_some();
+                scratch.centre[slot as usize] = centre.unwrap_or(Vector3::repeat(f64::NAN));
+            }
+        } else {
+            let mut fixed_usable = true;
+            scratch.centre.clear();
+            for (slot, &link) in pairs.links.iter().enumerate() {
+                let centre = centre_of(link);
+                all_usable &= centre.is_some();
+                fixed_usable &= pairs.slot_moves[slot] || centre.is_some();
+                scratch
+                    .centre
+                    .push(centre.unwrap_or(Vector3::repeat(f64::NAN)));
+            }
+            scratch.fixed_usable = scratch.hold_fixed.then_some(fixed_usable);
+        }
         let centre = &scratch.centre;
         if !all_usable {
             result.skipped = pairs
@@ -731,7 +810,9 @@ impl CollisionModel {
                 continue;
             }
             let (a, b) = pairs.pairs[index];
-            match self.link_proximity(a, b, index, placements, margin, scratch) {
+            let held =
+                [slot_a, slot_b].map(|slot| scratch.hold_fixed && !pairs.slot_moves[slot as usize]);
+            match self.link_proximity((a, b), held, index, placements, margin, scratch) {
                 Proximity::Contact => {
                     state.in_contact = true;
                     margin = CONTACT_DISTANCE;
@@ -751,11 +832,12 @@ impl CollisionModel {
         going
     }
 
-    /// The proximity of two links (both placements usable): the closest of their shape pairs.
+    /// The proximity of two links (both placements usable): the closest of their shape pairs. `held`: per
+    /// link, whether it stays in place between checks (its shape placements are then kept).
     fn link_proximity(
         &self,
-        a: LinkId,
-        b: LinkId,
+        (a, b): (LinkId, LinkId),
+        held: [bool; 2],
         pair_index: usize,
         placements: &[Isometry3<f64>],
         mut margin: f64,
@@ -763,9 +845,9 @@ impl CollisionModel {
     ) -> Proximity {
         let mut best = Proximity::Beyond;
         for i in self.bodies[a.0].shapes.clone() {
-            let pa = self.placed_shape(i, &placements[a.0], scratch);
+            let pa = self.placed_shape(i, &placements[a.0], held[0], scratch);
             for j in self.bodies[b.0].shapes.clone() {
-                let pb = self.placed_shape(j, &placements[b.0], scratch);
+                let pb = self.placed_shape(j, &placements[b.0], held[1], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
                 let reach = sa.bound + sb.bound + margin;
                 if (pa.centre - pb.centre).norm_squared() >= reach * reach
@@ -796,17 +878,19 @@ impl CollisionModel {
         best
     }
 
-    /// Where shape `index` of a link placed at `link` is, cached for the current pose.
+    /// Where shape `index` of a link placed at `link` is, cached for the current pose (for every pose when
+    /// the link is `held` in place).
     fn placed_shape(
         &self,
         index: usize,
         link: &Isometry3<f64>,
+        held: bool,
         scratch: &mut CheckScratch,
     ) -> Placed {
         let (stamp, placed) = &mut scratch.placed[index];
-        if *stamp != scratch.stamp {
+        if *stamp != scratch.stamp && *stamp != HELD {
             let shape = &self.shapes[index];
-            *stamp = scratch.stamp;
+            *stamp = if held { HELD } else { scratch.stamp };
             *placed = Placed {
                 pose: to_pose(&(link * shape.frame)),
                 centre: link.transform_point(&Point3::from(shape.centre)).coords,
@@ -842,6 +926,68 @@ mod tests {
             })
             .collect();
         format!("<robot name=\"chain\">{links}{joints}</robot>")
+    }
+
+    /// A scratch holding the links the pair set's joints do not move gives every pose the same result as
+    /// one recomputing every link, when only those joints vary (the other links stay where they are).
+    #[test]
+    fn holding_the_fixed_links_changes_no_result() {
+        let text = chain(12, 3.0);
+        let (robot, _) = crate::urdf::parse_urdf(&text, std::path::Path::new("c.urdf")).unwrap();
+        let (model, _) = Model::build(&robot);
+        let supports: Vec<_> = robot
+            .links
+            .iter()
+            .map(|l| link_supports(l, &|_| None))
+            .collect();
+        let collision = CollisionModel::build(&robot, &model, &supports);
+        // The last six joints vary; the first six hold their reference bends.
+        let varied: Vec<JointId> = (6..12).map(JointId).collect();
+        let pairs = collision.pairs_moved_by(&varied);
+        assert!(
+            pairs.moving.len() < pairs.links.len(),
+            "some links are held"
+        );
+        let mut sampler = ConfigurationSampler::new(&model, 3);
+        let mut reference = model.zero_configuration();
+        sampler.sample_into(&mut reference);
+        let mut q = reference.clone();
+        let mut data = Data::new(&model);
+        // Both scratches keep their GJK warm starts from pose to pose, as the sampler's do.
+        let mut plain = CheckScratch::new(&collision);
+        let mut held = CheckScratch::holding_fixed(&collision);
+        let (mut cutoff, mut contacts) = (f64::INFINITY, 0);
+        for _ in 0..400 {
+            let mut sample = model.zero_configuration();
+            sampler.sample_into(&mut sample);
+            for joint in &varied {
+                q[joint.0] = sample[joint.0];
+            }
+            forward_kinematics(&model, &q, &mut data);
+            let reused = collision.check(&pairs, &data.link_placement, cutoff, &mut plain);
+            let kept = collision.check(&pairs, &data.link_placement, cutoff, &mut held);
+            assert_eq!(reused, kept);
+            // And as a scratch that knows nothing of earlier poses finds (up to GJK's warm start).
+            let fresh = collision.check(
+                &pairs,
+                &data.link_placement,
+                cutoff,
+                &mut CheckScratch::new(&collision),
+            );
+            assert_eq!((fresh.contact, fresh.skipped), (kept.contact, kept.skipped));
+            match (fresh.min_clearance, kept.min_clearance) {
+                (Some((a, pa)), Some((b, pb))) => assert!(pa == pb && (a - b).abs() < 1e-12),
+                (a, b) => assert_eq!(a, b),
+            }
+            contacts += usize::from(!fresh.is_free());
+            if let Some((distance, _)) = kept.min_clearance {
+                cutoff = distance;
+            }
+        }
+        assert!(
+            contacts > 0 && contacts < 400,
+            "{contacts} poses in contact"
+        );
     }
 
     /// The sweep-and-prune broad phase only skips pairs the full scan would reject: on long chains,

@@ -299,7 +299,8 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             pairs,
             scene.q.to_vec(),
             scene.data.clone(),
-            CheckScratch::new(model),
+            // Only the arm's links move in this chunk: every other link's placement is kept.
+            CheckScratch::holding_fixed(model),
         )),
         _ => None,
     };
