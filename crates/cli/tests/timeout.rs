@@ -68,9 +68,9 @@ fn a_file_past_its_time_is_reported_and_the_batch_goes_on() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(2), "{stderr}");
+    // The stage it was in depends on the machine's load (workspace, or collision_setup before it).
     assert!(
-        stderr
-            .contains("a_slow.urdf: analysis did not finish within 1 s (stage running: workspace)"),
+        stderr.contains("a_slow.urdf: analysis did not finish within 1 s (stage running: "),
         "{stderr}"
     );
     assert!(

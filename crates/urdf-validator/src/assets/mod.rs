@@ -183,3 +183,87 @@ impl Assets {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tetrahedron, as ASCII STL.
+    const TETRAHEDRON: &str = "solid t
+facet normal 0 0 -1
+outer loop
+vertex 0 0 0
+vertex 0 1 0
+vertex 1 0 0
+endloop
+endfacet
+facet normal 0 -1 0
+outer loop
+vertex 0 0 0
+vertex 1 0 0
+vertex 0 0 1
+endloop
+endfacet
+facet normal -1 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+facet normal 1 1 1
+outer loop
+vertex 1 0 0
+vertex 0 1 0
+vertex 0 0 1
+endloop
+endfacet
+endsolid t
+";
+
+    /// Only the meshes the supports are made of load with the assets; a visual mesh of a link with
+    /// collisions loads when it is asked for.
+    #[test]
+    fn meshes_no_support_needs_load_on_first_use() {
+        let dir = std::env::temp_dir().join(format!("uv-assets-lazy-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("shown.stl"), TETRAHEDRON).unwrap();
+        std::fs::write(dir.join("hits.stl"), TETRAHEDRON.replace("1 ", "2 ")).unwrap();
+        let urdf = r#"<robot name="r">
+  <link name="a">
+    <visual><geometry><mesh filename="shown.stl"/></geometry></visual>
+    <collision><geometry><box size="1 1 1"/></geometry></collision>
+  </link>
+  <link name="b">
+    <visual><geometry><mesh filename="hits.stl"/></geometry></visual>
+  </link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>"#;
+        let path = dir.join("r.urdf");
+        let (robot, _) = crate::urdf::parse_urdf(urdf, &path).unwrap();
+        let meshes = MeshCache::new();
+        let assets = Assets::load(
+            &robot,
+            &AssetSource {
+                urdf_path: &path,
+                resolver: &PackageResolver::default(),
+                meshes: &meshes,
+                srdf: None,
+            },
+        );
+        assert_eq!(
+            meshes.len(),
+            1,
+            "only b's visual mesh (its support) is loaded"
+        );
+        assert_eq!(assets.supports[1].shapes.len(), 1);
+        let summary = assets.mesh_summary("shown.stl").unwrap().unwrap();
+        assert_eq!(summary.aabb, ([0.0; 3], [1.0; 3]));
+        let shown = assets.mesh("shown.stl").unwrap().as_ref().as_ref().unwrap();
+        assert_eq!(shown.summary(), summary);
+        assert_eq!(meshes.len(), 2);
+        assert!(assets.mesh("absent.stl").is_none());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -52,17 +52,22 @@ pub struct Hull {
     /// `neighbours[offsets[v]..offsets[v + 1]]` are joined to vertex `v` by an edge; empty: scan.
     offsets: Vec<usize>,
     neighbours: Vec<u32>,
+    /// Cells per cube face side of `starts` ([`cube_cells`]).
+    cells: usize,
     /// Per cell of a cube map of directions (see [`cube_cell`]): the vertex furthest along the cell's
     /// centre direction, where climbs start; empty when the hull is scanned.
     starts: Vec<u32>,
 }
 
-/// Cells per cube face side of [`Hull::starts`]: a climb starts within a few edges of its end.
-const CUBE_CELLS: usize = 6;
+/// Cells per cube face side of [`Hull::starts`] for a hull of `vertices` vertices: about one cell per 4
+/// vertices (6 to 24 per side), so a climb starts within a few edges of its end on hulls of every size.
+fn cube_cells(vertices: usize) -> usize {
+    ((vertices as f64 / 24.0).sqrt().ceil() as usize).clamp(6, 24)
+}
 
 /// The cube-map cell of `dir`: the face of its largest component (axis and sign), and where `dir` crosses
-/// that face, in `CUBE_CELLS × CUBE_CELLS` cells.
-fn cube_cell(dir: Vector) -> usize {
+/// that face, in `cells × cells` cells.
+fn cube_cell(dir: Vector, cells: usize) -> usize {
     let a = [dir.x, dir.y, dir.z];
     let abs = a.map(f64::abs);
     let axis = if abs[0] >= abs[1] && abs[0] >= abs[2] {
@@ -76,24 +81,21 @@ fn cube_cell(dir: Vector) -> usize {
     if major.is_nan() || major <= 0.0 {
         return 0;
     }
-    let bin = |v: f64| (((v / major + 1.0) * 0.5 * CUBE_CELLS as f64) as usize).min(CUBE_CELLS - 1);
+    let bin = |v: f64| (((v / major + 1.0) * 0.5 * cells as f64) as usize).min(cells - 1);
     let (u, v) = (a[(axis + 1) % 3], a[(axis + 2) % 3]);
     let face = axis * 2 + usize::from(a[axis] > 0.0);
-    (face * CUBE_CELLS + bin(u)) * CUBE_CELLS + bin(v)
+    (face * cells + bin(u)) * cells + bin(v)
 }
 
 /// The centre direction of cube-map cell `cell` (the inverse of [`cube_cell`]).
-fn cube_direction(cell: usize) -> Vector {
-    let (face, rest) = (
-        cell / (CUBE_CELLS * CUBE_CELLS),
-        cell % (CUBE_CELLS * CUBE_CELLS),
-    );
-    let centre = |bin: usize| (bin as f64 + 0.5) / CUBE_CELLS as f64 * 2.0 - 1.0;
+fn cube_direction(cell: usize, cells: usize) -> Vector {
+    let (face, rest) = (cell / (cells * cells), cell % (cells * cells));
+    let centre = |bin: usize| (bin as f64 + 0.5) / cells as f64 * 2.0 - 1.0;
     let (axis, sign) = (face / 2, if face % 2 == 1 { 1.0 } else { -1.0 });
     let mut d = [0.0; 3];
     d[axis] = sign;
-    d[(axis + 1) % 3] = centre(rest / CUBE_CELLS);
-    d[(axis + 2) % 3] = centre(rest % CUBE_CELLS);
+    d[(axis + 1) % 3] = centre(rest / cells);
+    d[(axis + 2) % 3] = centre(rest % cells);
     Vector::new(d[0], d[1], d[2])
 }
 
@@ -120,6 +122,7 @@ impl Hull {
             offsets: Vec::new(),
             neighbours: Vec::new(),
             starts: Vec::new(),
+            cells: 0,
         }
     }
 
@@ -173,12 +176,15 @@ impl Hull {
             offsets,
             neighbours,
             starts: Vec::new(),
+            cells: 0,
         };
         // Each cell's start, climbed to from its neighbour's (cells in order are mostly adjacent).
         let mut previous = 0;
-        hull.starts = (0..6 * CUBE_CELLS * CUBE_CELLS)
+        let cells = cube_cells(hull.points.len());
+        hull.cells = cells;
+        hull.starts = (0..6 * cells * cells)
             .map(|cell| {
-                previous = hull.climb(cube_direction(cell), previous);
+                previous = hull.climb(cube_direction(cell, cells), previous);
                 previous as u32
             })
             .collect();
@@ -201,7 +207,10 @@ impl Hull {
             return best;
         }
         // Start from the better of the cube map's vertex for `dir` and `start` (the last query's answer).
-        let mapped = self.starts.get(cube_cell(dir)).map_or(0, |&v| v as usize);
+        let mapped = self
+            .starts
+            .get(cube_cell(dir, self.cells))
+            .map_or(0, |&v| v as usize);
         let vertex = match self.points.get(start) {
             Some(p) if p.dot(dir) > self.points[mapped].dot(dir) => start,
             _ => mapped,

@@ -354,6 +354,46 @@ mod tests {
         );
     }
 
+    /// The summary comes from the entry's header alone, and is what the whole entry says.
+    #[test]
+    fn a_summary_reads_only_the_header() {
+        let dir = std::env::temp_dir().join(format!("uv-disk-summary-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mesh_file = dir.join("m.stl");
+        std::fs::write(&mesh_file, b"one").unwrap();
+        let cache = DiskCache::at(dir.join("cache"));
+        let options = MeshOptions::default();
+        assert_eq!(
+            cache.read_summary(&mesh_file, &options),
+            None,
+            "no entry yet"
+        );
+        cache.write(&mesh_file, &options, &cube());
+        assert_eq!(
+            cache.read_summary(&mesh_file, &options),
+            Some(cube().summary())
+        );
+        // Points cut off: the whole entry is a miss, its header still summarises the mesh.
+        let entry = std::fs::read_dir(dir.join("cache"))
+            .unwrap()
+            .next()
+            .unwrap()
+            .unwrap()
+            .path();
+        let bytes = std::fs::read(&entry).unwrap();
+        std::fs::write(&entry, &bytes[..bytes.len() - 30]).unwrap();
+        assert!(cache.read(&mesh_file, &options).is_none());
+        assert_eq!(
+            cache.read_summary(&mesh_file, &options),
+            Some(cube().summary())
+        );
+        // A damaged header is a miss.
+        std::fs::write(&entry, b"UVMESH03").unwrap();
+        assert_eq!(cache.read_summary(&mesh_file, &options), None);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn a_changed_file_gets_a_new_entry() {
         let dir = std::env::temp_dir().join(format!("uv-disk-cache-{}", std::process::id()));
