@@ -15,7 +15,7 @@ use std::sync::{Arc, OnceLock};
 
 use rayon::prelude::*;
 
-use crate::input::mesh::{MeshCache, MeshData, MeshError, MeshSummary};
+use crate::input::mesh::{summary_of, MeshCache, MeshData, MeshError, MeshSummary};
 use crate::input::resolve::{PackageResolver, Resolution};
 use crate::input::srdf::{self, Srdf};
 use crate::urdf::robot::{Geometry, Robot, Shape};
@@ -150,11 +150,7 @@ impl Assets {
     pub fn mesh_summary(&self, uri: &str) -> Option<Result<MeshSummary, MeshError>> {
         let (path, cell) = self.mesh_cell(uri)?;
         Some(match cell.get() {
-            Some(mesh) => mesh
-                .as_ref()
-                .as_ref()
-                .map(MeshData::summary)
-                .map_err(Clone::clone),
+            Some(mesh) => summary_of(mesh),
             None => self.cache.summary(path),
         })
     }

@@ -928,11 +928,9 @@ mod tests {
         format!("<robot name=\"chain\">{links}{joints}</robot>")
     }
 
-    /// A scratch holding the links the pair set's joints do not move gives every pose the same result as
-    /// one recomputing every link, when only those joints vary (the other links stay where they are).
-    #[test]
-    fn holding_the_fixed_links_changes_no_result() {
-        let text = chain(12, 3.0);
+    /// The tree and collision model of [`chain`]`(n, range)`.
+    fn chain_collision(n: usize, range: f64) -> (Model, CollisionModel) {
+        let text = chain(n, range);
         let (robot, _) = crate::urdf::parse_urdf(&text, std::path::Path::new("c.urdf")).unwrap();
         let (model, _) = Model::build(&robot);
         let supports: Vec<_> = robot
@@ -941,6 +939,14 @@ mod tests {
             .map(|l| link_supports(l, &|_| None))
             .collect();
         let collision = CollisionModel::build(&robot, &model, &supports);
+        (model, collision)
+    }
+
+    /// A scratch holding the links the pair set's joints do not move gives every pose the same result as
+    /// one recomputing every link, when only those joints vary (the other links stay where they are).
+    #[test]
+    fn holding_the_fixed_links_changes_no_result() {
+        let (model, collision) = chain_collision(12, 3.0);
         // The last six joints vary; the first six hold their reference bends.
         let varied: Vec<JointId> = (6..12).map(JointId).collect();
         let pairs = collision.pairs_moved_by(&varied);
@@ -995,16 +1001,7 @@ mod tests {
     #[test]
     fn the_sweep_gives_the_same_result_as_scanning_every_pair() {
         for range in [1.5, 0.2, 0.01] {
-            let text = chain(300, range);
-            let (robot, _) =
-                crate::urdf::parse_urdf(&text, std::path::Path::new("c.urdf")).unwrap();
-            let (model, _) = Model::build(&robot);
-            let supports: Vec<_> = robot
-                .links
-                .iter()
-                .map(|l| link_supports(l, &|_| None))
-                .collect();
-            let collision = CollisionModel::build(&robot, &model, &supports);
+            let (model, collision) = chain_collision(300, range);
             let swept = collision.all_pairs();
             assert!(swept.sweep.is_some(), "a 300-link chain uses the sweep");
             let scanned = PairSet {

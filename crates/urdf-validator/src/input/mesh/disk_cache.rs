@@ -354,15 +354,21 @@ mod tests {
         );
     }
 
-    /// The summary comes from the entry's header alone, and is what the whole entry says.
-    #[test]
-    fn a_summary_reads_only_the_header() {
-        let dir = std::env::temp_dir().join(format!("uv-disk-summary-{}", std::process::id()));
+    /// A fresh folder `uv-disk-<name>-<pid>` holding a mesh file `m.stl`, and a cache in it.
+    fn scratch(name: &str) -> (PathBuf, PathBuf, DiskCache) {
+        let dir = std::env::temp_dir().join(format!("uv-disk-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let mesh_file = dir.join("m.stl");
         std::fs::write(&mesh_file, b"one").unwrap();
         let cache = DiskCache::at(dir.join("cache"));
+        (dir, mesh_file, cache)
+    }
+
+    /// The summary comes from the entry's header alone, and is what the whole entry says.
+    #[test]
+    fn a_summary_reads_only_the_header() {
+        let (dir, mesh_file, cache) = scratch("summary");
         let options = MeshOptions::default();
         assert_eq!(
             cache.read_summary(&mesh_file, &options),
@@ -396,12 +402,7 @@ mod tests {
 
     #[test]
     fn a_changed_file_gets_a_new_entry() {
-        let dir = std::env::temp_dir().join(format!("uv-disk-cache-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let mesh_file = dir.join("m.stl");
-        std::fs::write(&mesh_file, b"one").unwrap();
-        let cache = DiskCache::at(dir.join("cache"));
+        let (dir, mesh_file, cache) = scratch("cache");
         let options = MeshOptions::default();
         assert!(cache.read(&mesh_file, &options).is_none());
         cache.write(&mesh_file, &options, &cube());

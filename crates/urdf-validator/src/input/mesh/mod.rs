@@ -135,6 +135,11 @@ impl MeshData {
     }
 }
 
+/// The summary of a loaded mesh, or why it could not be loaded.
+pub fn summary_of(loaded: &Result<MeshData, MeshError>) -> Result<MeshSummary, MeshError> {
+    loaded.as_ref().map(MeshData::summary).map_err(Clone::clone)
+}
+
 /// A COLLADA up axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum UpAxis {
@@ -285,11 +290,7 @@ impl MeshCache {
     /// holds the mesh, else from the disk cache's entry header alone, else loaded whole (and kept).
     pub fn summary(&self, path: &Path) -> Result<MeshSummary, MeshError> {
         if let Some(entry) = self.lock().get(path) {
-            return entry
-                .as_ref()
-                .as_ref()
-                .map(MeshData::summary)
-                .map_err(Clone::clone);
+            return summary_of(entry);
         }
         if let Some(summary) = self
             .disk
@@ -298,11 +299,7 @@ impl MeshCache {
         {
             return Ok(summary);
         }
-        self.get(path)
-            .as_ref()
-            .as_ref()
-            .map(MeshData::summary)
-            .map_err(Clone::clone)
+        summary_of(&self.get(path))
     }
 
     /// The mesh at `path` from the disk cache, else from its file (then kept in the disk cache).
