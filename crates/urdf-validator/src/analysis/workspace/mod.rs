@@ -529,22 +529,34 @@ pub fn analyse(
         return not_applicable(scene, options, "no arm has a joint that moves".to_string());
     }
     let chunks = options.samples.div_ceil(CHUNK);
+    let contexts: Vec<SampleContext> = jobs
+        .iter()
+        .map(|job| SampleContext {
+            scene,
+            options,
+            matcher: options
+                .orientation
+                .map(|o| o.matcher(&job.approach, tolerance)),
+            collision: collision.map(|c| &c.model),
+        })
+        .collect();
+    // Every arm's chunks in one parallel loop (no thread waits for the last chunk of one arm before the
+    // next arm starts), then each arm's merged in chunk order.
+    let mut sampled = (0..jobs.len() * chunks)
+        .into_par_iter()
+        .map(|k| {
+            let arm = k / chunks;
+            sample_chunk(&contexts[arm], &jobs[arm], arm, k % chunks)
+        })
+        .collect::<Vec<ArmStats>>()
+        .into_iter();
     let per_arm: Vec<ArmStats> = jobs
         .iter()
-        .enumerate()
-        .map(|(arm_index, job)| {
-            let ctx = SampleContext {
-                scene,
-                options,
-                matcher: options
-                    .orientation
-                    .map(|o| o.matcher(&job.approach, tolerance)),
-                collision: collision.map(|c| &c.model),
-            };
-            (0..chunks)
-                .into_par_iter()
-                .map(|chunk| sample_chunk(&ctx, job, arm_index, chunk))
-                .reduce(ArmStats::new, ArmStats::merge)
+        .map(|_| {
+            sampled
+                .by_ref()
+                .take(chunks)
+                .fold(ArmStats::new(), ArmStats::merge)
         })
         .collect();
     summarize(scene, &jobs, &per_arm, collision, options)

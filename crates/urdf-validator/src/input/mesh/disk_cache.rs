@@ -400,6 +400,23 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
+    /// A run reads each entry's header once: the summary is kept (here, the entry is gone the second time).
+    #[test]
+    fn a_mesh_cache_reads_a_summary_once() {
+        let (dir, mesh_file, cache) = scratch("summary-once");
+        let options = MeshOptions::default();
+        cache.write(&mesh_file, &options, &cube());
+        let meshes = crate::input::mesh::MeshCache::with_options(options).with_disk_cache(cache);
+        assert_eq!(meshes.summary(&mesh_file), Ok(cube().summary()));
+        std::fs::remove_dir_all(dir.join("cache")).unwrap();
+        assert_eq!(
+            meshes.summary(&mesh_file),
+            Ok(cube().summary()),
+            "kept, not read again (the file itself is no mesh)"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn a_changed_file_gets_a_new_entry() {
         let (dir, mesh_file, cache) = scratch("cache");

@@ -235,6 +235,8 @@ pub fn load_mesh_with(path: &Path, options: &MeshOptions) -> Result<MeshData, Me
 #[derive(Default, Clone)]
 pub struct MeshCache {
     entries: Arc<Mutex<CacheEntries>>,
+    /// Summaries read from the disk cache (meshes not loaded), so each entry header is read once.
+    summaries: Arc<Mutex<HashMap<PathBuf, MeshSummary>>>,
     options: MeshOptions,
     disk: Option<DiskCache>,
 }
@@ -262,6 +264,7 @@ impl MeshCache {
     pub fn with_options(options: MeshOptions) -> Self {
         Self {
             entries: Arc::default(),
+            summaries: Arc::default(),
             options,
             disk: None,
         }
@@ -287,16 +290,26 @@ impl MeshCache {
     }
 
     /// The mesh at `path` without its points (or why it could not be loaded): from this cache when it
-    /// holds the mesh, else from the disk cache's entry header alone, else loaded whole (and kept).
+    /// holds the mesh, else from the disk cache's entry header alone (read once), else loaded whole (and
+    /// kept).
     pub fn summary(&self, path: &Path) -> Result<MeshSummary, MeshError> {
         if let Some(entry) = self.lock().get(path) {
             return summary_of(entry);
+        }
+        let summaries = || {
+            self.summaries
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+        };
+        if let Some(summary) = summaries().get(path) {
+            return Ok(*summary);
         }
         if let Some(summary) = self
             .disk
             .as_ref()
             .and_then(|disk| disk.read_summary(path, &self.options))
         {
+            summaries().insert(path.to_path_buf(), summary);
             return Ok(summary);
         }
         summary_of(&self.get(path))
