@@ -845,9 +845,10 @@ impl CollisionModel {
     ) -> Proximity {
         let mut best = Proximity::Beyond;
         for i in self.bodies[a.0].shapes.clone() {
-            let pa = self.placed_shape(i, &placements[a.0], held[0], scratch);
+            self.place_shape(i, &placements[a.0], held[0], scratch);
             for j in self.bodies[b.0].shapes.clone() {
-                let pb = self.placed_shape(j, &placements[b.0], held[1], scratch);
+                self.place_shape(j, &placements[b.0], held[1], scratch);
+                let (pa, pb) = (&scratch.placed[i].1, &scratch.placed[j].1);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
                 let reach = sa.bound + sb.bound + margin;
                 if (pa.centre - pb.centre).norm_squared() >= reach * reach
@@ -878,15 +879,15 @@ impl CollisionModel {
         best
     }
 
-    /// Where shape `index` of a link placed at `link` is, cached for the current pose (for every pose when
-    /// the link is `held` in place).
-    fn placed_shape(
+    /// Place shape `index` of a link placed at `link` in `scratch.placed`, unless it is there for the
+    /// current pose (or for every pose, when the link is `held` in place).
+    fn place_shape(
         &self,
         index: usize,
         link: &Isometry3<f64>,
         held: bool,
         scratch: &mut CheckScratch,
-    ) -> Placed {
+    ) {
         let (stamp, placed) = &mut scratch.placed[index];
         if *stamp != scratch.stamp && *stamp != HELD {
             let shape = &self.shapes[index];
@@ -897,7 +898,6 @@ impl CollisionModel {
                 obb: shape.obb.placed(link),
             };
         }
-        *placed
     }
 }
 
