@@ -541,25 +541,39 @@ pub fn analyse(
         })
         .collect();
     // Every arm's chunks in one parallel loop (no thread waits for the last chunk of one arm before the
-    // next arm starts), then each arm's merged in chunk order.
-    let mut sampled = (0..jobs.len() * chunks)
+    // next arm starts), merged as they finish into one statistics value per arm.
+    let per_arm: Vec<ArmStats> = (0..jobs.len() * chunks)
         .into_par_iter()
         .map(|k| {
             let arm = k / chunks;
-            sample_chunk(&contexts[arm], &jobs[arm], arm, k % chunks)
+            vec![(
+                arm,
+                sample_chunk(&contexts[arm], &jobs[arm], arm, k % chunks),
+            )]
         })
-        .collect::<Vec<ArmStats>>()
-        .into_iter();
-    let per_arm: Vec<ArmStats> = jobs
-        .iter()
-        .map(|_| {
-            sampled
-                .by_ref()
-                .take(chunks)
-                .fold(ArmStats::new(), ArmStats::merge)
-        })
+        .reduce(Vec::new, merge_runs)
+        .into_iter()
+        .map(|(_, stats)| stats)
         .collect();
     summarize(scene, &jobs, &per_arm, collision, options)
+}
+
+/// Two runs of consecutive chunks' statistics, each a list of (arm, statistics) in arm order, as one:
+/// the arm where they meet is merged. Associative, so a parallel reduction gives one entry per arm.
+fn merge_runs(
+    mut left: Vec<(usize, ArmStats)>,
+    right: Vec<(usize, ArmStats)>,
+) -> Vec<(usize, ArmStats)> {
+    let mut right = right.into_iter();
+    match (left.last_mut(), right.next()) {
+        (Some((last_arm, last)), Some((arm, stats))) if *last_arm == arm => {
+            *last = std::mem::replace(last, ArmStats::new()).merge(stats);
+        }
+        (_, Some(first)) => left.push(first),
+        (_, None) => {}
+    }
+    left.extend(right);
+    left
 }
 
 fn fraction(part: usize, whole: usize) -> Option<f64> {
@@ -930,4 +944,46 @@ fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)
     let m = margin(scene.support_polygon, [com.x, com.y])?;
     let shift = (com.xy() - reference_com.xy()).norm();
     Some((m.distance >= 0.0, shift, m.distance * 1000.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Statistics of one chunk of `samples` samples reaching `reach`.
+    fn chunk(samples: usize, reach: f64) -> ArmStats {
+        ArmStats {
+            samples,
+            max_reach: reach,
+            ..ArmStats::new()
+        }
+    }
+
+    #[test]
+    fn runs_merge_into_one_entry_per_arm_whatever_the_grouping() {
+        let chunks = || {
+            vec![
+                vec![(0, chunk(1, 0.1))],
+                vec![(0, chunk(2, 0.3))],
+                vec![(1, chunk(4, 0.2))],
+                vec![(1, chunk(8, 0.5))],
+                vec![(2, chunk(16, 0.4))],
+            ]
+        };
+        let summary = |runs: Vec<(usize, ArmStats)>| -> Vec<(usize, usize, f64)> {
+            runs.into_iter()
+                .map(|(arm, s)| (arm, s.samples, s.max_reach))
+                .collect()
+        };
+        let expected = vec![(0, 3, 0.3), (1, 12, 0.5), (2, 16, 0.4)];
+        let left_to_right = chunks().into_iter().fold(Vec::new(), merge_runs);
+        assert_eq!(summary(left_to_right), expected);
+        // ((c0 c1) (c2 (c3 c4))), as a parallel reduction may group them.
+        let mut c = chunks().into_iter();
+        let mut next = || c.next().unwrap();
+        let (c0, c1, c2, c3, c4) = (next(), next(), next(), next(), next());
+        let grouped = merge_runs(merge_runs(c0, c1), merge_runs(c2, merge_runs(c3, c4)));
+        assert_eq!(summary(grouped), expected);
+        assert!(merge_runs(Vec::new(), Vec::new()).is_empty());
+    }
 }
