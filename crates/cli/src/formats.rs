@@ -280,8 +280,6 @@ pub fn emit(
     ok
 }
 
-/// The text report of every outcome and, for a batch or `--quiet`, the summary table. `errors`: also
-/// print load and write errors on stderr, in order.
 /// Print `text` to stdout in one write, its ANSI styles kept or stripped as `anstream` decides for stdout
 /// (a line-buffered stdout would make a system call per line); a closed pipe is ignored.
 fn print_styled(text: &str) {
@@ -291,6 +289,8 @@ fn print_styled(text: &str) {
     let _ = std::io::stdout().lock().write_all(&styled.into_inner());
 }
 
+/// The text report of every outcome and, for a batch or `--quiet`, the summary table. `errors`: also
+/// print load and write errors on stderr, in order.
 fn text_document(args: &Args, outcomes: &[Outcome], errors: bool) -> String {
     let mut out = String::new();
     let mut stderr = anstream::stderr().lock();

@@ -79,7 +79,7 @@ fn arm(side: &str) -> Option<Arm> {
     .iter()
     .filter_map(|j| model.joint(&format!("{side}_{j}_joint")))
     .collect();
-    let pairs = collision.pairs_moved_by(&joints);
+    let pairs = collision.pairs_moved_by(&model.motion_of(&joints));
     let mut rng = SplitMix64::new(7);
     let mut configurations = Vec::with_capacity(POSES);
     let mut placements = Vec::with_capacity(POSES);

@@ -92,7 +92,7 @@ impl Setup {
     /// Every pair moved by the named joints.
     fn moved_by(&self, joints: &[&str]) -> PairSet {
         let ids: Vec<JointId> = joints.iter().map(|j| self.joint(j)).collect();
-        self.collision.pairs_moved_by(&ids)
+        self.collision.pairs_moved_by(&self.model.motion_of(&ids))
     }
 
     fn check(&self, pairs: &PairSet, joints: &[(&str, f64)], cutoff: f64) -> PoseCheck {
@@ -710,7 +710,7 @@ fn degenerate_input_is_skipped_without_panicking() {
     );
     assert!(!has("zero") && !has("nan") && !has("huge") && !has("missing"));
     let joints: Vec<JointId> = (0..robot.joints.len()).map(JointId).collect();
-    let pairs = collision.pairs_moved_by(&joints);
+    let pairs = collision.pairs_moved_by(&model.motion_of(&joints));
     assert!(!pairs.is_empty());
     let mut scratch = CheckScratch::new(&collision);
     let mut data = Data::new(&model);
@@ -846,7 +846,9 @@ fn pr2_arms_are_symmetric_in_sampled_self_collision() {
             .map(|j| format!("{side}_{j}_joint"))
             .collect();
         let joints: Vec<JointId> = names.iter().map(|n| setup.joint(n)).collect();
-        let pairs = setup.collision.pairs_moved_by(&joints);
+        let pairs = setup
+            .collision
+            .pairs_moved_by(&setup.model.motion_of(&joints));
         // Each arm's links against the body, the other arm and its own non-adjacent links.
         assert!(pairs.len() > 400, "{}", pairs.len());
         let n = 4000;

@@ -16,6 +16,19 @@ use xacro::SourceLocation;
 /// Largest input accepted (bounded memory on untrusted input).
 pub const MAX_FILE_BYTES: u64 = 128 * 1024 * 1024;
 
+/// Largest number of XML nodes accepted in a robot description (URDF or SDFormat).
+pub(crate) const MAX_NODES: u32 = 5_000_000;
+
+/// The XML options every robot description (URDF or SDFormat) is parsed with: DTDs allowed, at most
+/// 5,000,000 nodes (bounded memory on untrusted input).
+pub fn xml_options<'o>() -> roxmltree::ParsingOptions<'o> {
+    roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: MAX_NODES,
+        ..roxmltree::ParsingOptions::default()
+    }
+}
+
 /// Why a file could not be turned into a document at all (exit code 2, one line).
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {

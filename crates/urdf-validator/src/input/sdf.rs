@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use crate::input::resolve::PackageResolver;
 use crate::input::source::{SourceText, Span};
 use crate::input::xacro::SourceLocation;
-use crate::input::{read_text, LoadError, MAX_FILE_BYTES};
+use crate::input::{read_text, xml_options, LoadError, MAX_FILE_BYTES};
 
 /// Deepest chain of `<include>`s followed (entry file at depth 0).
 pub const MAX_INCLUDE_DEPTH: usize = 16;
@@ -70,15 +70,6 @@ pub struct SdfFiles {
     includes: HashMap<u32, IncludeTarget>,
     /// Canonical path → index of the files read, so a model included twice is read once.
     read: HashMap<PathBuf, usize>,
-}
-
-/// The XML options every SDFormat file is parsed with (bounded node count).
-pub fn xml_options<'o>() -> roxmltree::ParsingOptions<'o> {
-    roxmltree::ParsingOptions {
-        allow_dtd: true,
-        nodes_limit: crate::urdf::parse::MAX_NODES,
-        ..roxmltree::ParsingOptions::default()
-    }
 }
 
 impl SdfFiles {

@@ -5,4 +5,4 @@ pub mod kinematics;
 mod tree;
 
 pub use kinematics::{forward_kinematics, Configuration, Data, JointData, LinkMass};
-pub use tree::{JointId, LinkId, MimicLink, Model};
+pub use tree::{JointId, LinkId, MimicLink, Model, Motion};

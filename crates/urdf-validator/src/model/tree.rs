@@ -32,6 +32,15 @@ pub struct MimicLink {
     pub offset: f64,
 }
 
+/// What varying some joints moves ([`Model::motion_of`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Motion {
+    /// Per joint: whether it varies (one of the joints, or a mimic follower of one).
+    pub joints: Vec<bool>,
+    /// Per link: whether its placement changes (a varying joint lies between it and its tree's root).
+    pub links: Vec<bool>,
+}
+
 /// The kinematic tree of a robot.
 #[derive(Clone, Debug, Default)]
 pub struct Model {
@@ -95,6 +104,52 @@ impl Model {
             }
         }
         joints
+    }
+
+    /// What varying `joints` moves (see [`Motion`]).
+    pub fn motion_of(&self, joints: &[JointId]) -> Motion {
+        let mut varies = vec![false; self.joint_data.len()];
+        for joint in joints {
+            if let Some(v) = varies.get_mut(joint.0) {
+                *v = true;
+            }
+        }
+        // Followers of varying joints vary too (leaders come first in `mimic_order`).
+        for follower in &self.mimic_order {
+            if self.mimic[follower.0].is_some_and(|m| varies[m.leader.0]) {
+                varies[follower.0] = true;
+            }
+        }
+        // A link moves when a varying joint lies between it and its root: each walk up stops at the first
+        // link already known, so every link is visited once.
+        let mut moves: Vec<Option<bool>> = vec![None; self.parent_joint.len()];
+        let mut path = Vec::new();
+        for start in 0..moves.len() {
+            let mut link = start;
+            let value = loop {
+                if let Some(known) = moves[link] {
+                    break known;
+                }
+                path.push(link);
+                let Some((joint, parent)) = self.parent_joint[link]
+                    .and_then(|j| self.joint_links[j.0].map(|(parent, _)| (j, parent)))
+                else {
+                    break false;
+                };
+                // Never loop on a broken tree (Model::build prevents one).
+                if varies[joint.0] || path.len() > moves.len() {
+                    break varies[joint.0];
+                }
+                link = parent.0;
+            };
+            for l in path.drain(..) {
+                moves[l] = Some(value);
+            }
+        }
+        Motion {
+            joints: varies,
+            links: moves.into_iter().map(|m| m.unwrap_or(false)).collect(),
+        }
     }
 
     /// The link named `name` (first definition).
@@ -452,5 +507,47 @@ fn resolve_mimic_order(model: &mut Model) {
                 model.mimic_order.push(JointId(joint));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `base` carries `a` (j1, with `c` fixed below it), `b` (j2, mimicking j1) and `d` (j4); `e` carries
+    /// `f` (j5) in a second tree.
+    const ROBOT: &str = r#"<robot name="r">
+  <link name="base"/><link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+  <link name="e"/><link name="f"/>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="a"/></joint>
+  <joint name="j2" type="continuous"><parent link="base"/><child link="b"/><mimic joint="j1"/></joint>
+  <joint name="j3" type="fixed"><parent link="a"/><child link="c"/></joint>
+  <joint name="j4" type="continuous"><parent link="base"/><child link="d"/></joint>
+  <joint name="j5" type="continuous"><parent link="e"/><child link="f"/></joint>
+</robot>"#;
+
+    #[test]
+    fn a_motion_moves_the_subtrees_of_its_joints_and_of_their_followers() {
+        let (robot, _) = crate::urdf::parse_urdf(ROBOT, std::path::Path::new("r.urdf")).unwrap();
+        let (model, _) = Model::build(&robot);
+        let named = |names: &[&str], of: &dyn Fn(&str) -> Option<usize>, count: usize| {
+            let mut flags = vec![false; count];
+            for name in names {
+                flags[of(name).unwrap()] = true;
+            }
+            flags
+        };
+        let links = |names: &[&str]| named(names, &|n| model.link(n).map(|l| l.0), 7);
+        let joints = |names: &[&str]| named(names, &|n| model.joint(n).map(|j| j.0), 5);
+        let j = |name: &str| model.joint(name).unwrap();
+        assert_eq!(
+            model.motion_of(&[j("j1")]),
+            Motion {
+                joints: joints(&["j1", "j2"]),
+                links: links(&["a", "b", "c"]),
+            }
+        );
+        assert_eq!(model.motion_of(&[j("j5")]).links, links(&["f"]));
+        assert_eq!(model.motion_of(&[]).links, links(&[]));
     }
 }

@@ -85,12 +85,7 @@ pub fn message_key(message: &str) -> String {
 
 /// The XML document of `text` for [`ElementPaths`]; `None` when `text` is not XML.
 pub fn document(text: &str) -> Option<roxmltree::Document<'_>> {
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: true,
-        nodes_limit: crate::urdf::parse::MAX_NODES,
-        ..Default::default()
-    };
-    roxmltree::Document::parse_with_options(text, options).ok()
+    roxmltree::Document::parse_with_options(text, crate::input::xml_options()).ok()
 }
 
 /// The element paths of one URDF document: the element holding a byte, as

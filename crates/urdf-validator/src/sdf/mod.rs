@@ -13,7 +13,8 @@ use roxmltree::Document;
 
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
-use crate::input::sdf::{xml_options, SdfFiles};
+use crate::input::sdf::SdfFiles;
+use crate::input::xml_options;
 use crate::urdf::robot::Robot;
 use scene::{Collector, El, Overrides, Scene, Sink, Version};
 

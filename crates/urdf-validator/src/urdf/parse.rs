@@ -8,11 +8,8 @@ use roxmltree::Node;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::input::source::{Span, Spanned};
-use crate::input::LoadError;
+use crate::input::{xml_options, LoadError};
 use crate::urdf::robot::*;
-
-/// Largest number of XML nodes accepted.
-pub(crate) const MAX_NODES: u32 = 5_000_000;
 
 /// Parse URDF text. `path` is only used in error messages.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<(Robot, Vec<Finding>), LoadError> {
@@ -51,12 +48,7 @@ impl<'t> UrdfText<'t> {
 
     /// The XML document; an error names `path` and where the XML breaks.
     pub fn document(&self, path: &Path) -> Result<roxmltree::Document<'_>, LoadError> {
-        let options = roxmltree::ParsingOptions {
-            allow_dtd: true,
-            nodes_limit: MAX_NODES,
-            ..Default::default()
-        };
-        roxmltree::Document::parse_with_options(&self.text, options).map_err(|e| {
+        roxmltree::Document::parse_with_options(&self.text, xml_options()).map_err(|e| {
             let pos = e.pos();
             LoadError::Xml {
                 path: path.to_path_buf(),

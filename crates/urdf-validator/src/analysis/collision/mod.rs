@@ -14,7 +14,7 @@
 //! forward_kinematics(model, &model.zero_configuration(), &mut data);
 //! let touching = collision.touching_pairs(&data.link_placement);
 //! collision.allow(&touching, Allowed::Touching);
-//! let pairs = collision.pairs_moved_by(arm_joints);
+//! let pairs = collision.pairs_moved_by(&model.motion_of(arm_joints));
 //! let mut scratch = CheckScratch::new(&collision);
 //! let (mut free, mut clearance) = (0, f64::INFINITY);
 //! for q in samples {
@@ -44,7 +44,7 @@ use parry3d_f64::query::gjk::VoronoiSimplex;
 
 use crate::assets::LinkSupports;
 use crate::input::srdf::{SrdfCollisions, SrdfPair};
-use crate::model::{JointId, LinkId, Model};
+use crate::model::{JointId, LinkId, Model, Motion};
 use crate::urdf::robot::Robot;
 
 pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
@@ -84,8 +84,6 @@ pub struct CollisionModel {
     parent: Vec<Option<(JointId, LinkId)>>,
     /// Per link: joints between it and its root.
     depth: Vec<usize>,
-    /// Per joint: the joint it mimics.
-    mimic_leader: Vec<Option<JointId>>,
 }
 
 #[derive(Clone, Debug)]
@@ -393,7 +391,6 @@ impl CollisionModel {
             allowed: vec![None; links * links],
             parent,
             depth,
-            mimic_leader: model.mimic.iter().map(|m| m.map(|m| m.leader)).collect(),
         };
         collision.allow_structural(model);
         collision
@@ -589,55 +586,17 @@ impl CollisionModel {
         )
     }
 
-    /// The pairs whose distance changes when `joints` move (and the mimic joints that follow them): a
-    /// joint among them lies on the tree path between the two links. Allowed pairs are left out. Pairs of
-    /// links that both move rigidly together are left out, as their distance does not change.
-    pub fn pairs_moved_by(&self, joints: &[JointId]) -> PairSet {
-        let mut varies = vec![false; self.mimic_leader.len()];
-        for joint in joints {
-            if let Some(v) = varies.get_mut(joint.0) {
-                *v = true;
-            }
-        }
-        // Followers of varying joints vary (chains: repeat until nothing changes).
-        for _ in 0..varies.len() {
-            let mut changed = false;
-            for (joint, leader) in self.mimic_leader.iter().enumerate() {
-                if let Some(leader) = leader {
-                    if varies[leader.0] && !varies[joint] {
-                        varies[joint] = true;
-                        changed = true;
-                    }
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        // A link moves when a varying joint lies between it and its root.
-        let moves: Vec<bool> = (0..self.bodies.len())
-            .map(|link| self.path_has(LinkId(link), self.root_of(link), |j| varies[j.0]))
-            .collect();
+    /// The pairs whose distance changes with `motion` (some joints varying, and the mimic joints that
+    /// follow them): a varying joint lies on the tree path between the two links. Allowed pairs are left
+    /// out. Pairs of links that both move rigidly together are left out, as their distance does not change.
+    pub fn pairs_moved_by(&self, motion: &Motion) -> PairSet {
+        let varies = |j: JointId| motion.joints.get(j.0).copied().unwrap_or(false);
         self.pair_set(
             self.geometric_pairs()
-                .filter(|&(a, b)| {
-                    self.allowed(a, b).is_none() && self.path_has(a, b, |j| varies[j.0])
-                })
+                .filter(|&(a, b)| self.allowed(a, b).is_none() && self.path_has(a, b, varies))
                 .collect(),
-            Some(&moves),
+            Some(&motion.links),
         )
-    }
-
-    /// The root of `link`'s tree.
-    fn root_of(&self, link: usize) -> LinkId {
-        let mut link = link;
-        for _ in 0..self.parent.len() {
-            match self.parent[link] {
-                Some((_, parent)) => link = parent.0,
-                None => break,
-            }
-        }
-        LinkId(link)
     }
 
     /// Pairs (not yet allowed) in contact with every link at `placements` (world placements indexed by
@@ -949,7 +908,7 @@ mod tests {
         let (model, collision) = chain_collision(12, 3.0);
         // The last six joints vary; the first six hold their reference bends.
         let varied: Vec<JointId> = (6..12).map(JointId).collect();
-        let pairs = collision.pairs_moved_by(&varied);
+        let pairs = collision.pairs_moved_by(&model.motion_of(&varied));
         assert!(
             pairs.moving.len() < pairs.links.len(),
             "some links are held"

@@ -30,7 +30,7 @@ use crate::assets::LinkSupports;
 use crate::diagnostics::{Confidence, Status};
 use crate::input::srdf::SrdfCollisions;
 use crate::model::kinematics::{forward_kinematics_links, Configuration, Data};
-use crate::model::{JointId, LinkId, Model};
+use crate::model::{JointId, LinkId, Model, Motion};
 use crate::rng::SplitMix64;
 use crate::timings::Progress;
 use crate::urdf::robot::Robot;
@@ -381,32 +381,13 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     stats
 }
 
-/// Links whose placement changes when `joints` move: the subtrees below them and below every mimic
-/// follower of them, parents first.
-fn moved_links(model: &Model, joints: &[JointId]) -> Vec<LinkId> {
-    let mut varies = vec![false; model.joint_data.len()];
-    for joint in joints {
-        varies[joint.0] = true;
-    }
-    // Followers of varying joints vary too (leaders come first in `mimic_order`).
-    for follower in &model.mimic_order {
-        if model.mimic[follower.0].is_some_and(|m| varies[m.leader.0]) {
-            varies[follower.0] = true;
-        }
-    }
-    // A link moves when its parent does or its parent joint varies (parents first).
-    let mut moved = vec![false; model.parent_joint.len()];
-    for &link in &model.topological_order {
-        if let Some(joint) = model.parent_joint[link.0] {
-            let parent_moved = model.joint_links[joint.0].is_some_and(|(p, _)| moved[p.0]);
-            moved[link.0] = parent_moved || varies[joint.0];
-        }
-    }
+/// The links `motion` moves, parents first (those of the root's tree).
+fn moved_links(model: &Model, motion: &Motion) -> Vec<LinkId> {
     model
         .topological_order
         .iter()
         .copied()
-        .filter(|l| moved[l.0])
+        .filter(|l| motion.links[l.0])
         .collect()
 }
 
@@ -513,8 +494,9 @@ pub fn analyse(
             if sampled.is_empty() {
                 return None;
             }
-            let moving_links = moved_links(model, &sampled);
-            let pairs = collision.map(|c| c.model.pairs_moved_by(&sampled));
+            let motion = model.motion_of(&sampled);
+            let moving_links = moved_links(model, &motion);
+            let pairs = collision.map(|c| c.model.pairs_moved_by(&motion));
             Some(ArmJob {
                 arm,
                 chain,
