@@ -61,6 +61,41 @@ cat > silenced.urdf <<'URDF'
   <link name="arm"/>
 </robot>
 URDF
+# Twelve robots made of two mesh files: a commit touching more files with meshes than there are threads
+# (such a run once hung until its timeout and reported nothing).
+mkdir -p meshes
+box_stl() {
+    local h="$1" i j k
+    echo "solid box"
+    # Two triangles per face of a cube of half-size $h.
+    for face in "x" "y" "z"; do
+        for s in "-$h" "$h"; do
+            case "$face" in
+                x) set -- "$s -$h -$h" "$s $h -$h" "$s $h $h" "$s -$h $h" ;;
+                y) set -- "-$h $s -$h" "$h $s -$h" "$h $s $h" "-$h $s $h" ;;
+                z) set -- "-$h -$h $s" "$h -$h $s" "$h $h $s" "-$h $h $s" ;;
+            esac
+            printf 'facet normal 0 0 0\nouter loop\nvertex %s\nvertex %s\nvertex %s\nendloop\nendfacet\n' "$1" "$2" "$3"
+            printf 'facet normal 0 0 0\nouter loop\nvertex %s\nvertex %s\nvertex %s\nendloop\nendfacet\n' "$1" "$3" "$4"
+        done
+    done
+    echo "endsolid box"
+}
+box_stl 0.1 > meshes/base.stl
+box_stl 0.05 > meshes/arm.stl
+inertial='<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
+mesh_robots=()
+for n in $(seq 1 12); do
+    cat > "arm_$n.urdf" <<URDF
+<robot name="arm_$n">
+  <link name="base">$inertial<collision><geometry><mesh filename="meshes/base.stl"/></geometry></collision></link>
+  <link name="arm">$inertial<collision><origin xyz="0 0 0.3"/><geometry><mesh filename="meshes/arm.stl"/></geometry></collision></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.2"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="50" velocity="1"/></joint>
+</robot>
+URDF
+    mesh_robots+=("arm_$n.urdf")
+done
 cat > macros.xacro <<'XACRO'
 <robot xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:macro name="wheel" params="name"><link name="${name}"/></xacro:macro>
@@ -74,7 +109,8 @@ try_hook() {
     local hook="$1" expected="$2" text="$3"
     shift 3
     local out code=0
-    out="$(pre-commit try-repo "$repo_root" "$hook" --verbose --files "$@" 2>&1)" || code=$?
+    # Bounded: a hung run is a failure, not a stuck CI job.
+    out="$(timeout 300 pre-commit try-repo "$repo_root" "$hook" --verbose --files "$@" 2>&1)" || code=$?
     if [[ "$code" != "$expected" ]] || ! grep -qE -- "$text" <<<"$out"; then
         echo "FAIL: $hook on $*: pre-commit exited $code (expected $expected), output should match '$text':" >&2
         echo "$out" >&2
@@ -90,6 +126,9 @@ try_hook urdf-validate 1 'urdf-validate\.+Failed' good.urdf broken.urdf
 try_hook urdf-validate 0 'urdf-validate\.+Passed' silenced.urdf
 try_hook urdf-validate 0 'urdf-validate\.+Passed' macros.xacro
 # Without its comment the same robot warns: the hook fails with exit code 1.
+for threads in 1 2; do
+    RAYON_NUM_THREADS="$threads" try_hook urdf-validate 0 'urdf-validate\.+Passed' "${mesh_robots[@]}"
+done
 sed -i '/urdf-validate: ignore/d' silenced.urdf
 try_hook urdf-validate 1 'exit code: 1' silenced.urdf
 if [[ "${TEST_CARGO_HOOK:-0}" == 1 ]]; then

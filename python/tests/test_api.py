@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import pickle
 import subprocess
 import sys
@@ -118,6 +119,42 @@ def test_validate_many_keeps_order_and_isolates_failures(example: Path, tmp_path
     assert reports[1].exit_code == 2
     assert reports[2].urdf_path.endswith("broken.urdf")
     assert reports[2].to_dict()["error_location"]["line"] == 1
+
+
+@pytest.mark.parametrize("threads", ["1", "2", None])
+def test_validate_many_over_robots_with_meshes_reports_each(threads: str | None) -> None:
+    """More files with meshes than rayon has threads: each gets its report and the call returns well before
+    the 60 s timeout (such a batch once waited for it and came back UNKNOWN). In a process of its own, as the
+    thread count is fixed once per process (RAYON_NUM_THREADS 1, 2, or the machine's cores)."""
+    robots = [
+        shared_robot("pr2/pr2_description/robots/pr2.urdf"),
+        shared_robot("fetch/fetch_description/robots/fetch.urdf"),
+        shared_robot("franka_panda/franka_description/robots/frankie_arm_hand.urdf"),
+        shared_robot("anymal/anymal_b_simple_description/urdf/anymal.urdf"),
+        shared_robot("spot/spot_description/model.urdf"),
+        shared_robot("turtlebot3/turtlebot3_description/urdf/turtlebot3_burger.urdf"),
+    ]
+    script = (
+        "import json, sys, urdf_validator\n"
+        "reports = urdf_validator.validate_many(sys.argv[1:], samples=1000)\n"
+        "print(json.dumps([[r.urdf_path, r.overall_status, r.error] for r in reports]))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "RAYON_NUM_THREADS"}
+    if threads is not None:
+        env["RAYON_NUM_THREADS"] = threads
+    done = subprocess.run(
+        [sys.executable, "-c", script, *map(str, robots)],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=45,
+        check=True,
+    )
+    reports = json.loads(done.stdout)
+    assert [Path(path).name for path, _, _ in reports] == [p.name for p in robots]
+    for path, status, error in reports:
+        assert status in ("PASS", "WARN", "FAIL"), (path, error)
+        assert error is None, (path, error)
 
 
 def test_validate_string_resolves_relative_paths_from_base_dir(example: Path) -> None:

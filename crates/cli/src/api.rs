@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use clap::{CommandFactory, FromArgMatches};
-use rayon::prelude::*;
 use urdf_validator::input::LoadError;
 use urdf_validator::{Options, Validation};
 
@@ -68,9 +67,10 @@ impl Session {
         crate::outputs::validate_within(path, &self.options, self.timeout, urdf_validator::validate)
     }
 
-    /// Validate every file in parallel; one result per path, in order.
+    /// Validate every file in parallel (on threads of their own: [`crate::batch`]); one result per path, in
+    /// order.
     pub fn validate_many(&self, paths: &[PathBuf]) -> Vec<Result<Validation, LoadError>> {
-        paths.par_iter().map(|path| self.validate(path)).collect()
+        crate::batch::map_files(paths, |path| self.validate(path))
     }
 
     /// Validate URDF `text`, as if read from `path` (relative meshes and the report's name use it), within

@@ -27,6 +27,7 @@ macro_rules! errln {
 
 pub mod api;
 mod args;
+pub mod batch;
 mod config;
 mod diff;
 mod formats;
@@ -41,7 +42,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{CommandFactory, FromArgMatches};
-use rayon::prelude::*;
 use urdf_validator::analysis::pose::PoseOptions;
 use urdf_validator::analysis::statics::StaticsOptions;
 use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task};
@@ -211,10 +211,13 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     };
     let bases = outputs::report_bases(&files, args.output_dir.as_deref());
     let progress = progress::Bar::for_batch(files.len());
-    let validate_file = |((file, base), config): ((&PathBuf, &PathBuf), &Option<PathBuf>)| {
+    let jobs: Vec<_> = files.iter().zip(&bases).zip(&config_of).collect();
+    // Files on threads of their own, not on the pool their stages use (see `batch`); a single file on
+    // this thread.
+    let outcomes: Vec<Outcome> = batch::map_files(&jobs, |((file, base), config)| {
         let options = groups
             .iter()
-            .find(|(p, _)| p == config)
+            .find(|(p, _)| p == *config)
             .map(|(_, options)| options);
         let outcome = match options {
             Some(options) => outputs::validate_one(file, base, options, &files_to_write, timeout),
@@ -222,23 +225,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         };
         progress.tick(file);
         outcome
-    };
-    // Files in parallel; a single file on this thread (the stages parallelise their own heavy work).
-    let outcomes: Vec<Outcome> = if files.len() > 1 {
-        files
-            .par_iter()
-            .zip(bases.par_iter())
-            .zip(config_of.par_iter())
-            .map(validate_file)
-            .collect()
-    } else {
-        files
-            .iter()
-            .zip(bases.iter())
-            .zip(config_of.iter())
-            .map(validate_file)
-            .collect()
-    };
+    });
     progress.finish();
     let single_file = paths.len() == 1 && !paths[0].is_dir();
     let written = formats::emit(

@@ -104,8 +104,9 @@ pub struct Files {
 
 /// Validate `file` with `job` ([`validate`], or [`urdf_validator::validate_text`] for text standing for
 /// `file`), giving up after `timeout` (`None`: no limit). A run that does not finish in time is reported
-/// as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: its sampling stops at the
-/// next chunk, and anything else it still does ends with it or with the process.
+/// as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: it gives up before its next
+/// stage, its sampling at the next chunk, and anything else it still does ends with it or with the process.
+/// The caller waits here, so it must not be a worker of the pool the stages use ([`crate::batch`]).
 pub(crate) fn validate_within<F>(
     file: &Path,
     options: &Options,
@@ -118,7 +119,7 @@ where
     let Some(timeout) = timeout else {
         return job(file, options);
     };
-    let progress = Progress::default();
+    let progress = Progress::with_time_limit(timeout.as_secs_f64());
     let options = Options {
         progress: Some(progress.clone()),
         ..options.clone()

@@ -370,6 +370,52 @@ fn a_long_validation_does_not_hold_up_other_calls() {
     assert!(server.close().success());
 }
 
+/// Calls at once on robots with meshes (PR2, Fetch, ANYmal, Spot): each is answered with its report, well
+/// before the 60 s `--timeout` (a batch of files with meshes once waited for it and reported nothing).
+#[test]
+fn concurrent_validations_of_robots_with_meshes_all_answer() {
+    let Some(robots) = common::shared_robots() else {
+        return;
+    };
+    let files = [
+        "pr2/pr2_description/robots/pr2.urdf",
+        "fetch/fetch_description/robots/fetch.urdf",
+        "anymal/anymal_b_simple_description/urdf/anymal.urdf",
+        "spot/spot_description/model.urdf",
+    ];
+    let mut server = Server::start(&std::env::temp_dir());
+    let started = Instant::now();
+    let ids: Vec<u64> = files
+        .iter()
+        .map(|file| {
+            let path = robots.join(file).display().to_string();
+            server.ask(
+                "tools/call",
+                json!({"name": "validate_urdf", "arguments": {"urdf_path": path, "samples": 500}}),
+            )
+        })
+        .collect();
+    let mut answered: Vec<u64> = Vec::new();
+    for _ in &files {
+        let response = server.response();
+        let result = &response["result"];
+        assert_eq!(result["isError"], false, "{response}");
+        assert!(
+            result["structuredContent"]["overall_status"].is_string(),
+            "{response}"
+        );
+        answered.push(response["id"].as_u64().unwrap());
+    }
+    answered.sort_unstable();
+    assert_eq!(answered, ids);
+    assert!(
+        started.elapsed() < Duration::from_secs(45),
+        "{:?}",
+        started.elapsed()
+    );
+    assert!(server.close().success());
+}
+
 #[test]
 fn help_and_usage() {
     let exe = env!("CARGO_BIN_EXE_urdf_validate");

@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rayon::prelude::*;
 use urdf_validate_cli::api::Session;
 use urdf_validator::input::LoadError;
 use urdf_validator::render::render_json;
@@ -96,22 +95,19 @@ fn validate_many(py: Python<'_>, paths: Vec<PathBuf>, flags: Vec<String>) -> PyR
                 entry.insert(session(&flags, Some(path))?);
             }
         }
-        Ok(paths
-            .par_iter()
-            .map(|path| {
-                let dir = path.parent().unwrap_or(Path::new(""));
-                match sessions.get(dir) {
-                    Some(session) => report_json(path, session.validate(path)),
-                    None => report_json(
-                        path,
-                        Err(LoadError::Usage {
-                            path: path.clone(),
-                            message: "no options for this file".to_string(),
-                        }),
-                    ),
-                }
-            })
-            .collect())
+        Ok(urdf_validate_cli::batch::map_files(&paths, |path| {
+            let dir = path.parent().unwrap_or(Path::new(""));
+            match sessions.get(dir) {
+                Some(session) => report_json(path, session.validate(path)),
+                None => report_json(
+                    path,
+                    Err(LoadError::Usage {
+                        path: path.clone(),
+                        message: "no options for this file".to_string(),
+                    }),
+                ),
+            }
+        }))
     })
 }
 

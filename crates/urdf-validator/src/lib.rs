@@ -156,8 +156,10 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         .iter()
         .any(|f| f.rule == &diagnostics::rules::NOT_A_ROBOT);
     let analyses = if is_robot {
+        give_up_if_cancelled(options, &loaded.path)?;
         let assets = Assets::load(&robot, &asset_source(&loaded.path, options));
         clock.lap("assets");
+        give_up_if_cancelled(options, &loaded.path)?;
         findings.extend(checks::run(&robot, &model, &assets));
         findings.extend(analysis::profiles::check(
             &robot,
@@ -165,6 +167,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             &options.simulators,
         ));
         clock.lap("checks");
+        give_up_if_cancelled(options, &loaded.path)?;
         // The workspace sampler stops early when a watchdog cancels the run.
         let workspace = WorkspaceOptions {
             progress: options.progress.clone(),
@@ -179,6 +182,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
                 }
             })?;
         findings.extend(physics.findings.iter().cloned());
+        give_up_if_cancelled(options, &loaded.path)?;
         let deep = analysis::deep::run(&analysis::deep::DeepInput {
             urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
             robot: &robot,
@@ -216,6 +220,19 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
     };
     let sources = loaded.into_sources();
     Ok(Validation { report, sources })
+}
+
+/// [`LoadError::DidNotFinish`] once a watchdog has cancelled the run (`--timeout`): nobody waits for its
+/// answer any more, so the stages left would only hold threads other files need.
+fn give_up_if_cancelled(options: &Options, path: &Path) -> Result<(), LoadError> {
+    match &options.progress {
+        Some(progress) if progress.is_cancelled() => Err(LoadError::DidNotFinish {
+            path: path.to_path_buf(),
+            seconds: progress.time_limit_seconds(),
+            stage: progress.running(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// The parse stage of SDFormat files.

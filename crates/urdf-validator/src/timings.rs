@@ -75,11 +75,25 @@ pub const PHASES: [&str; 12] = [
 pub struct Progress {
     finished: Arc<Mutex<Option<&'static str>>>,
     cancelled: Arc<AtomicBool>,
+    time_limit_seconds: f64,
 }
 
 impl Progress {
-    /// Ask the run to stop: sampling stages end at their next chunk (their results are then partial
-    /// and the report is not to be used).
+    /// Progress of a run its watchdog gives `seconds` (named when the run is given up on).
+    pub fn with_time_limit(seconds: f64) -> Progress {
+        Progress {
+            time_limit_seconds: seconds,
+            ..Progress::default()
+        }
+    }
+
+    /// The time the watchdog gives the run, in seconds (0 when not told).
+    pub fn time_limit_seconds(&self) -> f64 {
+        self.time_limit_seconds
+    }
+
+    /// Ask the run to stop: the pipeline gives up before its next stage, and sampling stages end at
+    /// their next chunk (their results are then partial and the report is not to be used).
     pub fn cancel(&self) {
         self.cancelled.store(true, Ordering::Relaxed);
     }

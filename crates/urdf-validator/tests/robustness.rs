@@ -361,3 +361,26 @@ fn a_loop_cut_off_from_the_root_is_reported_and_does_not_hang() {
         "the rest of the robot is still analysed"
     );
 }
+
+/// A run its watchdog has given up on stops before its next stage, naming it, instead of working on for
+/// nobody (its threads are needed by the other files of the batch).
+#[test]
+fn a_cancelled_run_gives_up_before_its_next_stage() {
+    let progress = urdf_validator::timings::Progress::with_time_limit(5.0);
+    progress.cancel();
+    let options = Options {
+        progress: Some(progress),
+        ..Options::default()
+    };
+    let urdf = box_chain(3);
+    let Err(error) = validate_text(urdf, Path::new("chain.urdf"), &options) else {
+        panic!("a cancelled run was not given up");
+    };
+    let message = error.to_string();
+    assert!(
+        message.contains("did not finish within 5 s (stage running: assets)"),
+        "{message}"
+    );
+    // Without a cancellation the same run finishes.
+    assert!(validate_text(box_chain(3), Path::new("chain.urdf"), &Options::default()).is_ok());
+}
