@@ -81,8 +81,50 @@ else
     echo "(../shared/robots absent: skipped)" >&2
 fi
 
+# Long chains lying on the ground (issue 26: 10 g links, revolute joints 1 mm apart along x, no geometry):
+# every stage must stay linear in the links. Budget: the 20,000-link chain in <= 2 s and <= 25x the
+# 1,000-link one.
+chain_dir() {
+    local links="$1" dir="$tmp/chain-$1"
+    mkdir -p "$dir"
+    python3 - "$links" "$dir/chain_$links.urdf" <<'PY'
+import sys
+links, path = int(sys.argv[1]), sys.argv[2]
+inertial = ('<inertial><mass value="0.01"/>'
+            '<inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-6"/></inertial>')
+with open(path, "w") as f:
+    f.write('<robot name="chain">\n')
+    for i in range(links + 1):
+        f.write(f'<link name="l{i}">{inertial}</link>\n')
+    for i in range(links):
+        f.write(f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+                '<origin xyz="0.001 0 0"/><axis xyz="0 0 1"/>'
+                '<limit lower="-1" upper="1" effort="100" velocity="1"/></joint>\n')
+    f.write('</robot>\n')
+PY
+    echo "$dir"
+}
+runs=5
+warmup=1
+bench chain-1000 "$(chain_dir 1000)"
+short_chain="${medians[-1]}"
+bench chain-20000 "$(chain_dir 20000)"
+long_chain="${medians[-1]}"
+
 echo
 echo "== medians (one urdf_validate call, release build)"
 for i in "${!names[@]}"; do
     printf '  %-28s median %8s ms\n' "${names[$i]}" "${medians[$i]}"
 done
+over_budget=0
+python3 - "$short_chain" "$long_chain" <<'PY' || over_budget=1
+import sys
+short, long = map(float, sys.argv[1:])
+ratio = long / short
+print(f"  chain 20,000 / 1,000 links: {ratio:.1f}x (budget 25x); 20,000 links {long:.0f} ms (budget 2000 ms)")
+sys.exit(0 if ratio <= 25 and long <= 2000 else 1)
+PY
+if ((over_budget)); then
+    echo "bench-corpus: the long-chain budget does not hold" >&2
+    exit 1
+fi

@@ -285,3 +285,35 @@ fn box_chain_pipeline(bencher: divan::Bencher, links: usize) {
             .map(|v| v.report.findings.len())
     });
 }
+
+/// A chain of `links` 10 g links lying on the ground, revolute joints 1 mm apart along x, no geometry
+/// (issue 26: classification walked every link's names up to the body, quadratic).
+fn lying_chain(links: usize) -> String {
+    let body = "<inertial><mass value=\"0.01\"/><inertia ixx=\"1e-6\" ixy=\"0\" ixz=\"0\" iyy=\"1e-6\" iyz=\"0\" izz=\"1e-6\"/></inertial>";
+    let mut urdf = String::from("<robot name=\"chain\">");
+    for i in 0..=links {
+        urdf.push_str(&format!("<link name=\"l{i}\">{body}</link>"));
+    }
+    for i in 0..links {
+        urdf.push_str(&format!(
+            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
+             <origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/>\
+             <limit lower=\"-1\" upper=\"1\" effort=\"100\" velocity=\"1\"/></joint>",
+            i + 1
+        ));
+    }
+    urdf.push_str("</robot>");
+    urdf
+}
+
+/// The whole pipeline on [`lying_chain`]s of 1,000 and 20,000 links (budget: ≤ 25× apart, the long one in
+/// ≤ 2 s on two cores).
+#[divan::bench(args = [1000, 20000], sample_count = 3)]
+fn lying_chain_pipeline(bencher: divan::Bencher, links: usize) {
+    let text = lying_chain(links);
+    let options = Options::default();
+    bencher.bench(|| {
+        validate_text(text.clone(), Path::new("chain.urdf"), &options)
+            .map(|v| v.report.findings.len())
+    });
+}

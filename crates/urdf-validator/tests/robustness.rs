@@ -262,6 +262,33 @@ fn a_long_chain_is_validated_in_linear_time_and_self_collision_is_bounded() {
     assert!(short.self_collision_free_fraction.is_some());
 }
 
+/// Found by a user (issue 26): a 20,000-link chain lying on the ground (joints 1 mm apart along x) took
+/// 27.7 s to classify in release, as every ground-touching link walked its names up to the body (quadratic,
+/// a string per name); the names are counted once down the tree now (22 ms).
+#[test]
+fn a_long_chain_lying_on_the_ground_is_classified_in_linear_time() {
+    let urdf = chain(
+        20_000,
+        "<inertial><mass value=\"0.01\"/>\
+         <inertia ixx=\"1e-6\" ixy=\"0\" ixz=\"0\" iyy=\"1e-6\" iyz=\"0\" izz=\"1e-6\"/></inertial>",
+        |_| "<origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/>".to_string(),
+    );
+    let mut options = Options::default();
+    options.workspace.samples = 16;
+    options.timings = true;
+    let report = validate_text(urdf, Path::new("t.urdf"), &options)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .report;
+    let timings = report.timings_ms.expect("timings");
+    let classify = timings
+        .phases()
+        .iter()
+        .find(|(phase, _)| *phase == "classify")
+        .map(|(_, ms)| *ms)
+        .expect("a classify phase");
+    assert!(classify < 3_000.0, "classify took {classify} ms");
+}
+
 /// Found in review: every link welded below the wrist copied its whole path of fixed joints (quadratic:
 /// 20,000 welded links took 4.2 s and 2.5 GB).
 #[test]

@@ -371,30 +371,56 @@ fn is_steered(model: &Model, data: &Data, wheel: LinkId) -> bool {
         && axis.try_normalize(1e-9).is_some_and(|a| a.z.abs() > 0.9)
 }
 
-/// Names along a chain that say "arm" and none that say "leg": arms hanging to the ground at the zero pose
-/// (an upper body on a pedestal) are not legs.
-fn named_like_an_arm(robot: &Robot, model: &Model, foot: LinkId, body: LinkId) -> bool {
-    const ARM: [&str; 7] = [
-        "arm", "shoulder", "elbow", "wrist", "hand", "gripper", "finger",
-    ];
-    const LEG: [&str; 8] = [
-        "leg", "hip", "knee", "ankle", "foot", "thigh", "shin", "calf",
-    ];
-    let mut names = Vec::new();
-    let mut current = foot;
-    while current != body {
-        names.push(robot.links[current.0].name.value.to_ascii_lowercase());
-        let Some(joint) = model.parent_joint[current.0] else {
-            break;
+/// How many names on the path from the root down to each link (each link's own and its parent joint's)
+/// say "arm" and how many say "leg", so that the names between a link and one of its ancestors are
+/// counted by a subtraction: one walk over the tree, not one per ground-touching link (a long chain lying
+/// on the ground was quadratic).
+struct LimbNames {
+    arm: Vec<u32>,
+    leg: Vec<u32>,
+}
+
+impl LimbNames {
+    fn new(robot: &Robot, model: &Model) -> LimbNames {
+        const ARM: [&str; 7] = [
+            "arm", "shoulder", "elbow", "wrist", "hand", "gripper", "finger",
+        ];
+        const LEG: [&str; 8] = [
+            "leg", "hip", "knee", "ankle", "foot", "thigh", "shin", "calf",
+        ];
+        let count = |names: [Option<&str>; 2], tokens: &[&str]| {
+            let says = |name: &str| {
+                let name = name.to_ascii_lowercase();
+                tokens.iter().any(|t| name.contains(t))
+            };
+            names.into_iter().flatten().filter(|n| says(n)).count() as u32
         };
-        names.push(robot.joints[joint.0].name.value.to_ascii_lowercase());
-        match model.joint_links[joint.0] {
-            Some((parent, _)) if names.len() <= 2 * model.parent_joint.len() => current = parent,
-            _ => break,
+        let links = model.parent_joint.len();
+        let mut names = LimbNames {
+            arm: vec![0; links],
+            leg: vec![0; links],
+        };
+        for &link in &model.topological_order {
+            let joint = model.parent_joint[link.0];
+            let own = [
+                Some(robot.links[link.0].name.value.as_str()),
+                joint.map(|j| robot.joints[j.0].name.value.as_str()),
+            ];
+            let parent = joint.and_then(|j| model.joint_links[j.0]).map(|(p, _)| p.0);
+            let (arm_above, leg_above) = parent.map_or((0, 0), |p| (names.arm[p], names.leg[p]));
+            names.arm[link.0] = arm_above + count(own, &ARM);
+            names.leg[link.0] = leg_above + count(own, &LEG);
         }
+        names
     }
-    let any = |tokens: &[&str]| names.iter().any(|n| tokens.iter().any(|t| n.contains(t)));
-    any(&ARM) && !any(&LEG)
+
+    /// Names along a chain that say "arm" and none that say "leg" (`foot` and its parent joint up to, not
+    /// including, its ancestor `body`): arms hanging to the ground at the zero pose (an upper body on a
+    /// pedestal) are not legs.
+    fn arm_between(&self, foot: LinkId, body: LinkId) -> bool {
+        let between = |counts: &[u32]| counts[foot.0].saturating_sub(counts[body.0]);
+        between(&self.arm) > 0 && between(&self.leg) == 0
+    }
 }
 
 /// Round geometry (or a wheel-named mesh) on a link: what a wheel looks like.
@@ -580,7 +606,7 @@ fn limbs_at_corners(
 /// Legs by name: leaves whose chain to the body has ≥ 2 limb joints and leg-like names (no arm-like ones).
 fn leaves_named_like_legs(
     robot: &Robot,
-    model: &Model,
+    limb_names: &LimbNames,
     chains: &[Chain],
     in_tree: &BTreeSet<usize>,
     lowest: &[Option<f64>],
@@ -593,10 +619,7 @@ fn leaves_named_like_legs(
         let Some(top) = chain.top else { continue };
         let top_name = robot.joints[top.0].name.value.to_ascii_lowercase();
         let leg_like = LEG.iter().any(|t| name.contains(t)) || top_name.contains("hip");
-        if chain.limb_joints >= 2
-            && leg_like
-            && !named_like_an_arm(robot, model, LinkId(l), chain.body)
-        {
+        if chain.limb_joints >= 2 && leg_like && !limb_names.arm_between(LinkId(l), chain.body) {
             add_leg(&mut legs, lowest, top, LinkId(l));
         }
     }
@@ -704,6 +727,7 @@ pub fn classify(
     let moving = moves_below(model);
     let branch = branch_points(model, &moving);
     let chains = chains_to_body(robot, model, &branch, &moving);
+    let limb_names = LimbNames::new(robot, model);
     // The body rests on the ground when the root or anything welded to it touches it (a fixed base).
     let root_on_ground = in_tree.iter().any(|&l| welded[l] && touches(l));
 
@@ -719,8 +743,7 @@ pub fn classify(
             continue;
         }
         let chain = chains[l];
-        let jointed =
-            chain.limb_joints >= 2 && !named_like_an_arm(robot, model, LinkId(l), chain.body);
+        let jointed = chain.limb_joints >= 2 && !limb_names.arm_between(LinkId(l), chain.body);
         let Some(top_joint) = chain.top.filter(|_| jointed) else {
             continue;
         };
@@ -763,7 +786,8 @@ pub fn classify(
     // A model that is not z-up (lying on its side) shows no legs by height: fall back to leg names.
     let mut by_name = false;
     if legs.len() < 2 {
-        let named: Vec<Leg> = leaves_named_like_legs(robot, model, &chains, &in_tree, &lowest);
+        let named: Vec<Leg> =
+            leaves_named_like_legs(robot, &limb_names, &chains, &in_tree, &lowest);
         if named.len() >= 2 {
             legs = named;
             by_name = true;
