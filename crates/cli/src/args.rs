@@ -217,6 +217,21 @@ pub struct Args {
     #[arg(long)]
     pub show_config: bool,
 
+    /// Apply the safe fixes of the findings (those that change nothing a simulator computes) to the files
+    /// the user edits (a xacro source for xacro input), then validate again and report what is left.
+    /// Files are written atomically; a file that changed since it was read is not overwritten.
+    #[arg(long)]
+    pub fix: bool,
+
+    /// With --fix or --diff, also the unsafe fixes (mass, inertia, limits, scale, effort change), and
+    /// edits of files outside the input's package and --package-path folders.
+    #[arg(long)]
+    pub unsafe_fixes: bool,
+
+    /// Print the fixes as a unified diff and write nothing (exit 1 when there is something to fix, else 0).
+    #[arg(long, conflicts_with = "fix")]
+    pub diff: bool,
+
     /// Report only the findings that baseline FILE (written by --write-baseline, or an earlier
     /// `<name>_validation.json`) does not hold: the status and the exit code follow the new ones alone;
     /// baseline entries nothing matches any more are listed as stale.

@@ -30,6 +30,7 @@ mod args;
 pub mod batch;
 mod config;
 mod diff;
+mod fixes;
 mod formats;
 mod inputs;
 mod mcp;
@@ -206,7 +207,12 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         rules_url: rules_url(),
     };
     let files_to_write = outputs::Files {
-        formats: plan.file_formats.clone(),
+        // --diff writes nothing.
+        formats: if args.diff {
+            Vec::new()
+        } else {
+            plan.file_formats.clone()
+        },
         options: format_options.clone(),
     };
     let bases = outputs::report_bases(&files, args.output_dir.as_deref());
@@ -214,19 +220,67 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     let jobs: Vec<_> = files.iter().zip(&bases).zip(&config_of).collect();
     // Files on threads of their own, not on the pool their stages use (see `batch`); a single file on
     // this thread.
-    let outcomes: Vec<Outcome> = batch::map_files(&jobs, |((file, base), config)| {
-        let options = groups
-            .iter()
-            .find(|(p, _)| p == *config)
-            .map(|(_, options)| options);
-        let outcome = match options {
-            Some(options) => outputs::validate_one(file, base, options, &files_to_write, timeout),
-            None => outputs::Outcome::not_configured(file),
-        };
-        progress.tick(file);
-        outcome
-    });
+    let run = || -> Vec<Outcome> {
+        batch::map_files(&jobs, |((file, base), config)| {
+            let options = groups
+                .iter()
+                .find(|(p, _)| p == *config)
+                .map(|(_, options)| options);
+            let outcome = match options {
+                Some(options) => {
+                    outputs::validate_one(file, base, options, &files_to_write, timeout)
+                }
+                None => outputs::Outcome::not_configured(file),
+            };
+            progress.tick(file);
+            outcome
+        })
+    };
+    let mut outcomes = run();
     progress.finish();
+    if args.fix || args.diff {
+        let policy = fixes::Policy {
+            unsafe_fixes: args.unsafe_fixes,
+            package_paths: args.package_path.clone(),
+        };
+        let validations: Vec<&urdf_validator::Validation> = outcomes
+            .iter()
+            .filter_map(|o| o.validation.as_ref().ok())
+            .collect();
+        let fix_plan = fixes::plan(&validations, &policy);
+        for line in &fix_plan.skipped {
+            errln!("note: fix not applied: {line}");
+        }
+        let unsafe_left = match fix_plan.unsafe_left {
+            0 => String::new(),
+            n => format!(" ({n} more with --unsafe-fixes)"),
+        };
+        if args.diff {
+            out!("{}", fixes::diff(&fix_plan));
+            let fixes: usize = fix_plan.files.iter().map(|f| f.fixes).sum();
+            errln!(
+                "{fixes} fix(es) in {} file(s){unsafe_left}",
+                fix_plan.files.len()
+            );
+            return u8::from(!fix_plan.files.is_empty());
+        }
+        let errors = fixes::write(&fix_plan);
+        for error in &errors {
+            errln!("error: {error}");
+        }
+        let fixed: usize = fix_plan.files.iter().map(|f| f.fixes).sum();
+        errln!(
+            "fixed {fixed} finding(s) in {} file(s){unsafe_left}",
+            fix_plan.files.len() - errors.len()
+        );
+        if !fix_plan.files.is_empty() {
+            // Report what is left, from the files as written.
+            outcomes = run();
+        }
+        if !errors.is_empty() {
+            return 2;
+        }
+    }
     let single_file = paths.len() == 1 && !paths[0].is_dir();
     let written = formats::emit(
         &plan,

@@ -1,6 +1,7 @@
 //! Geometry checks: degenerate shapes, meshes that cannot be found, visuals without collisions.
 
 use crate::diagnostics::finding::Finding;
+use crate::diagnostics::fix::{Edit, Fix};
 use crate::diagnostics::rules;
 use crate::input::resolve::Resolution;
 use crate::input::source::Spanned;
@@ -182,5 +183,15 @@ fn check_mesh(
             ),
         )
         .with_help("add scale=\"0.001 0.001 0.001\" to the <mesh>, or re-export the mesh in metres")
+        .with_fix_option((scale == [1.0; 3]).then(|| {
+            Fix::unsafe_(
+                "add scale=\"0.001 0.001 0.001\" to the <mesh> (the link's geometry shrinks 1000×)",
+                vec![Edit::InsertAttributeAfter {
+                    value: filename.span,
+                    name: "scale".to_string(),
+                    text: "0.001 0.001 0.001".to_string(),
+                }],
+            )
+        }))
     })
 }

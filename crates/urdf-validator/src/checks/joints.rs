@@ -1,6 +1,7 @@
 //! Joint checks: limits, effort and velocity, axes, joint types that statics cannot move.
 
 use crate::diagnostics::finding::Finding;
+use crate::diagnostics::fix::{self, Edit, Fix};
 use crate::diagnostics::rules;
 use crate::input::Format;
 use crate::model::{JointId, Model};
@@ -60,6 +61,7 @@ fn check_axis(joint: &Joint, owner: &str, findings: &mut Vec<Finding>) {
             format!("{owner} has a zero axis"),
         ));
     } else if (norm - 1.0).abs() > AXIS_UNIT_TOLERANCE {
+        let unit = axis.value.map(|v| fix::number(v / norm)).join(" ");
         findings.push(
             Finding::new(
                 &rules::NON_UNIT_AXIS,
@@ -71,6 +73,14 @@ fn check_axis(joint: &Joint, owner: &str, findings: &mut Vec<Finding>) {
                 axis.value[0] / norm,
                 axis.value[1] / norm,
                 axis.value[2] / norm
+            ))
+            // Parsers normalise the axis themselves (urdfdom, MuJoCo, Drake): the robot is the same.
+            .with_fix(Fix::safe(
+                format!("normalise the axis to xyz=\"{unit}\""),
+                vec![Edit::ReplaceValue {
+                    value: axis.span,
+                    with: unit,
+                }],
             )),
         );
     }
@@ -150,11 +160,20 @@ fn check_limit(
     }
     if kind == JointKind::Continuous {
         if let Some(bound) = limit.lower.as_ref().or(limit.upper.as_ref()) {
-            findings.push(Finding::new(
-                &rules::CONTINUOUS_WITH_LIMITS,
-                bound.span,
-                format!("{owner} is continuous but declares lower/upper limits, which simulators ignore"),
-            ));
+            let removed = [&limit.lower, &limit.upper]
+                .into_iter()
+                .flatten()
+                .map(|b| Edit::RemoveAttribute { value: b.span })
+                .collect();
+            findings.push(
+                Finding::new(
+                    &rules::CONTINUOUS_WITH_LIMITS,
+                    bound.span,
+                    format!("{owner} is continuous but declares lower/upper limits, which simulators ignore"),
+                )
+                // urdfdom and the simulators ignore them: removing them changes nothing they compute.
+                .with_fix(Fix::safe("remove lower/upper from the continuous joint's <limit>", removed)),
+            );
         }
         return;
     }
@@ -170,11 +189,27 @@ fn check_limit(
         return; // Reported once, by the parser.
     }
     if lower > upper {
-        findings.push(Finding::new(
+        let mut finding = Finding::new(
             &rules::INVERTED_LIMITS,
             at,
             format!("{owner} has inverted limits: lower {lower} > upper {upper}"),
-        ));
+        );
+        if let (Some(l), Some(u)) = (&limit.lower, &limit.upper) {
+            finding = finding.with_fix(Fix::unsafe_(
+                format!("swap the limits: lower {upper}, upper {lower}"),
+                vec![
+                    Edit::ReplaceValue {
+                        value: l.span,
+                        with: fix::number(upper),
+                    },
+                    Edit::ReplaceValue {
+                        value: u.span,
+                        with: fix::number(lower),
+                    },
+                ],
+            ));
+        }
+        findings.push(finding);
     } else if lower == upper {
         let note = if limit.lower.is_none() && limit.upper.is_none() {
             " (both default to 0)"

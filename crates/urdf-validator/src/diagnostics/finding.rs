@@ -1,5 +1,6 @@
 //! Findings: what a rule says about one place in the file.
 
+use crate::diagnostics::fix::Fix;
 use crate::diagnostics::rules::Rule;
 use crate::input::source::Span;
 
@@ -98,6 +99,8 @@ pub struct Finding {
     pub help: Option<String>,
     /// The severity when the settings override the rule's default (`[severity]` in the configuration).
     pub severity_override: Option<Severity>,
+    /// The edit that resolves it, when it has one right answer (`--fix`).
+    pub fix: Option<Fix>,
 }
 
 impl Finding {
@@ -114,7 +117,20 @@ impl Finding {
             span: span.into(),
             help: None,
             severity_override: None,
+            fix: None,
         }
+    }
+
+    /// Attach the edit that resolves it.
+    pub fn with_fix(mut self, fix: Fix) -> Self {
+        self.fix = Some(fix);
+        self
+    }
+
+    /// Attach the edit that resolves it, when there is one.
+    pub fn with_fix_option(mut self, fix: Option<Fix>) -> Self {
+        self.fix = fix;
+        self
     }
 
     /// Attach a specific hint.

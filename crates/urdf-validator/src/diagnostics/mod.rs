@@ -2,6 +2,7 @@
 //! verdict vocabulary ([`Status`], [`Confidence`]). Shared by all stages; it imports none of them.
 
 pub mod finding;
+pub mod fix;
 pub mod inline;
 pub mod rules;
 pub mod settings;

@@ -251,6 +251,20 @@ impl Loaded {
         }
     }
 
+    /// Where an edit anchored at `span` of the parsed text goes: the file the user edits, its text and the
+    /// span in it. A `textual` edit (a deletion) goes only into the file the parser read itself. Otherwise
+    /// why the edit cannot be made in a file (a xacro value computed from an expression; SDFormat).
+    pub fn edit_target(&self, span: Span, textual: bool) -> Result<(&Path, &str, Span), String> {
+        match &self.origin {
+            Origin::Urdf(source) => Ok((source.path(), source.text(), span)),
+            Origin::Xacro(_) if textual => {
+                Err("the text was produced by the xacro expansion: edit the xacro source".into())
+            }
+            Origin::Xacro(expanded) => expanded.literal_source(span),
+            Origin::Sdf(_) => Err("fixes are not written into SDFormat files".into()),
+        }
+    }
+
     /// The xacro expander's warnings, located in the xacro sources (none for a URDF).
     pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
         match &self.origin {

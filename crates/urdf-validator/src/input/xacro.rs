@@ -92,6 +92,40 @@ impl Expanded {
         &self.expansion.xml
     }
 
+    /// Where the text at `span` of the expanded URDF was written as it is (a literal in a xacro source): the
+    /// source's path, its text and the span there. Otherwise why it cannot be edited there: the text it
+    /// was computed from (a property, an expression, a macro argument) and where that is.
+    pub fn literal_source(&self, span: Span) -> Result<(&Path, &str, Span), String> {
+        let expanded = self
+            .expansion
+            .xml
+            .get(span.start as usize..span.end as usize)
+            .ok_or("the value is not in the expansion")?;
+        let origin = self
+            .expansion
+            .map
+            .origin(span.start as usize)
+            .ok_or("no xacro source wrote this value")?;
+        let file = self
+            .expansion
+            .sources
+            .get(origin.file)
+            .ok_or("no xacro source wrote this value")?;
+        let written = file.text.get(origin.span.clone()).unwrap_or_default();
+        if written == expanded {
+            return Ok((
+                &file.path,
+                &file.text,
+                Span::from_range(origin.span.clone()),
+            ));
+        }
+        let (line, column) = file.line_col(origin.span.start);
+        Err(format!(
+            "the value is computed from `{written}` at {}:{line}:{column}; edit what sets it there",
+            file.path.display()
+        ))
+    }
+
     /// The xacro sources read (entry file first), for snippets.
     pub fn sources(&self) -> Vec<SourceText> {
         self.expansion

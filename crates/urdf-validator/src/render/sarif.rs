@@ -9,9 +9,11 @@
 use serde_json::{json, Map, Value};
 
 use crate::diagnostics::finding::Severity;
+use crate::diagnostics::fix::Applicability;
 use crate::diagnostics::rules::{self, Rule};
 use crate::render::location::{file_uri, uri_path, DisplayPath, Place};
 use crate::render::{FormatOptions, Unreported};
+use crate::report::FixReport;
 use crate::Validation;
 
 /// The schema named in `$schema`: SARIF 2.1.0 with errata 01, as published by OASIS.
@@ -90,6 +92,9 @@ fn sarif_log(
                 result.insert("level".into(), json!(level(finding.severity)));
                 result.insert("message".into(), json!({ "text": text }));
                 result.insert("locations".into(), json!([location(&place, base)]));
+                if let Some(fix) = finding.fix.as_ref().filter(|f| !f.edits.is_empty()) {
+                    result.insert("fixes".into(), json!([sarif_fix(fix, base)]));
+                }
                 if report.baseline.is_some() {
                     // Findings the baseline holds are not reported at all (they are not failures).
                     result.insert("baselineState".into(), json!("new"));
@@ -196,11 +201,47 @@ fn rule_descriptor(rule: &Rule, rules_url: Option<&str>) -> Value {
     Value::Object(descriptor)
 }
 
-fn location(place: &Place<'_>, base: Option<&std::path::Path>) -> Value {
-    let artifact = match DisplayPath::new(place.file, base) {
+/// A SARIF `fix`: the edits grouped by file, each a byte region replaced by its text.
+fn sarif_fix(fix: &FixReport, base: Option<&std::path::Path>) -> Value {
+    let mut changes: Vec<(&str, Vec<Value>)> = Vec::new();
+    for edit in &fix.edits {
+        let replacement = json!({
+            "deletedRegion": {
+                "byteOffset": edit.edit.start,
+                "byteLength": edit.edit.end - edit.edit.start,
+            },
+            "insertedContent": { "text": edit.edit.replacement },
+        });
+        match changes.iter_mut().find(|(file, _)| *file == edit.file) {
+            Some((_, replacements)) => replacements.push(replacement),
+            None => changes.push((&edit.file, vec![replacement])),
+        }
+    }
+    let changes: Vec<Value> = changes
+        .into_iter()
+        .map(|(file, replacements)| {
+            json!({ "artifactLocation": artifact_location(file, base), "replacements": replacements })
+        })
+        .collect();
+    json!({
+        "description": { "text": format!("{} ({})", fix.description, match fix.applicability {
+            Applicability::Safe => "safe",
+            Applicability::Unsafe => "unsafe",
+        }) },
+        "artifactChanges": changes,
+    })
+}
+
+/// A file as SARIF names it: relative to `%SRCROOT%` when under the base folder, else a `file://` URI.
+fn artifact_location(file: &str, base: Option<&std::path::Path>) -> Value {
+    match DisplayPath::new(file, base) {
         DisplayPath::Relative(path) => json!({ "uri": uri_path(&path), "uriBaseId": "%SRCROOT%" }),
         DisplayPath::Absolute(path) => json!({ "uri": file_uri(&path) }),
-    };
+    }
+}
+
+fn location(place: &Place<'_>, base: Option<&std::path::Path>) -> Value {
+    let artifact = artifact_location(place.file, base);
     // GitHub code scanning wants a start line: a finding about the whole file points at its first line.
     let region = match place.region {
         Some((line, column, end_line, end_column)) => json!({

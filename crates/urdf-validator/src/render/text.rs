@@ -7,6 +7,7 @@ use std::fmt::Write;
 use anstyle::{AnsiColor, Style};
 
 use crate::diagnostics::finding::{Section, Severity};
+use crate::diagnostics::fix::Applicability;
 use crate::report::{
     ArmWorkspace, DeepSection, FindingReport, JointStatics, Report, StabilitySection,
     StaticsSection, Status, Timings, WorkspaceSection,
@@ -93,6 +94,7 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     }
     suppressed_block(&mut out, report);
     baseline_line(&mut out, report);
+    fixable_line(&mut out, report);
     let overall = report.overall_status;
     let _ = writeln!(
         out,
@@ -315,10 +317,12 @@ fn finding_lines(
 ) {
     let label = format!("[{}]", finding.severity.label());
     let padded = format!("{label:<11}");
+    let fixable = finding.fix.as_ref().filter(|f| !f.edits.is_empty());
     let _ = writeln!(
         out,
-        "  {}{}",
+        "  {}{}{}",
         paint(severity_style(finding.severity), &padded),
+        if fixable.is_some() { "[*] " } else { "" },
         finding.message
     );
     if !snippet {
@@ -373,6 +377,45 @@ fn finding_lines(
             paint(BOLD, &format!("help: {help}"))
         );
     }
+    if let Some(fix) = &finding.fix {
+        let how = match (fix.applicability, &fix.not_applicable) {
+            (_, Some(why)) => format!("fix (not applicable here: {why})"),
+            (Applicability::Safe, None) => "fix".to_string(),
+            (Applicability::Unsafe, None) => "unsafe fix".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "  {pad} {} {how}: {}",
+            paint(CYAN, "="),
+            fix.description
+        );
+    }
+}
+
+/// `[FIX]  2 fixable with --fix (1 more with --unsafe-fixes)`, when any finding has a fix to apply.
+fn fixable_line(out: &mut String, report: &Report) {
+    let count = |applicability| {
+        report
+            .findings
+            .iter()
+            .filter_map(|f| f.fix.as_ref())
+            .filter(|f| f.applicability == applicability && !f.edits.is_empty())
+            .count()
+    };
+    let (safe, unsafe_) = (count(Applicability::Safe), count(Applicability::Unsafe));
+    if safe + unsafe_ == 0 {
+        return;
+    }
+    let more = if unsafe_ > 0 {
+        format!(" ({unsafe_} more with --unsafe-fixes)")
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        out,
+        "{}  [*] {safe} fixable with --fix{more}",
+        paint(BOLD, "[FIX]")
+    );
 }
 
 fn truncate(text: &str, max: usize) -> String {

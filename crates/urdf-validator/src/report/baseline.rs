@@ -570,6 +570,7 @@ mod tests {
             help: None,
             element: element.map(str::to_string),
             expanded_from: Vec::new(),
+            fix: None,
         };
         ((), report)
     }

@@ -2,11 +2,12 @@
 //! the schema section and the overall verdict.
 
 use crate::analysis::{mass, Physics};
+use crate::diagnostics::fix::Fix;
 use crate::diagnostics::{overall_status, rules, Finding, Section, Settings, Severity};
 use crate::input::Loaded;
 use crate::model::Model;
 use crate::report::baseline::{self, Baseline, ElementPaths};
-use crate::report::{filter, FindingReport, Report, SchemaSection, Status};
+use crate::report::{filter, FileEdit, FindingReport, FixReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
 
 /// What the stages produced for one robot.
@@ -51,6 +52,7 @@ pub fn build(outcome: Outcome) -> Report {
         .into_iter()
         .map(|finding| {
             let mut report = finding_report(&finding);
+            report.fix = finding.fix.as_ref().map(|fix| fix_report(fix, loaded));
             if let Some(span) = finding.span {
                 report.element = paths.at(span);
                 if let Some(at) = loaded.locate(span) {
@@ -202,5 +204,50 @@ pub(super) fn finding_report(finding: &Finding) -> FindingReport {
         help: finding.help.clone(),
         element: None,
         expanded_from: Vec::new(),
+        fix: None,
+    }
+}
+
+/// 1-based line and column (in characters) of byte `byte` of `text`.
+fn line_col(text: &str, byte: usize) -> (u32, u32) {
+    let before = text.get(..byte).unwrap_or(text);
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
+    let column = before[line_start..].chars().count() + 1;
+    let to_u32 = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
+    (to_u32(line), to_u32(column))
+}
+
+/// `fix` as edits of the files the user edits (none, with the reason, when one of them cannot be made).
+fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
+    let edits: Result<Vec<FileEdit>, String> = fix
+        .edits
+        .iter()
+        .map(|edit| {
+            let (path, text, at) = loaded.edit_target(edit.anchor(), edit.is_textual())?;
+            let edit = edit
+                .resolve(text, at)
+                .ok_or("the text there is not the attribute the fix expects")?;
+            let (line, column) = line_col(text, edit.start);
+            let (end_line, end_column) = line_col(text, edit.end);
+            Ok(FileEdit {
+                file: path.display().to_string(),
+                line,
+                column,
+                end_line,
+                end_column,
+                edit,
+            })
+        })
+        .collect();
+    let (edits, not_applicable) = match edits {
+        Ok(edits) => (edits, None),
+        Err(why) => (Vec::new(), Some(why)),
+    };
+    FixReport {
+        applicability: fix.applicability,
+        description: fix.description.clone(),
+        edits,
+        not_applicable,
     }
 }

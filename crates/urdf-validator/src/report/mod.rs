@@ -24,6 +24,7 @@ pub use crate::diagnostics::{Confidence, ConfidenceLevel, Status};
 use schemars::JsonSchema;
 use serde::Serialize;
 
+use crate::diagnostics::fix::{Applicability, TextEdit};
 use crate::diagnostics::{Section, Severity};
 
 /// The validation report of one robot: `<stem>_validation.json`.
@@ -147,6 +148,43 @@ pub struct FindingReport {
     /// (`in macro 'wheel' called at robot.urdf.xacro:40:3`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub expanded_from: Vec<String>,
+    /// The edit that resolves it (`urdf_validate --fix`), when it has one right answer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fix: Option<FixReport>,
+}
+
+/// A finding's fix, as edits of the files the user edits.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct FixReport {
+    /// `safe` (applied by `--fix`: nothing a simulator computes changes) or `unsafe` (also needs
+    /// `--unsafe-fixes`: mass, inertia, limits, scale or effort change).
+    pub applicability: Applicability,
+    /// What applying it does.
+    pub description: String,
+    /// The edits, all applied or none (empty when the fix cannot be made in a file: see `not_applicable`).
+    pub edits: Vec<FileEdit>,
+    /// Why the fix cannot be applied here (a xacro value computed from a property, expression or macro
+    /// argument: where that is), when it cannot.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub not_applicable: Option<String>,
+}
+
+/// One edit of one file: replace bytes `start..end` with `replacement`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, JsonSchema)]
+pub struct FileEdit {
+    /// The file, as the user named it (a xacro source for xacro input).
+    pub file: String,
+    /// 1-based line of `start`.
+    pub line: u32,
+    /// 1-based column of `start`, in characters.
+    pub column: u32,
+    /// 1-based line of `end`.
+    pub end_line: u32,
+    /// 1-based column of `end`, in characters.
+    pub end_column: u32,
+    /// The byte edit.
+    #[serde(flatten)]
+    pub edit: TextEdit,
 }
 
 impl FindingReport {

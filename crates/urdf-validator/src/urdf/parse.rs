@@ -6,6 +6,7 @@ use std::path::Path;
 use roxmltree::Node;
 
 use crate::diagnostics::finding::Finding;
+use crate::diagnostics::fix::{Edit, Fix};
 use crate::diagnostics::rules;
 use crate::input::source::{Span, Spanned};
 use crate::input::{xml_options, LoadError};
@@ -37,7 +38,17 @@ impl<'t> UrdfText<'t> {
                     declaration,
                     "whitespace before the <?xml ...?> declaration: urdfdom accepts it, strict XML parsers (xacro, Python's xml, lxml) refuse the file",
                 )
-                .with_help("delete everything before `<?xml`")],
+                .with_help("delete everything before `<?xml`")
+                // Only whitespace goes: the document is the same.
+                .with_fix(Fix::safe(
+                    "delete the whitespace before `<?xml`",
+                    vec![Edit::Delete {
+                        span: Span {
+                            start: 0,
+                            end: declaration.start,
+                        },
+                    }],
+                ))],
             },
             None => UrdfText {
                 text: text.into(),

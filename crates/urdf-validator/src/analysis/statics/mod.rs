@@ -9,13 +9,14 @@ pub use section::{JointStatics, StaticsSection};
 use std::collections::BTreeMap;
 
 use crate::analysis::pose::{self, PoseKind, PoseOptions};
+use crate::diagnostics::fix::{self, Edit, Fix};
 use crate::diagnostics::suggest::did_you_mean;
 use crate::diagnostics::{rules, Confidence, Finding, Section, Status};
 use crate::input::source::Span;
 use crate::input::srdf::Srdf;
 use crate::model::kinematics::{Configuration, LinkMass};
 use crate::model::{JointId, LinkId, Model};
-use crate::urdf::robot::Robot;
+use crate::urdf::robot::{Limit, Robot};
 use gravity::{StaticsData, NEGLIGIBLE_TORQUE, PASS_MARGIN};
 
 /// What statics needs beyond the robot.
@@ -281,6 +282,21 @@ struct VerdictContext<'a> {
     payload: Option<(&'a str, f64)>,
 }
 
+/// Declare the effort that holds `torque` with the 1.5× margin (rounded up to 0.01), when an effort is
+/// written: unsafe, as it changes what the robot claims its motors can do.
+fn effort_fix(limit: Option<&Limit>, torque: f64, unit: &str) -> Option<Fix> {
+    let effort = limit?.effort.as_ref()?;
+    let needed = (gravity::effort_needed(torque) * 100.0).ceil() / 100.0;
+    let value = fix::number(needed);
+    Some(Fix::unsafe_(
+        format!("set effort to {value} {unit} (1.5 × the gravity torque): this changes what the robot claims its motors can do"),
+        vec![Edit::ReplaceValue {
+            value: effort.span,
+            with: value,
+        }],
+    ))
+}
+
 /// The finding for one graded joint: FAIL below margin 1, WARN below 1.5, WARN when it cannot be judged
 /// (unless no link declares a mass at all: one finding says so for the whole robot).
 fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<Finding> {
@@ -311,7 +327,8 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             .with_help(format!(
                 "declare effort ≥ {:.2} {unit} (1.5 × the gravity torque), or lighten the links below '{name}'",
                 gravity::effort_needed(torque)
-            )),
+            ))
+            .with_fix_option(effort_fix(limit, torque, unit)),
         ),
         (Status::Warn, Some(torque)) => Some(
             Finding::new(
@@ -327,7 +344,8 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             .with_help(format!(
                 "effort ≥ {:.2} {unit} gives the 1.5× margin",
                 gravity::effort_needed(torque)
-            )),
+            ))
+            .with_fix_option(effort_fix(limit, torque, unit)),
         ),
         (Status::Unknown, _) if any_mass => {
             let span = if torque.is_some() {

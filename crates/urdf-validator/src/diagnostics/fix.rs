@@ -1,0 +1,279 @@
+//! Fixes: the edit a finding with one right answer comes with, and applying edits to a text.
+//!
+//! A rule that knows the right value attaches a [`Fix`] to its finding. Its edits are written against the
+//! text the parser read (a URDF file, or a xacro file's expansion) as operations on an attribute value or a
+//! span; the report turns them into byte edits of the files the user edits ([`Edit::resolve`]), and
+//! [`apply`] applies byte edits to a text: pure text in, text out (writing files belongs to the CLI).
+
+use crate::input::source::Span;
+
+/// Whether applying a fix keeps the robot's physics and meaning (`safe`: `--fix`) or changes them
+/// (`unsafe`: also `--unsafe-fixes`).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Applicability {
+    /// Nothing a simulator or solver computes changes (a non-unit axis normalised, limits a continuous
+    /// joint ignores removed).
+    Safe,
+    /// The robot changes: mass, inertia, limits, scale, effort.
+    Unsafe,
+}
+
+/// A change to the text the parser read.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Replace the attribute value at `value` (the span of the value's text, without quotes).
+    ReplaceValue {
+        /// The value's span.
+        value: Span,
+        /// The new value, as written between the quotes.
+        with: String,
+    },
+    /// Remove the whole attribute whose value is at `value` (name, `=`, quotes and the space before it).
+    RemoveAttribute {
+        /// The value's span.
+        value: Span,
+    },
+    /// Insert ` name="text"` right after the attribute whose value is at `value`.
+    InsertAttributeAfter {
+        /// The value's span of the attribute to insert after.
+        value: Span,
+        /// The attribute's name.
+        name: String,
+        /// Its value.
+        text: String,
+    },
+    /// Delete the text at `span` (only in the file itself: never traced through a xacro expansion).
+    Delete {
+        /// What to delete.
+        span: Span,
+    },
+}
+
+/// A byte edit of one text: replace `start..end` with `replacement`.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, schemars::JsonSchema)]
+pub struct TextEdit {
+    /// First byte replaced.
+    pub start: usize,
+    /// One past the last byte replaced (= `start` for an insertion).
+    pub end: usize,
+    /// The new text.
+    pub replacement: String,
+}
+
+impl Edit {
+    /// The span of the text the edit is anchored at (an attribute value, or the span to delete).
+    pub fn anchor(&self) -> Span {
+        match self {
+            Edit::ReplaceValue { value, .. }
+            | Edit::RemoveAttribute { value }
+            | Edit::InsertAttributeAfter { value, .. } => *value,
+            Edit::Delete { span } => *span,
+        }
+    }
+
+    /// Whether the edit only makes sense in the text it was written against (not traced into a xacro
+    /// source).
+    pub fn is_textual(&self) -> bool {
+        matches!(self, Edit::Delete { .. })
+    }
+
+    /// The byte edit of `text` when the anchor's text is at `at` in it (`None` when the text around it is
+    /// not an attribute as expected).
+    pub fn resolve(&self, text: &str, at: Span) -> Option<TextEdit> {
+        let (start, end) = (at.start as usize, at.end as usize);
+        text.get(start..end)?;
+        match self {
+            Edit::ReplaceValue { with, .. } => Some(TextEdit {
+                start,
+                end,
+                replacement: with.clone(),
+            }),
+            Edit::RemoveAttribute { .. } => {
+                let (name_start, value_end) = attribute_bounds(text, start, end)?;
+                // The whitespace before the name goes with it.
+                let before = text.get(..name_start)?;
+                let start = before.trim_end().len();
+                Some(TextEdit {
+                    start,
+                    end: value_end,
+                    replacement: String::new(),
+                })
+            }
+            Edit::InsertAttributeAfter {
+                name, text: value, ..
+            } => {
+                let (_, value_end) = attribute_bounds(text, start, end)?;
+                Some(TextEdit {
+                    start: value_end,
+                    end: value_end,
+                    replacement: format!(" {name}=\"{value}\""),
+                })
+            }
+            Edit::Delete { .. } => Some(TextEdit {
+                start,
+                end,
+                replacement: String::new(),
+            }),
+        }
+    }
+}
+
+/// For an attribute value at `start..end`: where its name starts and where its closing quote ends.
+fn attribute_bounds(text: &str, start: usize, end: usize) -> Option<(usize, usize)> {
+    let bytes = text.as_bytes();
+    let quote = *bytes.get(start.checked_sub(1)?)?;
+    if !(quote == b'"' || quote == b'\'') || *bytes.get(end)? != quote {
+        return None;
+    }
+    let before_quote = text.get(..start - 1)?.trim_end();
+    let before_equals = before_quote.strip_suffix('=')?.trim_end();
+    let name_start = before_equals
+        .rfind(|c: char| c.is_whitespace())
+        .map_or(0, |i| i + 1);
+    (name_start < before_equals.len()).then_some((name_start, end + 1))
+}
+
+/// What a finding's fix is: what it does, whether it is safe, and its edits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fix {
+    /// Safe or unsafe.
+    pub applicability: Applicability,
+    /// What applying it does, in one sentence (`set effort to 48.2 N·m`).
+    pub description: String,
+    /// The edits, all or none applied.
+    pub edits: Vec<Edit>,
+}
+
+impl Fix {
+    /// A safe fix.
+    pub fn safe(description: impl Into<String>, edits: Vec<Edit>) -> Fix {
+        Fix {
+            applicability: Applicability::Safe,
+            description: description.into(),
+            edits,
+        }
+    }
+
+    /// An unsafe fix.
+    pub fn unsafe_(description: impl Into<String>, edits: Vec<Edit>) -> Fix {
+        Fix {
+            applicability: Applicability::Unsafe,
+            description: description.into(),
+            edits,
+        }
+    }
+}
+
+/// `text` with `edits` applied, and the edits left out because they overlap one applied before them (in
+/// the order given) or do not fit the text. Edits are applied from the end, so the spans of all of them
+/// refer to `text` as given.
+pub fn apply(text: &str, edits: &[TextEdit]) -> (String, Vec<TextEdit>) {
+    let mut kept: Vec<&TextEdit> = Vec::new();
+    let mut dropped = Vec::new();
+    for edit in edits {
+        let fits = edit.start <= edit.end && text.get(edit.start..edit.end).is_some();
+        let overlaps = kept.iter().any(|k| {
+            edit.start < k.end && k.start < edit.end
+                || (edit.start == edit.end && edit.start == k.start && k.start == k.end)
+        });
+        if fits && !overlaps {
+            kept.push(edit);
+        } else {
+            dropped.push(edit.clone());
+        }
+    }
+    kept.sort_by_key(|e| (e.start, e.end));
+    let mut out = String::with_capacity(text.len());
+    let mut at = 0;
+    for edit in kept {
+        out.push_str(&text[at..edit.start]);
+        out.push_str(&edit.replacement);
+        at = edit.end;
+    }
+    out.push_str(&text[at..]);
+    (out, dropped)
+}
+
+/// `value` written as briefly as it round-trips (`1`, `0.7071067811865476`, `48.2`).
+pub fn number(value: f64) -> String {
+    if value == value.trunc() && value.abs() < 1e15 {
+        format!("{}", value as i64)
+    } else {
+        format!("{value}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span_of(text: &str, needle: &str) -> Span {
+        let start = text.find(needle).expect("needle");
+        Span::from_range(start..start + needle.len())
+    }
+
+    #[test]
+    fn attribute_edits_resolve_around_the_value() {
+        let text = r#"<limit lower="-1" upper='1' effort="10"/>"#;
+        let lower = span_of(text, "-1");
+        let removed = Edit::RemoveAttribute { value: lower }
+            .resolve(text, lower)
+            .expect("an attribute");
+        assert_eq!(
+            apply(text, &[removed]).0,
+            r#"<limit upper='1' effort="10"/>"#
+        );
+        let upper = span_of(text, "1' ");
+        let upper = Span {
+            start: upper.start,
+            end: upper.start + 1,
+        };
+        let inserted = Edit::InsertAttributeAfter {
+            value: upper,
+            name: "x".into(),
+            text: "2".into(),
+        }
+        .resolve(text, upper)
+        .expect("an attribute");
+        assert_eq!(
+            apply(text, &[inserted]).0,
+            r#"<limit lower="-1" upper='1' x="2" effort="10"/>"#
+        );
+        // Not an attribute value: no edit.
+        assert_eq!(
+            Edit::RemoveAttribute { value: lower }.resolve(text, span_of(text, "limit")),
+            None
+        );
+    }
+
+    #[test]
+    fn overlapping_and_out_of_range_edits_are_dropped() {
+        let text = "abcdef";
+        let edit = |start, end, r: &str| TextEdit {
+            start,
+            end,
+            replacement: r.into(),
+        };
+        let (out, dropped) = apply(
+            text,
+            &[
+                edit(1, 3, "X"),
+                edit(2, 4, "Y"),
+                edit(5, 9, "Z"),
+                edit(4, 4, "-"),
+            ],
+        );
+        assert_eq!(out, "aXd-ef");
+        assert_eq!(dropped, vec![edit(2, 4, "Y"), edit(5, 9, "Z")]);
+    }
+
+    #[test]
+    fn numbers_are_written_briefly() {
+        assert_eq!(number(1.0), "1");
+        assert_eq!(number(-0.5), "-0.5");
+        assert_eq!(number(1.0 / 2f64.sqrt()), "0.7071067811865475");
+    }
+}
