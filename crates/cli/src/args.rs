@@ -217,10 +217,21 @@ pub struct Args {
     #[arg(long)]
     pub show_config: bool,
 
+    /// Evaluate the robot with a declared value changed, the file untouched (repeatable):
+    /// `joint.NAME.effort|lower|upper|velocity=V`, `link.NAME.mass=V`, `link.NAME.com=x,y,z`,
+    /// `payload.mass=V`. The report lists each override with the value the file declares.
+    #[arg(long = "override", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
+
+    /// Overrides from a TOML file: `[joint.NAME] effort = 80`, `[link.NAME] mass = 12` / `com = [x, y, z]`,
+    /// `[payload] mass = 2` (--override on the command line wins).
+    #[arg(long, value_name = "FILE.toml")]
+    pub override_file: Option<PathBuf>,
+
     /// Apply the safe fixes of the findings (those that change nothing a simulator computes) to the files
     /// the user edits (a xacro source for xacro input), then validate again and report what is left.
     /// Files are written atomically; a file that changed since it was read is not overwritten.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["overrides", "override_file"])]
     pub fix: bool,
 
     /// With --fix or --diff, also the unsafe fixes (mass, inertia, limits, scale, effort change), and
@@ -229,7 +240,7 @@ pub struct Args {
     pub unsafe_fixes: bool,
 
     /// Print the fixes as a unified diff and write nothing (exit 1 when there is something to fix, else 0).
-    #[arg(long, conflicts_with = "fix")]
+    #[arg(long, conflicts_with_all = ["fix", "overrides", "override_file"])]
     pub diff: bool,
 
     /// Report only the findings that baseline FILE (written by --write-baseline, or an earlier

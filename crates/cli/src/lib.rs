@@ -53,6 +53,7 @@ use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::render::FormatOptions;
 use urdf_validator::report::baseline::{self, Baseline};
+use urdf_validator::value_overrides::ValueOverride;
 use urdf_validator::Options;
 
 use args::{Args, ColorChoice, Format};
@@ -508,7 +509,81 @@ fn options_for(
             .map(|path| Baseline::load(path).map(std::sync::Arc::new))
             .transpose()?,
         sdf_model: args.model.clone(),
+        value_overrides: value_overrides(args)?,
     })
+}
+
+/// `--override KEY=VALUE`s, after those of `--override-file` (so the command line wins).
+fn value_overrides(args: &Args) -> Result<Vec<ValueOverride>, String> {
+    let mut texts = Vec::new();
+    if let Some(path) = &args.override_file {
+        texts.extend(override_file(path)?);
+    }
+    texts.extend(args.overrides.iter().cloned());
+    texts
+        .iter()
+        .map(|text| ValueOverride::parse(text))
+        .collect()
+}
+
+/// The `KEY=VALUE`s of an override file: `[joint.NAME]` tables with `effort`/`lower`/`upper`/`velocity`,
+/// `[link.NAME]` with `mass` and `com = [x, y, z]`, `[payload]` with `mass`.
+fn override_file(path: &Path) -> Result<Vec<String>, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("--override-file {}: cannot read it ({e})", path.display()))?;
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| format!("--override-file {}: not TOML ({e})", path.display()))?;
+    let number = |value: &toml::Value| match value {
+        toml::Value::Float(v) => Some(v.to_string()),
+        toml::Value::Integer(v) => Some(v.to_string()),
+        _ => None,
+    };
+    let mut texts = Vec::new();
+    for (kind, entries) in &table {
+        let entries = entries.as_table().ok_or_else(|| {
+            format!(
+                "--override-file {}: '{kind}' must be a table",
+                path.display()
+            )
+        })?;
+        let mut add = |key: String, value: &toml::Value| -> Result<(), String> {
+            let value = match value {
+                toml::Value::Array(items) => items
+                    .iter()
+                    .map(number)
+                    .collect::<Option<Vec<_>>>()
+                    .map(|v| v.join(",")),
+                other => number(other),
+            }
+            .ok_or_else(|| {
+                format!(
+                    "--override-file {}: '{key}' must be a number (or [x, y, z])",
+                    path.display()
+                )
+            })?;
+            texts.push(format!("{key}={value}"));
+            Ok(())
+        };
+        if kind == "payload" {
+            for (attribute, value) in entries {
+                add(format!("payload.{attribute}"), value)?;
+            }
+            continue;
+        }
+        for (name, attributes) in entries {
+            let attributes = attributes.as_table().ok_or_else(|| {
+                format!(
+                    "--override-file {}: '{kind}.{name}' must be a table",
+                    path.display()
+                )
+            })?;
+            for (attribute, value) in attributes {
+                add(format!("{kind}.{name}.{attribute}"), value)?;
+            }
+        }
+    }
+    Ok(texts)
 }
 
 /// The run's mesh cache: in memory, and on disk unless `--no-cache` (or no cache folder is known).

@@ -35,6 +35,7 @@ pub mod sdf;
 pub mod task_query;
 pub mod timings;
 pub mod urdf;
+pub mod value_overrides;
 
 use std::path::Path;
 
@@ -89,6 +90,8 @@ pub struct Options {
     /// `--model`: the model of an SDFormat world to analyse (default: its first non-static model with
     /// joints).
     pub sdf_model: Option<String>,
+    /// `--override KEY=VALUE`: declared values to evaluate the robot with instead (the file untouched).
+    pub value_overrides: Vec<value_overrides::ValueOverride>,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -144,9 +147,34 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         .as_ref()
         .map(|text| text.document(&loaded.path))
         .transpose()?;
-    let (robot, mut findings) = match (&urdf_text, &document) {
+    let (mut robot, mut findings) = match (&urdf_text, &document) {
         (Some(text), Some(document)) => text.parse(document),
         _ => parse_sdf(&loaded, options)?,
+    };
+    let overrides =
+        value_overrides::apply(&mut robot, &options.value_overrides).map_err(|message| {
+            LoadError::Usage {
+                path: loaded.path.clone(),
+                message,
+            }
+        })?;
+    let with_payload;
+    let options = match options
+        .value_overrides
+        .iter()
+        .find_map(|o| o.payload_mass())
+    {
+        Some(mass) => {
+            with_payload = Options {
+                statics: StaticsOptions {
+                    payload_mass: Some(mass),
+                    ..options.statics.clone()
+                },
+                ..options.clone()
+            };
+            &with_payload
+        }
+        None => options,
     };
     clock.lap("parse");
     let (model, tree_findings) = Model::build(&robot);
@@ -212,6 +240,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         analyses,
         settings: &options.settings,
         baseline: options.baseline.as_deref(),
+        overrides,
     });
     clock.lap("report");
     let report = Report {

@@ -94,6 +94,7 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     }
     suppressed_block(&mut out, report);
     baseline_line(&mut out, report);
+    overrides_line(&mut out, report);
     fixable_line(&mut out, report);
     let overall = report.overall_status;
     let _ = writeln!(
@@ -390,6 +391,28 @@ fn finding_lines(
             fix.description
         );
     }
+}
+
+/// `[OVERRIDES]  joint.j1.effort = 80 (file: 30); payload.mass = 2`: what the robot was evaluated with
+/// instead of the file's values.
+fn overrides_line(out: &mut String, report: &Report) {
+    if report.overrides.is_empty() {
+        return;
+    }
+    let items: Vec<String> = report
+        .overrides
+        .iter()
+        .map(|o| match &o.was {
+            Some(was) => format!("{} = {} (file: {was})", o.key, o.value),
+            None => format!("{} = {}", o.key, o.value),
+        })
+        .collect();
+    let _ = writeln!(
+        out,
+        "{}  evaluated with {}; the file is unchanged",
+        paint(BOLD, "[OVERRIDES]"),
+        items.join("; ")
+    );
 }
 
 /// `[FIX]  2 fixable with --fix (1 more with --unsafe-fixes)`, when any finding has a fix to apply.

@@ -9,6 +9,7 @@ use crate::model::Model;
 use crate::report::baseline::{self, Baseline, ElementPaths};
 use crate::report::{filter, FileEdit, FindingReport, FixReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
+use crate::value_overrides::AppliedOverride;
 
 /// What the stages produced for one robot.
 pub struct Outcome<'a> {
@@ -29,6 +30,8 @@ pub struct Outcome<'a> {
     pub settings: &'a Settings,
     /// `--baseline`: the findings it holds are not reported.
     pub baseline: Option<&'a Baseline>,
+    /// The `--override`s applied.
+    pub overrides: Vec<AppliedOverride>,
 }
 
 /// The report of one robot.
@@ -42,6 +45,7 @@ pub fn build(outcome: Outcome) -> Report {
         analyses,
         settings,
         baseline,
+        overrides,
     } = outcome;
     let reread = match document {
         Some(_) => None,
@@ -131,6 +135,7 @@ pub fn build(outcome: Outcome) -> Report {
         findings: finding_reports,
         suppressed: filtered.suppressed,
         baseline,
+        overrides,
         timings_ms: None,
     }
 }

@@ -96,6 +96,10 @@ pub struct Report {
     /// and its entries nothing matches any more (`stale`). Present only with `--baseline`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub baseline: Option<baseline::BaselineSummary>,
+    /// `--override`s the robot was evaluated with (the file untouched), each with the value the file
+    /// declares. Present only with `--override`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<crate::value_overrides::AppliedOverride>,
     /// Milliseconds per pipeline phase (`--timings` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub timings_ms: Option<Timings>,
