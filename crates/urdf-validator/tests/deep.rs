@@ -262,6 +262,9 @@ fn panda_ur5_talos_and_pr2_agree_with_pinocchio_and_get_a_drop_test() {
     assert!(
         sagging.contains(&"r_shoulder_lift_joint") && sagging.contains(&"l_shoulder_lift_joint")
     );
+    // Its fingertips end on the ground below those shoulders: their sag, not a fall.
+    assert!(drop.fallen_onto.is_empty(), "{drop:?}");
+    assert!(!pr2.findings.iter().any(|f| f.rule == "U745"));
 }
 
 /// Two links on one axis, the second following the first ×2: τ1 = −29.43, τ2 = −4.905, folded
@@ -347,6 +350,101 @@ fn a_cart_whose_com_hangs_past_its_wheels_gets_an_automatic_deep_pass_that_fails
     assert!(drop.final_tilt_deg.unwrap() > 15.0, "{drop:?}");
     assert!(report.findings.iter().any(|f| f.rule == "U745"));
     assert!(report.findings.iter().any(|f| f.rule == "U748"));
+}
+
+/// Issue 26 item 2 (`tests/data/deep/boom_cart.urdf`): statics says the cart tips over (U710); in MuJoCo it
+/// pitches forward onto the weight under its boom and rests there about 12° from upright, below the 15°
+/// tilt rule. Resting on a link that is not a support contact is a fall: U745 at the boom, the drop test
+/// FAILs, and it agrees with statics.
+#[test]
+fn a_cart_that_falls_onto_its_boom_fails_the_drop_test_naming_the_boom() {
+    let Some(python) = mujoco_python() else {
+        return;
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/deep/boom_cart.urdf");
+    let report = validate(&path, &deep_options(&python, false));
+    assert!(report.findings.iter().any(|f| f.rule == "U710"));
+    let deep = report.deep.as_ref().expect("an automatic deep pass");
+    let drop = deep.drop_test.as_ref().unwrap();
+    let tilt = drop.final_tilt_deg.unwrap();
+    assert!(
+        tilt > 5.0 && tilt < 15.0,
+        "the tilt rule alone would pass it: {drop:?}"
+    );
+    assert_eq!(drop.status, Status::Fail, "{drop:?}");
+    assert_eq!(drop.fallen_onto, ["boom"], "{drop:?}");
+    assert!(drop.ground_links.contains(&"boom".to_string()));
+    for support in ["left_wheel", "right_wheel", "caster"] {
+        assert!(
+            drop.support_links.contains(&support.to_string()),
+            "{drop:?}"
+        );
+    }
+    let finding = report
+        .findings
+        .iter()
+        .find(|f| f.rule == "U745")
+        .expect("a U745 finding");
+    assert!(finding.message.contains("'boom'"), "{}", finding.message);
+    assert_eq!(finding.line, Some(28), "at the boom's <link>");
+    assert_eq!(drop.agrees_with_stability, Some(true));
+    assert!(drop.stability_disagreement.is_none());
+    // The trace: from the release to the end, at most 200 samples, ending at the final tilt.
+    let trace = &drop.tilt_trace;
+    assert!(trace.len() > 100 && trace.len() <= 200, "{}", trace.len());
+    assert_eq!(trace[0][0], 0.0);
+    assert_eq!(trace.last().unwrap()[0], 2.0);
+    assert!((trace.last().unwrap()[1] - tilt).abs() < 1e-3);
+    assert!(trace.windows(2).all(|w| w[0][0] < w[1][0]));
+}
+
+/// The four-wheeled tipping cart with a bumper under its mast, touching the ground, while `--contact-links`
+/// names the wheels only: statics says the cart tips over (U710), MuJoCo keeps it up on the bumper (a link
+/// touching the ground at the release is a support). The drop test passes and the deep section says that
+/// the two disagree.
+#[test]
+fn when_statics_and_the_drop_test_disagree_the_deep_section_says_so() {
+    let Some(python) = mujoco_python() else {
+        return;
+    };
+    let names = ["fl", "fr", "bl", "br"];
+    let wheels: String = names
+        .iter()
+        .zip([(0.15, 0.17), (0.15, -0.17), (-0.15, 0.17), (-0.15, -0.17)])
+        .map(|(n, (x, y))| wheel(n, x, y))
+        .collect();
+    let bumper = r#"<link name="bumper"><inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.1 0.3 0.05"/></geometry></collision></link>
+  <joint name="bumper_joint" type="fixed"><parent link="base_link"/><child link="bumper"/><origin xyz="0.65 0 -0.05"/></joint>"#;
+    let text = TIPPING_CART.replace("WHEELS", &format!("{wheels}\n  {bumper}"));
+    let mut options = deep_options(&python, true);
+    options.overrides.contact_links = Some(names.iter().map(|n| format!("{n}_wheel")).collect());
+    let path = std::env::temp_dir().join("urdf-validator-deep-bumper-cart.urdf");
+    let validation = urdf_validator::validate_text(text, &path, &options).unwrap();
+    let report = &validation.report;
+    let stability = report.stability.as_ref().unwrap();
+    assert_eq!(stability.status, Status::Fail, "{stability:?}");
+    let drop = report.deep.as_ref().unwrap().drop_test.as_ref().unwrap();
+    assert_eq!(drop.status, Status::Pass, "{drop:?}");
+    assert!(
+        drop.ground_links.contains(&"bumper".to_string()),
+        "{drop:?}"
+    );
+    assert!(drop.fallen_onto.is_empty(), "{drop:?}");
+    assert_eq!(drop.agrees_with_stability, Some(false));
+    let sentence = drop.stability_disagreement.as_deref().unwrap();
+    assert!(
+        sentence
+            .starts_with("Statics and the drop test disagree: statics finds the centre of mass")
+            && sentence.contains("outside the support polygon (the robot tips over to the front)")
+            && sentence.contains("in MuJoCo the robot stays on its support contacts"),
+        "{sentence}"
+    );
+    let text = urdf_validator::render::text::render_text(
+        &validation,
+        &urdf_validator::render::text::TextOptions::default(),
+    );
+    assert!(text.contains(sentence), "{text}");
 }
 
 #[test]
