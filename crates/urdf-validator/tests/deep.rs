@@ -10,7 +10,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde_json::Value;
 use urdf_validator::analysis::classify::RobotType;
@@ -20,30 +20,6 @@ use urdf_validator::model::{JointId, Model};
 use urdf_validator::report::Report;
 use urdf_validator::urdf::parse::parse_urdf;
 use urdf_validator::Options;
-
-/// The venv's Python when it can import MuJoCo; `None` (skip) outside CI, a failure under CI.
-fn mujoco_python() -> Option<PathBuf> {
-    let python = std::env::var_os("URDF_VALIDATOR_PYTHON")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| common::repo_root().join(".venv/bin/python"));
-    let works = std::process::Command::new(&python)
-        .args(["-c", "import mujoco"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if works {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "MuJoCo is not importable by {} under CI (run scripts/setup-test-env.sh, which installs it)",
-        python.display()
-    );
-    eprintln!(
-        "skipping: MuJoCo is not importable by {} (run scripts/test.sh)",
-        python.display()
-    );
-    None
-}
 
 fn deep_options(python: &Path, requested: bool) -> Options {
     Options {
@@ -187,7 +163,7 @@ fn check_at(python: &Path, corpus: &Path, file: &str, golden: &str, label: &str)
 
 #[test]
 fn panda_ur5_talos_and_pr2_agree_with_pinocchio_and_get_a_drop_test() {
-    let (Some(python), Some(corpus)) = (mujoco_python(), common::corpus()) else {
+    let (Some(python), Some(corpus)) = (common::mujoco_python(), common::corpus()) else {
         return;
     };
     let panda = check_robot(
@@ -284,7 +260,7 @@ const MIMIC_ARM: &str = r#"<robot name="mimic_arm">
 
 #[test]
 fn a_mimic_leader_agrees_once_its_follower_is_folded_in() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let mut options = deep_options(&python, true);
@@ -327,7 +303,7 @@ fn wheel(name: &str, x: f64, y: f64) -> String {
 
 #[test]
 fn a_cart_whose_com_hangs_past_its_wheels_gets_an_automatic_deep_pass_that_fails() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let wheels: String = [
@@ -358,7 +334,7 @@ fn a_cart_whose_com_hangs_past_its_wheels_gets_an_automatic_deep_pass_that_fails
 /// FAILs, and it agrees with statics.
 #[test]
 fn a_cart_that_falls_onto_its_boom_fails_the_drop_test_naming_the_boom() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/deep/boom_cart.urdf");
@@ -404,7 +380,7 @@ fn a_cart_that_falls_onto_its_boom_fails_the_drop_test_naming_the_boom() {
 /// the two disagree.
 #[test]
 fn when_statics_and_the_drop_test_disagree_the_deep_section_says_so() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let names = ["fl", "fr", "bl", "br"];
@@ -494,7 +470,7 @@ fn without_mujoco_the_message_says_how_to_install_it_and_the_rest_runs() {
 /// below the root is one MuJoCo refuses outright (U740, quoting MuJoCo), and the static report stays whole.
 #[test]
 fn what_mujoco_changes_or_cannot_load_is_reported_at_the_element() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let mut options = deep_options(&python, true);
