@@ -423,6 +423,35 @@ fn when_statics_and_the_drop_test_disagree_the_deep_section_says_so() {
     assert!(text.contains(sentence), "{text}");
 }
 
+/// The boom cart with visuals only: MuJoCo drops URDF visuals, so nothing of it lands and it falls through
+/// the floor. Before, that was a PASS ("stays up", 0° tilt); now the drop test cannot judge it: UNKNOWN
+/// with a U747 saying why, and no claim about statics.
+#[test]
+fn a_robot_without_collision_geometry_gets_no_drop_test_verdict() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/deep/boom_cart.urdf");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("<collision>", "<visual>")
+        .replace("</collision>", "</visual>");
+    let report = validate_text(&text, &deep_options(&python, true));
+    let drop = report.deep.as_ref().unwrap().drop_test.as_ref().unwrap();
+    assert_eq!(drop.status, Status::Unknown, "{drop:?}");
+    assert!(drop.ground_links.is_empty() && drop.fallen_onto.is_empty());
+    assert_eq!(drop.agrees_with_stability, None);
+    assert!(
+        report
+            .findings
+            .iter()
+            .any(|f| f.rule == "U747" && f.message.contains("falls through the floor")),
+        "{:#?}",
+        report.findings
+    );
+    assert!(!report.findings.iter().any(|f| f.rule == "U745"));
+}
+
 #[test]
 fn without_mujoco_the_message_says_how_to_install_it_and_the_rest_runs() {
     // A Python without site-packages cannot import mujoco; an interpreter that does not exist, neither.

@@ -446,7 +446,7 @@ rules! {
     }
     DROP_TEST_UNSTEADY = "U747" "drop-test-unsteady" Warn {
         section: Deep,
-        what: "In MuJoCo's drop test the robot rocks (its tilt still varies by more than 2° over the last second), drifts (its centre of mass moves more than 5 cm horizontally in 2 s), the simulation becomes unstable, or the test could not run.",
+        what: "In MuJoCo's drop test the robot rocks (its tilt still varies by more than 2° over the last second), drifts (its centre of mass moves more than 5 cm horizontally in 2 s), the simulation becomes unstable, the test could not run, or nothing of the robot touches the ground at the end (no collision geometry for MuJoCo, which drops URDF visuals: it falls through the floor, and the test has no verdict).",
         why: "A robot that does not settle on its contacts in simulation will not stand still in a controller test either.",
         fix: "Check the contact geometry (wheels and casters touching the ground at the same height), the masses, and the joints' efforts.",
     }

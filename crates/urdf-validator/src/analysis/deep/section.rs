@@ -81,7 +81,8 @@ pub struct DeepJoint {
 pub struct DropTest {
     /// FAIL when the robot falls (a link that is not a support contact rests on the ground at the end, or
     /// the root link ends more than 15° from upright) or a joint sags; WARN when it rocks or drifts;
-    /// UNKNOWN when the simulation could not run or became unstable.
+    /// UNKNOWN when the simulation could not run or became unstable, or nothing of the robot touches the
+    /// ground at the end (no collision geometry: it falls through the floor).
     pub status: Status,
     /// Simulated time, seconds (2.0).
     pub simulated_s: f64,

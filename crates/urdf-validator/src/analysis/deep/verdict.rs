@@ -772,6 +772,17 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
         test.status = Status::Fail;
         reasons.push(how.clone());
     }
+    if !cx.fixed_base && test.ground_links.is_empty() && test.status != Status::Unknown {
+        // Nothing landed: MuJoCo has no shape of the robot to collide (URDF visuals are dropped).
+        let why = "nothing of the robot touches the ground at the end: MuJoCo has no collision geometry of it to land on (it drops URDF visuals), so it falls through the floor";
+        test.status = Status::Unknown;
+        reasons.push(why.to_string());
+        findings.push(Finding::new(
+            &rules::DROP_TEST_UNSTEADY,
+            root_span,
+            format!("The MuJoCo drop test cannot judge whether the robot stands: {why}"),
+        ));
+    }
     if !test.joints_sagging.is_empty() {
         test.status = Status::Fail;
         reasons.push(format!(
@@ -867,6 +878,9 @@ fn fall(
         .iter()
         .map(|l| robot.links[l.0].name.value.clone())
         .collect();
+    if test.ground_links.is_empty() {
+        return None; // it never landed: no verdict (the caller says so)
+    }
     let final_tilt = test.final_tilt_deg.unwrap_or(0.0);
     let dropped = format!(
         "dropped from {} cm onto flat ground with its joints held",
