@@ -218,6 +218,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             assets: &assets,
             physics: &physics,
             payload: payload(&model, options),
+            contact_links: options.overrides.contact_links.as_deref(),
             options: &options.deep,
             progress: options.progress.as_ref(),
         });

@@ -10,7 +10,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde_json::Value;
 use urdf_validator::analysis::classify::RobotType;
@@ -20,30 +20,6 @@ use urdf_validator::model::{JointId, Model};
 use urdf_validator::report::Report;
 use urdf_validator::urdf::parse::parse_urdf;
 use urdf_validator::Options;
-
-/// The venv's Python when it can import MuJoCo; `None` (skip) outside CI, a failure under CI.
-fn mujoco_python() -> Option<PathBuf> {
-    let python = std::env::var_os("URDF_VALIDATOR_PYTHON")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| common::repo_root().join(".venv/bin/python"));
-    let works = std::process::Command::new(&python)
-        .args(["-c", "import mujoco"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if works {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "MuJoCo is not importable by {} under CI (run scripts/setup-test-env.sh, which installs it)",
-        python.display()
-    );
-    eprintln!(
-        "skipping: MuJoCo is not importable by {} (run scripts/test.sh)",
-        python.display()
-    );
-    None
-}
 
 fn deep_options(python: &Path, requested: bool) -> Options {
     Options {
@@ -187,7 +163,7 @@ fn check_at(python: &Path, corpus: &Path, file: &str, golden: &str, label: &str)
 
 #[test]
 fn panda_ur5_talos_and_pr2_agree_with_pinocchio_and_get_a_drop_test() {
-    let (Some(python), Some(corpus)) = (mujoco_python(), common::corpus()) else {
+    let (Some(python), Some(corpus)) = (common::mujoco_python(), common::corpus()) else {
         return;
     };
     let panda = check_robot(
@@ -262,6 +238,9 @@ fn panda_ur5_talos_and_pr2_agree_with_pinocchio_and_get_a_drop_test() {
     assert!(
         sagging.contains(&"r_shoulder_lift_joint") && sagging.contains(&"l_shoulder_lift_joint")
     );
+    // Its fingertips end on the ground below those shoulders: their sag, not a fall.
+    assert!(drop.fallen_onto.is_empty(), "{drop:?}");
+    assert!(!pr2.findings.iter().any(|f| f.rule == "U745"));
 }
 
 /// Two links on one axis, the second following the first ×2: τ1 = −29.43, τ2 = −4.905, folded
@@ -281,7 +260,7 @@ const MIMIC_ARM: &str = r#"<robot name="mimic_arm">
 
 #[test]
 fn a_mimic_leader_agrees_once_its_follower_is_folded_in() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let mut options = deep_options(&python, true);
@@ -324,7 +303,7 @@ fn wheel(name: &str, x: f64, y: f64) -> String {
 
 #[test]
 fn a_cart_whose_com_hangs_past_its_wheels_gets_an_automatic_deep_pass_that_fails() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let wheels: String = [
@@ -347,6 +326,130 @@ fn a_cart_whose_com_hangs_past_its_wheels_gets_an_automatic_deep_pass_that_fails
     assert!(drop.final_tilt_deg.unwrap() > 15.0, "{drop:?}");
     assert!(report.findings.iter().any(|f| f.rule == "U745"));
     assert!(report.findings.iter().any(|f| f.rule == "U748"));
+}
+
+/// Issue 26 item 2 (`tests/data/deep/boom_cart.urdf`): statics says the cart tips over (U710); in MuJoCo it
+/// pitches forward onto the weight under its boom and rests there about 12° from upright, below the 15°
+/// tilt rule. Resting on a link that is not a support contact is a fall: U745 at the boom, the drop test
+/// FAILs, and it agrees with statics.
+#[test]
+fn a_cart_that_falls_onto_its_boom_fails_the_drop_test_naming_the_boom() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/deep/boom_cart.urdf");
+    let report = validate(&path, &deep_options(&python, false));
+    assert!(report.findings.iter().any(|f| f.rule == "U710"));
+    let deep = report.deep.as_ref().expect("an automatic deep pass");
+    let drop = deep.drop_test.as_ref().unwrap();
+    let tilt = drop.final_tilt_deg.unwrap();
+    assert!(
+        tilt > 5.0 && tilt < 15.0,
+        "the tilt rule alone would pass it: {drop:?}"
+    );
+    assert_eq!(drop.status, Status::Fail, "{drop:?}");
+    assert_eq!(drop.fallen_onto, ["boom"], "{drop:?}");
+    assert!(drop.ground_links.contains(&"boom".to_string()));
+    for support in ["left_wheel", "right_wheel", "caster"] {
+        assert!(
+            drop.support_links.contains(&support.to_string()),
+            "{drop:?}"
+        );
+    }
+    let finding = report
+        .findings
+        .iter()
+        .find(|f| f.rule == "U745")
+        .expect("a U745 finding");
+    assert!(finding.message.contains("'boom'"), "{}", finding.message);
+    assert_eq!(finding.line, Some(28), "at the boom's <link>");
+    assert_eq!(drop.agrees_with_stability, Some(true));
+    assert!(drop.stability_disagreement.is_none());
+    // The trace: from the release to the end, at most 200 samples, ending at the final tilt.
+    let trace = &drop.tilt_trace;
+    assert!(trace.len() > 100 && trace.len() <= 200, "{}", trace.len());
+    assert_eq!(trace[0][0], 0.0);
+    assert_eq!(trace.last().unwrap()[0], 2.0);
+    assert!((trace.last().unwrap()[1] - tilt).abs() < 1e-3);
+    assert!(trace.windows(2).all(|w| w[0][0] < w[1][0]));
+}
+
+/// The four-wheeled tipping cart with a bumper under its mast, touching the ground, while `--contact-links`
+/// names the wheels only: statics says the cart tips over (U710), MuJoCo keeps it up on the bumper (a link
+/// touching the ground at the release is a support). The drop test passes and the deep section says that
+/// the two disagree.
+#[test]
+fn when_statics_and_the_drop_test_disagree_the_deep_section_says_so() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let names = ["fl", "fr", "bl", "br"];
+    let wheels: String = names
+        .iter()
+        .zip([(0.15, 0.17), (0.15, -0.17), (-0.15, 0.17), (-0.15, -0.17)])
+        .map(|(n, (x, y))| wheel(n, x, y))
+        .collect();
+    let bumper = r#"<link name="bumper"><inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.1 0.3 0.05"/></geometry></collision></link>
+  <joint name="bumper_joint" type="fixed"><parent link="base_link"/><child link="bumper"/><origin xyz="0.65 0 -0.05"/></joint>"#;
+    let text = TIPPING_CART.replace("WHEELS", &format!("{wheels}\n  {bumper}"));
+    let mut options = deep_options(&python, true);
+    options.overrides.contact_links = Some(names.iter().map(|n| format!("{n}_wheel")).collect());
+    let path = std::env::temp_dir().join("urdf-validator-deep-bumper-cart.urdf");
+    let validation = urdf_validator::validate_text(text, &path, &options).unwrap();
+    let report = &validation.report;
+    let stability = report.stability.as_ref().unwrap();
+    assert_eq!(stability.status, Status::Fail, "{stability:?}");
+    let drop = report.deep.as_ref().unwrap().drop_test.as_ref().unwrap();
+    assert_eq!(drop.status, Status::Pass, "{drop:?}");
+    assert!(
+        drop.ground_links.contains(&"bumper".to_string()),
+        "{drop:?}"
+    );
+    assert!(drop.fallen_onto.is_empty(), "{drop:?}");
+    assert_eq!(drop.agrees_with_stability, Some(false));
+    let sentence = drop.stability_disagreement.as_deref().unwrap();
+    assert!(
+        sentence
+            .starts_with("Statics and the drop test disagree: statics finds the centre of mass")
+            && sentence.contains("outside the support polygon (the robot tips over to the front)")
+            && sentence.contains("in MuJoCo the robot stays on its support contacts"),
+        "{sentence}"
+    );
+    let text = urdf_validator::render::text::render_text(
+        &validation,
+        &urdf_validator::render::text::TextOptions::default(),
+    );
+    assert!(text.contains(sentence), "{text}");
+}
+
+/// The boom cart with visuals only: MuJoCo drops URDF visuals, so nothing of it lands and it falls through
+/// the floor. Before, that was a PASS ("stays up", 0° tilt); now the drop test cannot judge it: UNKNOWN
+/// with a U747 saying why, and no claim about statics.
+#[test]
+fn a_robot_without_collision_geometry_gets_no_drop_test_verdict() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/deep/boom_cart.urdf");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("<collision>", "<visual>")
+        .replace("</collision>", "</visual>");
+    let report = validate_text(&text, &deep_options(&python, true));
+    let drop = report.deep.as_ref().unwrap().drop_test.as_ref().unwrap();
+    assert_eq!(drop.status, Status::Unknown, "{drop:?}");
+    assert!(drop.ground_links.is_empty() && drop.fallen_onto.is_empty());
+    assert_eq!(drop.agrees_with_stability, None);
+    assert!(
+        report
+            .findings
+            .iter()
+            .any(|f| f.rule == "U747" && f.message.contains("falls through the floor")),
+        "{:#?}",
+        report.findings
+    );
+    assert!(!report.findings.iter().any(|f| f.rule == "U745"));
 }
 
 #[test]
@@ -396,7 +499,7 @@ fn without_mujoco_the_message_says_how_to_install_it_and_the_rest_runs() {
 /// below the root is one MuJoCo refuses outright (U740, quoting MuJoCo), and the static report stays whole.
 #[test]
 fn what_mujoco_changes_or_cannot_load_is_reported_at_the_element() {
-    let Some(python) = mujoco_python() else {
+    let Some(python) = common::mujoco_python() else {
         return;
     };
     let mut options = deep_options(&python, true);

@@ -1,10 +1,12 @@
 //! The HTML report in a real browser: headless Chromium renders the PR2's report to a PNG, logs no console
-//! message, and its DOM holds the plots and one row per finding.
+//! message, and its DOM holds the plots and one row per finding; the same for the deep section (MuJoCo) of
+//! a cart that falls onto its boom, with its tilt plot (needs MuJoCo, see `common::mujoco_python`).
 //!
 //! Chromium is found as `URDF_VALIDATOR_CHROMIUM`, else `chromium`, `chromium-browser`, `google-chrome` or
 //! `google-chrome-stable` on PATH (Debian: `apt-get install chromium`; `.ci/run` installs it). Without it
 //! (or without ../shared/robots) the test skips with a message, except under `CI` where it fails.
-//! `URDF_VALIDATOR_HTML_SCREENSHOT=docs/report-pr2.png` also copies the screenshot there.
+//! `URDF_VALIDATOR_HTML_SCREENSHOT=docs/report-pr2.png` also copies the screenshot there
+//! (`URDF_VALIDATOR_HTML_DEEP_SCREENSHOT` the cart's).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
 
@@ -131,6 +133,45 @@ fn the_console_check_sees_a_console_error() {
     );
 }
 
+/// `page` as headless Chromium parses it (the DOM) and draws it (a PNG of the window's size, with content:
+/// a blank page compresses to a few kB), with no console message in either run.
+fn dom_and_screenshot(browser: &Path, scratch: &Scratch, page: &Path) -> (String, Vec<u8>) {
+    let out = headless(browser, &scratch.0, page, &["--dump-dom"]);
+    assert!(out.status.success(), "chromium --dump-dom failed: {out:?}");
+    let dom = String::from_utf8_lossy(&out.stdout).into_owned();
+    let console = console_lines(&out.stderr);
+    assert!(
+        console.is_empty(),
+        "console messages:\n{}",
+        console.join("\n")
+    );
+    let shot = page.with_extension("png");
+    let out = headless(
+        browser,
+        &scratch.0,
+        page,
+        &[&format!("--screenshot={}", shot.display())],
+    );
+    assert!(
+        out.status.success(),
+        "chromium --screenshot failed: {out:?}"
+    );
+    let console = console_lines(&out.stderr);
+    assert!(
+        console.is_empty(),
+        "console messages:\n{}",
+        console.join("\n")
+    );
+    let png = std::fs::read(&shot).expect("a screenshot was written");
+    assert_eq!(png_size(&png), Some((WIDTH, HEIGHT)));
+    assert!(
+        png.len() > 100_000,
+        "the screenshot is nearly blank ({} bytes)",
+        png.len()
+    );
+    (dom, png)
+}
+
 #[test]
 fn the_pr2_report_renders_in_headless_chromium() {
     let Some(robots) = common::shared_robots() else {
@@ -152,9 +193,7 @@ fn the_pr2_report_renders_in_headless_chromium() {
     std::fs::write(&page, &html).unwrap();
 
     // The DOM as the browser parsed it: the plots, both arms, one row per finding.
-    let out = headless(&browser, &scratch.0, &page, &["--dump-dom"]);
-    assert!(out.status.success(), "chromium --dump-dom failed: {out:?}");
-    let dom = String::from_utf8_lossy(&out.stdout);
+    let (dom, png) = dom_and_screenshot(&browser, &scratch, &page);
     let arms = report.workspace.as_ref().map_or(0, |w| w.arms.len());
     assert!(arms >= 2, "the PR2 has two arms");
     let mut ids = vec![
@@ -177,39 +216,56 @@ fn the_pr2_report_renders_in_headless_chromium() {
         report.findings.len(),
         "one table row per finding"
     );
-    let console = console_lines(&out.stderr);
-    assert!(
-        console.is_empty(),
-        "console messages:\n{}",
-        console.join("\n")
-    );
-
-    // The pixels: a PNG of the window's size, with content (a blank page compresses to a few kB).
-    let shot = scratch.0.join("pr2_report.png");
-    let out = headless(
-        &browser,
-        &scratch.0,
-        &page,
-        &[&format!("--screenshot={}", shot.display())],
-    );
-    assert!(
-        out.status.success(),
-        "chromium --screenshot failed: {out:?}"
-    );
-    let console = console_lines(&out.stderr);
-    assert!(
-        console.is_empty(),
-        "console messages:\n{}",
-        console.join("\n")
-    );
-    let png = std::fs::read(&shot).expect("a screenshot was written");
-    assert_eq!(png_size(&png), Some((WIDTH, HEIGHT)));
-    assert!(
-        png.len() > 100_000,
-        "the screenshot is nearly blank ({} bytes)",
-        png.len()
-    );
     if let Some(copy) = std::env::var_os("URDF_VALIDATOR_HTML_SCREENSHOT") {
-        std::fs::copy(&shot, &copy).unwrap();
+        std::fs::write(copy, png).unwrap();
+    }
+}
+
+/// The deep section of the cart that falls onto its boom (`tests/data/deep/boom_cart.urdf`, MuJoCo's pass
+/// running by itself): its card, its panel and the tilt plot with one vertex per sample of the trace.
+#[test]
+fn the_deep_section_renders_in_headless_chromium() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let Some(browser) = chromium() else {
+        return;
+    };
+    // A relative path, as a user would type it: the page shows it.
+    let urdf = Path::new("tests/data/deep/boom_cart.urdf");
+    let options = Options {
+        deep: urdf_validator::analysis::deep::DeepOptions {
+            python: Some(python),
+            ..Default::default()
+        },
+        ..Options::default()
+    };
+    let validation = validate(urdf, &options).expect("the cart validates");
+    let drop = validation
+        .report
+        .deep
+        .as_ref()
+        .and_then(|d| d.drop_test.as_ref())
+        .expect("a drop test");
+    assert_eq!(drop.fallen_onto, ["boom"]);
+    let html = render_html(&validation);
+    let scratch = Scratch::new("deep");
+    let page = scratch.0.join("boom_cart_report.html");
+    std::fs::write(&page, &html).unwrap();
+    let (dom, png) = dom_and_screenshot(&browser, &scratch, &page);
+    for needle in [
+        "id=\"deep\"",
+        "href=\"#deep\"",
+        "id=\"drop-tilt-plot\"",
+        "<span class=\"name fallen\">boom</span>",
+    ] {
+        assert!(dom.contains(needle), "{needle} missing from the DOM");
+    }
+    let at = dom.find("<polyline class=\"tilt fail\" points=\"").unwrap();
+    let points = dom[at..].split('"').nth(3).unwrap();
+    assert_eq!(points.split(' ').count(), drop.tilt_trace.len());
+    assert!(!html.contains(&*std::env::current_dir().unwrap().to_string_lossy()));
+    if let Some(copy) = std::env::var_os("URDF_VALIDATOR_HTML_DEEP_SCREENSHOT") {
+        std::fs::write(copy, png).unwrap();
     }
 }

@@ -434,9 +434,9 @@ rules! {
     }
     DROP_TEST_TIPS_OVER = "U745" "drop-test-tips-over" Fail {
         section: Deep,
-        what: "In MuJoCo's drop test (the robot at the analysed pose, released 2 cm above flat ground, joints held by servos clamped to their declared effort, 2.0 s at a fixed 1 ms step, implicitfast integrator) the root link ends more than 15° from upright.",
-        why: "The robot falls over as soon as it is spawned in a simulator, whatever the controller.",
-        fix: "Check the masses and centres of mass of the heaviest links and the contact geometry; a COM outside the support polygon (U710) is the usual cause.",
+        what: "In MuJoCo's drop test (the robot at the analysed pose, released 2 cm above flat ground, joints held by servos clamped to their declared effort, 2.0 s at a fixed 1 ms step, implicitfast integrator) the robot falls: a link that is not a support contact rests on the ground at the end (support contacts: the stability section's contact links and raised contacts, `--contact-links`, links named as wheels or casters, and the links touching the ground when the robot is released; a link below a sagging joint is that joint's U746 instead; the finding points at that link), or the root link ends more than 15° from upright.",
+        why: "The robot falls over as soon as it is spawned in a simulator, whatever the controller: lying on a boom, an arm or its body at any angle is a fall.",
+        fix: "Check the masses and centres of mass of the heaviest links, the joints' efforts and the contact geometry; a COM outside the support polygon (U710) is the usual cause. If the link is meant to touch the ground, name it with `--contact-links`.",
     }
     DROP_TEST_JOINT_SAGS = "U746" "drop-test-joint-sags" Fail {
         section: Deep,
@@ -446,7 +446,7 @@ rules! {
     }
     DROP_TEST_UNSTEADY = "U747" "drop-test-unsteady" Warn {
         section: Deep,
-        what: "In MuJoCo's drop test the robot rocks (its tilt still varies by more than 2° over the last second), drifts (its centre of mass moves more than 5 cm horizontally in 2 s), the simulation becomes unstable, or the test could not run.",
+        what: "In MuJoCo's drop test the robot rocks (its tilt still varies by more than 2° over the last second), drifts (its centre of mass moves more than 5 cm horizontally in 2 s), the simulation becomes unstable, the test could not run, or nothing of the robot touches the ground at the end (no collision geometry for MuJoCo, which drops URDF visuals: it falls through the floor, and the test has no verdict).",
         why: "A robot that does not settle on its contacts in simulation will not stand still in a controller test either.",
         fix: "Check the contact geometry (wheels and casters touching the ground at the same height), the masses, and the joints' efforts.",
     }

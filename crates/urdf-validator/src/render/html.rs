@@ -1,9 +1,10 @@
 //! HTML view of a report: one self-contained file (inline CSS and SVG, no script, font, image or link to
 //! anything outside it) that opens offline, from an email attachment as well as from a CI artifact.
 //!
-//! It shows the verdict, the findings (each linking to its source snippet), and three plots drawn here as
-//! SVG: the support polygon with the centre of mass over it, each joint's gravity torque against its effort
-//! limit, and each arm's sampled reach (side and top views). Light and dark themes follow
+//! It shows the verdict, the findings (each linking to its source snippet), and plots drawn here as SVG:
+//! the support polygon with the centre of mass over it, each joint's gravity torque against its effort
+//! limit, each arm's sampled reach (side and top views), and with `--deep` the root link's tilt over the
+//! MuJoCo drop test (module `deep`). Light and dark themes follow
 //! `prefers-color-scheme`.
 //!
 //! Robot files are untrusted input: every string that came from one (names, messages, paths, source lines)
@@ -18,6 +19,8 @@ use crate::report::{
     StaticsSection, Status, WorkspaceSection,
 };
 use crate::Validation;
+
+mod deep;
 
 /// Source snippets beyond this many findings are left out (their rows show the position as text).
 const MAX_SNIPPETS: usize = 1000;
@@ -46,9 +49,10 @@ pub fn render_html(validation: &Validation) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <meta name=\"color-scheme\" content=\"light dark\">\n\
-         <meta name=\"generator\" content=\"urdf_validate {}\">\n<title>{}</title>\n<style>{CSS}</style>\n</head>\n<body>\n",
+         <meta name=\"generator\" content=\"urdf_validate {}\">\n<title>{}</title>\n<style>{CSS}{}</style>\n</head>\n<body>\n",
         escape(&report.validator_version),
-        escape(&title)
+        escape(&title),
+        deep::CSS
     );
     let order = findings_order(&report.findings);
     hero(&mut out, report);
@@ -299,6 +303,9 @@ fn summary_cards(out: &mut String, report: &Report) {
             &detail,
         );
     }
+    if let Some(section) = &report.deep {
+        deep::deep_card(out, section);
+    }
     out.push_str("</section>\n");
 }
 
@@ -542,6 +549,9 @@ fn plots(out: &mut String, report: &Report) {
     }
     if let Some(workspace) = &report.workspace {
         workspace_panel(out, report, workspace);
+    }
+    if let Some(section) = &report.deep {
+        deep::deep_panel(out, section);
     }
 }
 

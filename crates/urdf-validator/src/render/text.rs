@@ -982,6 +982,16 @@ fn deep_section(out: &mut String, deep: &DeepSection) {
             drop.base,
             paint(status_style(drop.status), drop.status.label())
         );
+        if !drop.ground_links.is_empty() {
+            let _ = writeln!(
+                out,
+                "        on the ground at the end: {}",
+                drop.ground_links.join(", ")
+            );
+        }
+        if let Some(disagreement) = &drop.stability_disagreement {
+            let _ = writeln!(out, "        {}", paint(YELLOW, disagreement));
+        }
     }
     if !deep.simulator_changes.is_empty() {
         let _ = writeln!(

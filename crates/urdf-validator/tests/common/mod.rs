@@ -75,3 +75,27 @@ pub fn urdfs_below(dir: &Path) -> Vec<PathBuf> {
     found.sort();
     found
 }
+
+/// The venv's Python when it can import MuJoCo; `None` (skip) outside CI, a failure under CI.
+pub fn mujoco_python() -> Option<PathBuf> {
+    let python = std::env::var_os("URDF_VALIDATOR_PYTHON")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| repo_root().join(".venv/bin/python"));
+    let works = std::process::Command::new(&python)
+        .args(["-c", "import mujoco"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if works {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "MuJoCo is not importable by {} under CI (run scripts/setup-test-env.sh, which installs it)",
+        python.display()
+    );
+    eprintln!(
+        "skipping: MuJoCo is not importable by {} (run scripts/test.sh)",
+        python.display()
+    );
+    None
+}

@@ -13,10 +13,12 @@ The job (built by crates/urdf-validator/src/analysis/deep/job.rs):
   root, fixed_base, payload {link, mass} | null
   configurations  [{label, q: {joint: value}}]: gravity forces and COM at each
   drop            {duration, timestep, height, omega_dt, saturation, integral_rate, q,
-                  servos: [{joint, effort}]} | null
+                  servos: [{joint, effort}], trace_points} | null
 
 The reply: ok, mujoco_version, attempts [{error, applied}], model {bodies, joints}, crosscheck
-[{label, qfrc_bias, com, body_pos}], drop {...} or drop_error.
+[{label, qfrc_bias, com, body_pos}], drop {...} or drop_error. The drop names links, not MuJoCo bodies
+(fused links have none): `start_clearance_m` {link: height of its lowest point above the robot's at the
+release}, `ground_links_end` [links touching the floor at the last step], `tilt_trace` [[t, degrees]].
 """
 
 import json
@@ -107,6 +109,10 @@ def add_extras(mujoco, spec, job, drop):
             # Only the floor collides with the robot: links in contact at the start would explode.
             geom.contype = 1
             geom.conaffinity = 0
+        # Each geom named after its link, which survives `fusestatic` (the body does not).
+        for body in spec.bodies:
+            for index, geom in enumerate(body.geoms):
+                geom.name = "%s%s/%d" % (GEOM_PREFIX, body.name, index)
     if drop and not job["fixed_base"]:
         floor = spec.worldbody.add_geom()
         floor.name = "urdf_validate_floor"
@@ -131,6 +137,17 @@ def add_extras(mujoco, spec, job, drop):
             if servo["effort"] is not None:
                 act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
                 act.forcerange = [-servo["effort"], servo["effort"]]
+
+
+GEOM_PREFIX = "urdf_validate_link/"
+
+
+def link_of_geom(mujoco, m, g):
+    """The URDF link a robot geom came from (its name, given in add_extras), or None."""
+    name = name_of(mujoco, m, mujoco.mjtObj.mjOBJ_GEOM, g)
+    if not name.startswith(GEOM_PREFIX):
+        return None
+    return name[len(GEOM_PREFIX):].rsplit("/", 1)[0]
 
 
 def apply_fallback(mujoco, spec, fallback):
@@ -229,32 +246,34 @@ def crosscheck(mujoco, m, job, root_id):
 
 def lowest_point(mujoco, m, d, robot_geoms):
     """The lowest z of the robot's collision geometry at the current pose."""
+    return min((geom_lowest(mujoco, m, d, g) for g in robot_geoms), default=math.inf)
+
+
+def geom_lowest(mujoco, m, d, g):
+    """The lowest z of one geom at the current pose."""
     import numpy as np
 
-    low = math.inf
-    for g in robot_geoms:
-        pos = d.geom_xpos[g]
-        rot = d.geom_xmat[g].reshape(3, 3)
-        size = m.geom_size[g]
-        kind = mujoco.mjtGeom(int(m.geom_type[g]))
-        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
-            z = pos[2] - size[0]
-        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
-            z = pos[2] - abs(rot[2, 2]) * size[1] - size[0]
-        elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
-            axis_z = abs(rot[2, 2])
-            z = pos[2] - axis_z * size[1] - size[0] * math.sqrt(max(0.0, 1.0 - axis_z * axis_z))
-        elif kind == mujoco.mjtGeom.mjGEOM_BOX or kind == mujoco.mjtGeom.mjGEOM_ELLIPSOID:
-            z = pos[2] - float(np.abs(rot[2, :]) @ size[:3])
-        elif kind == mujoco.mjtGeom.mjGEOM_MESH:
-            mesh = m.geom_dataid[g]
-            start = m.mesh_vertadr[mesh]
-            verts = m.mesh_vert[start:start + m.mesh_vertnum[mesh]]
-            z = pos[2] + float(np.min(verts @ rot[2, :])) if len(verts) else pos[2]
-        else:
-            z = pos[2] - m.geom_rbound[g]
-        low = min(low, float(z))
-    return low
+    pos = d.geom_xpos[g]
+    rot = d.geom_xmat[g].reshape(3, 3)
+    size = m.geom_size[g]
+    kind = mujoco.mjtGeom(int(m.geom_type[g]))
+    if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+        z = pos[2] - size[0]
+    elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+        z = pos[2] - abs(rot[2, 2]) * size[1] - size[0]
+    elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
+        axis_z = abs(rot[2, 2])
+        z = pos[2] - axis_z * size[1] - size[0] * math.sqrt(max(0.0, 1.0 - axis_z * axis_z))
+    elif kind == mujoco.mjtGeom.mjGEOM_BOX or kind == mujoco.mjtGeom.mjGEOM_ELLIPSOID:
+        z = pos[2] - float(np.abs(rot[2, :]) @ size[:3])
+    elif kind == mujoco.mjtGeom.mjGEOM_MESH:
+        mesh = m.geom_dataid[g]
+        start = m.mesh_vertadr[mesh]
+        verts = m.mesh_vert[start:start + m.mesh_vertnum[mesh]]
+        z = pos[2] + float(np.min(verts @ rot[2, :])) if len(verts) else pos[2]
+    else:
+        z = pos[2] - m.geom_rbound[g]
+    return float(z)
 
 
 def tilt_deg(d, root_id):
@@ -279,6 +298,14 @@ def drop_test(mujoco, m, job, root_id):
         d.qpos[0:3] = [0.0, 0.0, drop["height"] - low]
         d.qpos[3:7] = [1.0, 0.0, 0.0, 0.0]
     mujoco.mj_forward(m, d)
+    # How far above the robot's lowest point each link starts: the links at 0 are what it stands on.
+    start_low = lowest_point(mujoco, m, d, robot_geoms) if robot_geoms else 0.0
+    start_clearance = {}
+    for g in robot_geoms:
+        link = link_of_geom(mujoco, m, g)
+        if link is not None:
+            z = geom_lowest(mujoco, m, d, g) - start_low
+            start_clearance[link] = min(start_clearance.get(link, math.inf), z)
 
     # Servos: a PID whose proportional gain reaches the joint's effort at `saturation` rad (or m) of
     # error, capped so the joint's own inertia does not oscillate faster than the time step allows,
@@ -319,6 +346,9 @@ def drop_test(mujoco, m, job, root_id):
     max_dev = np.zeros(len(servo_joint))
     late_dev = np.zeros(len(servo_joint))
     tilts = []
+    # The tilt over time for plots: at the start, then every `stride` steps, the last step included.
+    stride = max(1, -(-steps // max(1, drop["trace_points"] - 2)))
+    trace = [[0.0, finite(tilt_deg(d, root_id))]]
     started = time.time()
     for step in range(steps):
         if len(servo_joint):
@@ -330,6 +360,8 @@ def drop_test(mujoco, m, job, root_id):
         max_tilt = max(max_tilt, tilt)
         if step % 10 == 0:
             tilts.append(tilt)
+        if (step + 1) % stride == 0 or step == steps - 1:
+            trace.append([finite((step + 1) * drop["timestep"]), finite(tilt)])
         if len(servo_joint):
             dev = np.abs(d.qpos[servo_q] - ref)
             max_dev = np.maximum(max_dev, dev)
@@ -340,6 +372,14 @@ def drop_test(mujoco, m, job, root_id):
     if bad.number > 0:
         unstable = "MuJoCo found the acceleration not finite (simulation unstable) at step %d" % (bad.lastinfo,)
     com1 = np.array(d.subtree_com[root_id])
+    # The links resting on the ground at the end: a contact with the floor at the last step.
+    ground_end = set()
+    for c in d.contact[:d.ncon]:
+        if floor >= 0 and floor in (int(c.geom1), int(c.geom2)):
+            other = int(c.geom2) if int(c.geom1) == floor else int(c.geom1)
+            link = link_of_geom(mujoco, m, other)
+            if link is not None:
+                ground_end.add(link)
     final_dev = np.abs(d.qpos[servo_q] - ref) if len(servo_joint) else np.zeros(0)
     return {
         "simulated_s": steps * drop["timestep"],
@@ -361,6 +401,9 @@ def drop_test(mujoco, m, job, root_id):
             }
             for i, name in enumerate(servo_joint)
         ],
+        "start_clearance_m": {link: finite(z) for link, z in sorted(start_clearance.items())},
+        "ground_links_end": sorted(ground_end),
+        "tilt_trace": trace,
         "unstable": unstable,
         "wall_s": time.time() - started,
     }

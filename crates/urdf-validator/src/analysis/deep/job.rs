@@ -21,6 +21,8 @@ pub const DROP_DURATION_S: f64 = 2.0;
 pub const DROP_TIMESTEP_S: f64 = 0.001;
 /// Height of the lowest collision geometry above the ground when the robot is released, metres.
 pub const DROP_HEIGHT_M: f64 = 0.02;
+/// Most samples of the root link's tilt the drop test reports (`deep.drop_test.tilt_trace`).
+pub const TILT_TRACE_POINTS: usize = 200;
 /// A servo's error at which it reaches its joint's effort (rad, or m), before its integral term.
 const SERVO_SATURATION: f64 = 0.02;
 /// Largest servo natural frequency times the time step (keeps light links stable).
@@ -246,6 +248,7 @@ pub fn build(input: &JobInput) -> Option<Job> {
             "integral_rate": SERVO_INTEGRAL_RATE,
             "q": named(input.drop_q),
             "servos": servos,
+            "trace_points": TILT_TRACE_POINTS,
         },
     });
     Some(Job {

@@ -6,9 +6,11 @@
 //! | [`job`] | the URDF handed to MuJoCo (meshes resolved, COLLADA as hulls), fallbacks, servos |
 //! | [`bridge`] | the Python process running `bridge.py` with MuJoCo, bounded in time |
 //! | [`verdict`] | the reply compared with our model: changes, cross-check, drop test, findings |
+//! | `ground` | the drop test's end: support contacts, links fallen onto, agreement with stability |
 //! | `section` | the `deep` section of the report |
 
 pub mod bridge;
+mod ground;
 pub mod job;
 mod section;
 pub mod verdict;
@@ -69,6 +71,8 @@ pub struct DeepInput<'a> {
     pub physics: &'a Physics,
     /// `--payload-mass` and its link, as statics used them.
     pub payload: Option<(crate::model::LinkId, f64)>,
+    /// `--contact-links`, when declared.
+    pub contact_links: Option<&'a [String]>,
     /// The options.
     pub options: &'a DeepOptions,
     /// Cancels the MuJoCo process when the file's time runs out.
@@ -133,6 +137,7 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
                 job: &job,
                 reply: &reply,
                 payload: input.payload,
+                contact_links: input.contact_links,
                 fixed_base,
                 trigger,
             });

@@ -79,8 +79,10 @@ pub struct DeepJoint {
 /// dropped from 2 cm and simulated for 2.0 s.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct DropTest {
-    /// FAIL when the robot tips over or a joint sags; WARN when it rocks or drifts; UNKNOWN when the
-    /// simulation could not run or became unstable.
+    /// FAIL when the robot falls (a link that is not a support contact rests on the ground at the end, or
+    /// the root link ends more than 15° from upright) or a joint sags; WARN when it rocks or drifts;
+    /// UNKNOWN when the simulation could not run or became unstable, or nothing of the robot touches the
+    /// ground at the end (no collision geometry: it falls through the floor).
     pub status: Status,
     /// Simulated time, seconds (2.0).
     pub simulated_s: f64,
@@ -96,6 +98,25 @@ pub struct DropTest {
     pub com_drift_m: Option<f64>,
     /// Joints that end further from their pose than the tolerance (0.05 rad, 0.01 m).
     pub joints_sagging: Vec<SaggingJoint>,
+    /// The links the robot may rest on: the stability section's contact links and raised contacts,
+    /// `--contact-links`, links named as wheels or casters, and the links touching the ground (within
+    /// 5 mm of the robot's lowest point) when it is released.
+    pub support_links: Vec<String>,
+    /// The links touching the ground at the end of the test (a MuJoCo contact with the floor at the last
+    /// step). Links fused by MuJoCo are named as in the file.
+    pub ground_links: Vec<String>,
+    /// Those of `ground_links` that are not support links (nor below a sagging joint, which is that
+    /// joint's sag, U746): the robot has fallen onto them (U745).
+    pub fallen_onto: Vec<String>,
+    /// Whether the drop test agrees with the stability section (both say the robot stands, or both that
+    /// it falls); null when either has no verdict (stability not applicable or not computed, a fixed
+    /// base, a simulation that could not run).
+    pub agrees_with_stability: Option<bool>,
+    /// When they disagree, how, in one sentence.
+    pub stability_disagreement: Option<String>,
+    /// The root link's tilt from upright over the test, `[time s, degrees]`, from the release to the end:
+    /// at most 200 samples, evenly spaced (for plots).
+    pub tilt_trace: Vec<[f64; 2]>,
     /// Why the verdict is not PASS, in one sentence.
     pub reason: Option<String>,
 }

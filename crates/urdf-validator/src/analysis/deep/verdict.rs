@@ -6,6 +6,7 @@ use std::collections::{HashMap, HashSet};
 
 use serde_json::Value;
 
+use super::ground;
 use super::job::{Job, BOUND_MASS, DROP_DURATION_S, DROP_TIMESTEP_S};
 use super::section::{DeepJoint, DeepSection, DropTest, SaggingJoint, SimulatorChange};
 use crate::analysis::Physics;
@@ -49,6 +50,8 @@ pub struct Context<'a> {
     pub reply: &'a Value,
     /// The payload in the MuJoCo model.
     pub payload: Option<(LinkId, f64)>,
+    /// `--contact-links`, when declared.
+    pub contact_links: Option<&'a [String]>,
     /// Root held in place.
     pub fixed_base: bool,
     /// `requested` or `automatic`.
@@ -683,6 +686,12 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
         final_tilt_deg: None,
         com_drift_m: None,
         joints_sagging: Vec::new(),
+        support_links: Vec::new(),
+        ground_links: Vec::new(),
+        fallen_onto: Vec::new(),
+        agrees_with_stability: None,
+        stability_disagreement: None,
+        tilt_trace: Vec::new(),
         reason: None,
     };
     let root_span = model.root.map_or(robot.span, |r| robot.links[r.0].span);
@@ -716,20 +725,7 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
             format!("The MuJoCo drop test became unstable: {unstable}; its numbers are not to be trusted"),
         ));
     }
-    let final_tilt = test.final_tilt_deg.unwrap_or(0.0);
-    if !cx.fixed_base && final_tilt > TIP_OVER_DEG {
-        test.status = Status::Fail;
-        reasons.push(format!("tips over ({final_tilt:.1}° from upright)"));
-        findings.push(Finding::new(
-            &rules::DROP_TEST_TIPS_OVER,
-            root_span,
-            format!(
-                "In MuJoCo the robot tips over: dropped from {} cm onto flat ground with its joints held, its root link ends {final_tilt:.1}° from upright after {:.1} s (> {TIP_OVER_DEG}°)",
-                super::job::DROP_HEIGHT_M * 100.0,
-                test.simulated_s
-            ),
-        ));
-    }
+    test.tilt_trace = tilt_trace(&drop["tilt_trace"]);
     for joint in drop["joints"].as_array().into_iter().flatten() {
         let Some(name) = joint["name"].as_str() else {
             continue;
@@ -767,6 +763,25 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
                 ),
             ));
         }
+    }
+    // After the sagging joints: what rests on the ground below one of them is that joint's sag.
+    let fell = (!cx.fixed_base)
+        .then(|| fall(cx, drop, &mut test, findings))
+        .flatten();
+    if let Some(how) = &fell {
+        test.status = Status::Fail;
+        reasons.push(how.clone());
+    }
+    if !cx.fixed_base && test.ground_links.is_empty() && test.status != Status::Unknown {
+        // Nothing landed: MuJoCo has no shape of the robot to collide (URDF visuals are dropped).
+        let why = "nothing of the robot touches the ground at the end: MuJoCo has no collision geometry of it to land on (it drops URDF visuals), so it falls through the floor";
+        test.status = Status::Unknown;
+        reasons.push(why.to_string());
+        findings.push(Finding::new(
+            &rules::DROP_TEST_UNSTEADY,
+            root_span,
+            format!("The MuJoCo drop test cannot judge whether the robot stands: {why}"),
+        ));
     }
     if !test.joints_sagging.is_empty() {
         test.status = Status::Fail;
@@ -815,5 +830,118 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
     if !reasons.is_empty() {
         test.reason = Some(reasons.join("; "));
     }
+    if !cx.fixed_base && test.status != Status::Unknown {
+        let stood = format!(
+            "stays on its support contacts, its root link {:.1}° from upright after {:.1} s",
+            test.final_tilt_deg.unwrap_or(0.0),
+            test.simulated_s
+        );
+        if let Some((agrees, sentence)) =
+            ground::against_stability(&cx.physics.stability, fell.as_deref(), &stood)
+        {
+            test.agrees_with_stability = Some(agrees);
+            test.stability_disagreement = sentence;
+        }
+    }
     test
+}
+
+/// Whether the robot fell, in a few words, with its U745 finding: a link that is not a support contact
+/// (nor below a sagging joint) rests on the ground at the end (the finding points at the first such link),
+/// or else the root link ends more than [`TIP_OVER_DEG`] from upright.
+fn fall(
+    cx: &Context,
+    drop: &Value,
+    test: &mut DropTest,
+    findings: &mut Vec<Finding>,
+) -> Option<String> {
+    let (robot, model) = (cx.robot, cx.model);
+    let sagging: Vec<JointId> = test
+        .joints_sagging
+        .iter()
+        .filter_map(|j| model.joint(&j.name))
+        .collect();
+    let ground = ground::ground(
+        robot,
+        model,
+        &ground::Supports {
+            stability: &cx.physics.stability,
+            declared: cx.contact_links,
+            sagging: &sagging,
+        },
+        drop,
+    );
+    test.support_links = ground.supports;
+    test.ground_links = ground.at_end;
+    test.fallen_onto = ground
+        .fallen_onto
+        .iter()
+        .map(|l| robot.links[l.0].name.value.clone())
+        .collect();
+    if test.ground_links.is_empty() {
+        return None; // it never landed: no verdict (the caller says so)
+    }
+    let final_tilt = test.final_tilt_deg.unwrap_or(0.0);
+    let dropped = format!(
+        "dropped from {} cm onto flat ground with its joints held",
+        super::job::DROP_HEIGHT_M * 100.0
+    );
+    if let Some(first) = ground.fallen_onto.first() {
+        let names = test
+            .fallen_onto
+            .iter()
+            .map(|n| format!("'{n}'"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let which = if test.fallen_onto.len() == 1 {
+            "which is not a support contact"
+        } else {
+            "which are not support contacts"
+        };
+        let supports = if test.support_links.is_empty() {
+            "it has none".to_string()
+        } else {
+            test.support_links.join(", ")
+        };
+        findings.push(Finding::new(
+            &rules::DROP_TEST_TIPS_OVER,
+            robot.links[first.0].span,
+            format!(
+                "In MuJoCo the robot falls onto {names}: {dropped}, after {:.1} s it rests on {names}, {which} (support contacts: {supports}), its root link {final_tilt:.1}° from upright",
+                test.simulated_s,
+            ),
+        ));
+        return Some(format!(
+            "falls onto {} ({final_tilt:.1}° from upright)",
+            test.fallen_onto.join(", ")
+        ));
+    }
+    if final_tilt > TIP_OVER_DEG {
+        findings.push(Finding::new(
+            &rules::DROP_TEST_TIPS_OVER,
+            model.root.map_or(robot.span, |r| robot.links[r.0].span),
+            format!(
+                "In MuJoCo the robot tips over: {dropped}, its root link ends {final_tilt:.1}° from upright after {:.1} s (> {TIP_OVER_DEG}°)",
+                test.simulated_s
+            ),
+        ));
+        return Some(format!("tips over ({final_tilt:.1}° from upright)"));
+    }
+    None
+}
+
+/// The bridge's `[[t, degrees]]` samples, rounded to the microsecond and the millidegree.
+fn tilt_trace(trace: &Value) -> Vec<[f64; 2]> {
+    let round = |v: f64, per_unit: f64| (v * per_unit).round() / per_unit;
+    trace
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|point| {
+            let t = point.get(0)?.as_f64()?;
+            let tilt = point.get(1)?.as_f64()?;
+            Some([round(t, 1e6), round(tilt, 1e3)])
+        })
+        .take(super::job::TILT_TRACE_POINTS)
+        .collect()
 }

@@ -60,12 +60,17 @@ pub fn not_applicable_reason(robot_type: RobotType) -> Option<String> {
     }
 }
 
+/// True when the link's name says it is a wheel or a caster.
+pub(crate) fn is_named_caster_or_wheel(robot: &Robot, link: LinkId) -> bool {
+    let name = robot.links[link.0].name.value.to_ascii_lowercase();
+    name.contains("wheel") || name.contains("caster") || name.contains("castor")
+}
+
 fn is_caster_or_wheel(robot: &Robot, link: LinkId) -> bool {
-    let link = &robot.links[link.0];
-    let name = link.name.value.to_ascii_lowercase();
-    if name.contains("wheel") || name.contains("caster") || name.contains("castor") {
+    if is_named_caster_or_wheel(robot, link) {
         return true;
     }
+    let link = &robot.links[link.0];
     // The spec's geometric pass: a cylinder with a wheel-like radius-to-length ratio.
     link.collisions.iter().filter_map(|s| s.geometry.as_ref()).any(|g| {
         matches!(g.value, Geometry::Cylinder { radius, length } if length > 0.0 && radius / length > 0.3)
