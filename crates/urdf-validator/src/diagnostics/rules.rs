@@ -144,7 +144,7 @@ rules! {
         fix: "Validate the robot's own model file to analyse another model.",
     }
     SDF_NOT_READ = "U028" "sdf-not-read" Info {
-        what: "An SDFormat element this validator does not turn into the robot: a plane, heightmap, polyline or ellipsoid geometry, a `<frame>` in a file older than SDFormat 1.7, an `<include>` with `merge` or `placement_frame`, a nested static model.",
+        what: "An SDFormat element this validator does not turn into the robot: a plane, heightmap, polyline or ellipsoid geometry, a `<frame>` in a file older than SDFormat 1.7, an `<include>` with `placement_frame`, a nested static model.",
         why: "What it describes is left out of the analyses (a plane collision does not count as a contact, for instance).",
         fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
     }
