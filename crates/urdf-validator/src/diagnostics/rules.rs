@@ -402,6 +402,12 @@ rules! {
         why: "The declaration wins, as the spec says; the difference is shown so that a wrong declaration (or a misleading structure) is noticed.",
         fix: "Nothing if the declaration is right; otherwise correct it.",
     }
+    NOT_Z_UP = "U731" "not-z-up" Warn {
+        section: Stability,
+        what: "The structure shows an up axis other than z: the legs stand only when another axis of the root frame points up (PyBullet's `laikago.urdf` hangs its legs along −y from a body lying in the x–z plane). The robot is classified in that frame; statics, stability and workspace keep z up, as a simulator loads the file.",
+        why: "REP 103 puts z up. A simulator loading the file as written drops the robot on its side, and every gravity torque, support polygon and reach height here is computed for that lying robot, not the standing one.",
+        fix: "Re-export the model z-up (turn the root link's children, or its visual and collision origins), or load it with the base rotation its simulator uses and validate it with `--up-axis` (e.g. `--up-axis y`), which turns gravity for every analysis.",
+    }
     SIMULATOR_CANNOT_LOAD = "U740" "simulator-cannot-load" Fail {
         section: Deep,
         what: "`--deep` (or its automatic run): MuJoCo cannot compile the robot, even after the adjustments this pass makes for its known refusals (A + B < C inertias, moving links without mass). The message quotes MuJoCo's own error and points at the element it names.",
