@@ -783,4 +783,15 @@ fn a_y_up_quadruped_is_a_quadruped_with_a_warning_and_up_axis_y_stands_it_up() {
     assert!(z_up.findings.iter().all(|f| f.rule != "U731"));
     assert_eq!(z_up.robot_type, Some(RobotType::Quadruped));
     assert_eq!(z_up.stability.unwrap().status, Status::Pass);
+    // MuJoCo loads the file z-up: --deep with a declared up axis is refused, not run on the lying robot.
+    declared.deep.requested = true;
+    let refused = urdf_validator::validate_text(
+        y_up_quadruped(-0.14),
+        std::path::Path::new("y_up_quadruped.urdf"),
+        &declared,
+    );
+    assert!(
+        matches!(&refused, Err(urdf_validator::input::LoadError::Usage { message, .. }) if message.contains("--deep with --up-axis +y")),
+        "{refused:?}"
+    );
 }
