@@ -795,3 +795,45 @@ fn a_y_up_quadruped_is_a_quadruped_with_a_warning_and_up_axis_y_stands_it_up() {
         "{refused:?}"
     );
 }
+
+/// PyBullet's laikago files (pybullet 3.2.7, `pybullet_data/laikago`): the y-up ones are quadrupeds with a
+/// U731 naming +y, and stand with `--up-axis y`; the z-up export is a quadruped without U731.
+#[test]
+fn pybullet_laikago_is_a_y_up_quadruped() {
+    let Some(data) = common::pybullet_data() else {
+        return;
+    };
+    let laikago = data.join("laikago");
+    let options = |up: Option<&str>| {
+        let mut options = Options::default();
+        options.workspace.samples = 200;
+        options.deep.automatic = false;
+        options.overrides.up_axis = up.and_then(urdf_validator::model::UpAxis::parse);
+        options
+    };
+    let run = report;
+    for (file, y_up) in [
+        ("laikago.urdf", true),
+        ("laikago_toes.urdf", true),
+        ("laikago_toes_limits.urdf", true),
+        ("laikago_toes_zup.urdf", false),
+    ] {
+        let found = run(&laikago.join(file), &options(None));
+        assert_eq!(found.robot_type, Some(RobotType::Quadruped), "{file}");
+        let warned: Vec<_> = found.findings.iter().filter(|f| f.rule == "U731").collect();
+        assert_eq!(warned.len(), usize::from(y_up), "{file}: {warned:?}");
+        if y_up {
+            assert!(warned[0].message.contains("+y up"), "{}", warned[0].message);
+            let standing = run(&laikago.join(file), &options(Some("y")));
+            assert!(standing.findings.iter().all(|f| f.rule != "U731"));
+            assert_eq!(standing.robot_type, Some(RobotType::Quadruped), "{file}");
+            let stability = standing.stability.unwrap();
+            assert_eq!(
+                stability.status,
+                Status::Pass,
+                "{file}: {:?}",
+                stability.reason
+            );
+        }
+    }
+}
