@@ -20,6 +20,7 @@ TEST_PACKAGES=(
     "ros-ament-index-python==1.11.0" # xacro's $(find pkg) without ROS (AMENT_PREFIX_PATH resource index)
     "junitparser==5.0.3"        # a real JUnit consumer for the --format junit tests (crates/cli/tests/formats.rs)
     "mujoco==4.0.0"             # the simulator behind --deep (crates/urdf-validator/tests/deep.rs), as `pip install "urdf-validator[mujoco]"` gets it
+    "pybullet==3.2.7"           # pybullet_data/laikago: y-up quadrupeds for U731 and --up-axis (crates/urdf-validator/tests/classification.rs); a cp311 manylinux wheel
 )
 # ---------------------------------------------------------------------------------------------------------
 

@@ -2,7 +2,8 @@
 """Golden statics values from Drake for the SDFormat reader (crates/urdf-validator/src/sdf).
 
 Every SDF file named in MODELS (under crates/urdf-validator/tests/data/sdf) is loaded with
-`pydrake.multibody.parsing.Parser` into a `MultibodyPlant` (time step 0, Drake's default gravity
+`pydrake.multibody.parsing.Parser` (its package map holding every package.xml under that folder, for
+`package://` includes) into a `MultibodyPlant` (time step 0, Drake's default gravity
 (0, 0, -9.81) m/s^2 in the world frame, as our statics uses), finalised, and evaluated at the zero
 configuration and at N seeded random configurations. One JSON per model is written to
 crates/urdf-validator/tests/data/sdf/golden/<stem>.json with, per configuration:
@@ -52,6 +53,8 @@ MODELS = [
     "legacy_1_4_axis.sdf",
     "nested_arm.sdf",
     "bullet_kuka_iiwa.sdf",
+    # Merge-includes package://interface_api_test/gripper.sdf (SDFormat 1.9 merge include).
+    "drake_packages/interface_api_test/arm_merge_include.sdf",
 ]
 # Models whose total mass and COM differ by design (the gravity torques are still compared).
 MASS_COM_NOT_COMPARED = {
@@ -92,9 +95,13 @@ def scoped_name(joint, names: list[str]) -> str:
     return matches[0]
 
 
-def golden(path: Path) -> dict:
+def golden(name: str) -> dict:
+    path = DATA / name
     plant = MultibodyPlant(0.0)
-    Parser(plant).AddModels(str(path))
+    parser = Parser(plant)
+    for package_xml in sorted(DATA.rglob("package.xml")):
+        parser.package_map().AddPackageXml(str(package_xml))
+    parser.AddModels(str(path))
     plant.Finalize()
     names = sdf_joint_names(path)
     context = plant.CreateDefaultContext()
@@ -129,10 +136,10 @@ def golden(path: Path) -> dict:
                 "com": [float(v) for v in plant.CalcCenterOfMassPositionInWorld(context)],
             }
         )
-    extra = {"mass_com_not_compared": MASS_COM_NOT_COMPARED[path.name]} if path.name in MASS_COM_NOT_COMPARED else {}
+    extra = {"mass_com_not_compared": MASS_COM_NOT_COMPARED[name]} if name in MASS_COM_NOT_COMPARED else {}
     return {
         **extra,
-        "source": path.name,
+        "source": name,
         "drake_version": version("drake"),
         "gravity": [float(v) for v in plant.gravity_field().gravity_vector()],
         "seed": SEED,
@@ -157,7 +164,7 @@ def main() -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     stale = 0
     for name in MODELS:
-        result = golden(DATA / name)
+        result = golden(name)
         target = OUT / (Path(name).stem + ".json")
         text = json.dumps(result, indent=1, sort_keys=True) + "\n"
         if args.check:

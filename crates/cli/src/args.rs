@@ -88,6 +88,12 @@ pub struct Args {
     #[arg(long, value_enum, value_name = "TYPE")]
     pub robot_type: Option<RobotTypeArg>,
 
+    /// The root frame's axis that points up, when the model is not z-up (REP 103): x, y, z, with an
+    /// optional sign (-y). The model is turned so that axis points up, which turns gravity for every
+    /// analysis; the structure's own guess (U731) is then not reported.
+    #[arg(long, value_name = "AXIS", value_parser = parse_up_axis, allow_hyphen_values = true)]
+    pub up_axis: Option<urdf_validator::model::UpAxis>,
+
     /// Ground-contact links for the support polygon, comma-separated: "foot_l,foot_r".
     #[arg(long, value_name = "LINKS", value_delimiter = ',')]
     pub contact_links: Option<Vec<String>>,
@@ -430,4 +436,10 @@ pub enum ColorChoice {
     Always,
     /// Never colour.
     Never,
+}
+
+/// `--up-axis`: `x`, `+y`, `-z`, ...
+fn parse_up_axis(text: &str) -> Result<urdf_validator::model::UpAxis, String> {
+    urdf_validator::model::UpAxis::parse(text)
+        .ok_or_else(|| format!("'{text}' is not an axis: x, y or z, with an optional sign (-y)"))
 }

@@ -6,6 +6,7 @@
 //! select = ["ALL"]
 //! ignore = ["U105", "massless-geometry"]
 //! robot-type = "wheeled"
+//! up-axis = "y"                       # the model's up axis, when it is not z
 //! samples = 10000
 //! package-path = ["../deps"]          # relative to this file
 //! baseline = "urdf-validate-baseline.json"  # relative to this file
@@ -30,6 +31,7 @@ use urdf_validator::diagnostics::settings::{
 };
 use urdf_validator::diagnostics::suggest::did_you_mean;
 use urdf_validator::diagnostics::Severity;
+use urdf_validator::model::UpAxis;
 
 use crate::args::{Args, RobotTypeArg};
 
@@ -45,6 +47,7 @@ const KEYS: &[&str] = &[
     "per-file-ignores",
     "severity",
     "robot-type",
+    "up-axis",
     "payload-mass",
     "payload-link",
     "samples",
@@ -63,6 +66,7 @@ struct Raw {
     per_file_ignores: Option<BTreeMap<Spanned<String>, Vec<Spanned<String>>>>,
     severity: Option<BTreeMap<Spanned<String>, Spanned<SeverityName>>>,
     robot_type: Option<Spanned<String>>,
+    up_axis: Option<Spanned<String>>,
     payload_mass: Option<Spanned<f64>>,
     payload_link: Option<Spanned<String>>,
     samples: Option<Spanned<usize>>,
@@ -136,6 +140,8 @@ pub struct Effective {
     pub settings: Settings,
     /// `robot-type`.
     pub robot_type: Setting<Option<RobotTypeArg>>,
+    /// `up-axis`.
+    pub up_axis: Setting<Option<UpAxis>>,
     /// `payload-mass`.
     pub payload_mass: Setting<Option<f64>>,
     /// `payload-link`.
@@ -156,6 +162,7 @@ impl Effective {
     /// Copy the merged values into the flags the rest of the program reads.
     pub fn apply_to(&self, args: &mut Args) {
         args.robot_type = self.robot_type.value;
+        args.up_axis = self.up_axis.value;
         args.payload_mass = self.payload_mass.value;
         args.payload_link = self.payload_link.value.clone();
         args.samples = self.samples.value;
@@ -234,6 +241,11 @@ impl Effective {
                 .and_then(|t| t.to_possible_value())
                 .map(|v| format!("{:?}", v.get_name()))),
             self.robot_type.origin.to_string(),
+        );
+        line(
+            "up-axis",
+            opt(self.up_axis.value.map(|a| format!("{:?}", a.as_str()))),
+            self.up_axis.origin.to_string(),
         );
         line(
             "payload-mass",
@@ -550,6 +562,25 @@ fn merge(
     } else {
         Setting::default(None)
     };
+    let up_axis = match (&raw.up_axis, from_cli("up_axis")) {
+        (_, true) => Setting {
+            value: args.up_axis,
+            origin: Origin::CommandLine,
+        },
+        (Some(axis), false) => Setting {
+            value: Some(UpAxis::parse(axis.get_ref()).ok_or_else(|| {
+                error_at(
+                    axis.span(),
+                    format!(
+                        "up-axis '{}' is not an axis: x, y or z, with an optional sign (\"-y\")",
+                        axis.get_ref()
+                    ),
+                )
+            })?),
+            origin: inner(axis),
+        },
+        (None, false) => Setting::default(None),
+    };
     let payload_mass = match (&raw.payload_mass, from_cli("payload_mass")) {
         (_, true) => Setting {
             value: args.payload_mass,
@@ -652,6 +683,7 @@ fn merge(
         file: path.map(Path::to_path_buf),
         settings,
         robot_type,
+        up_axis,
         payload_mass,
         payload_link,
         samples,

@@ -486,6 +486,7 @@ fn options_for(
         },
         overrides: Overrides {
             robot_type: args.robot_type.map(Into::into),
+            up_axis: args.up_axis,
             contact_links: args.contact_links.clone(),
             arms: args
                 .arm_root

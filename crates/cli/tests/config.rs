@@ -404,6 +404,11 @@ fn a_malformed_config_is_an_error_naming_file_line_and_key() {
             2,
             "invalid glob",
         ),
+        (
+            "seed = 1\nup-axis = \"w\"\n",
+            2,
+            "up-axis 'w' is not an axis",
+        ),
     ] {
         write(&dir, "urdf-validate.toml", config);
         let out = run_in(&dir, &["robot.urdf", "--no-write"]);
@@ -424,7 +429,7 @@ fn show_config_prints_each_setting_and_its_origin() {
     write(
         &dir,
         "urdf-validate.toml",
-        "ignore = [\"U105\"]\nsamples = 500\npackage-path = [\"deps\"]\n\n[severity]\nU201 = \"info\"\n",
+        "ignore = [\"U105\"]\nsamples = 500\npackage-path = [\"deps\"]\nup-axis = \"-y\"\n\n[severity]\nU201 = \"info\"\n",
     );
     let out = run_in(
         &dir,
@@ -465,6 +470,11 @@ fn show_config_prints_each_setting_and_its_origin() {
     );
     assert!(line_of("seed").contains("3") && line_of("seed").contains("# command line"));
     assert!(line_of("payload-mass").contains("# default"));
+    let up_axis = line_of("up-axis");
+    assert!(
+        up_axis.contains("\"-y\"") && up_axis.contains(&format!("{config}:4")),
+        "{up_axis}"
+    );
     assert!(line_of("severity.U201").contains("\"info\""));
     let package_path = line_of("package-path");
     assert!(

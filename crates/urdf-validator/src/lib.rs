@@ -177,7 +177,8 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         None => options,
     };
     clock.lap("parse");
-    let (model, tree_findings) = Model::build(&robot);
+    let (mut model, tree_findings) = Model::build(&robot);
+    model.up = options.overrides.up_axis.unwrap_or_default();
     findings.extend(tree_findings);
     clock.lap("model");
     let is_robot = !findings
@@ -211,18 +212,31 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
             })?;
         findings.extend(physics.findings.iter().cloned());
         give_up_if_cancelled(options, &loaded.path)?;
-        let deep = analysis::deep::run(&analysis::deep::DeepInput {
-            urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
-            robot: &robot,
-            model: &model,
-            assets: &assets,
-            physics: &physics,
-            payload: payload(&model, options),
-            contact_links: options.overrides.contact_links.as_deref(),
-            options: &options.deep,
-            progress: options.progress.as_ref(),
+        // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
+        let turned = model.up != model::UpAxis::default();
+        if turned && options.deep.requested {
+            return Err(LoadError::Usage {
+                path: loaded.path.clone(),
+                message: format!(
+                    "--deep with --up-axis {}: the MuJoCo pass loads the file z-up and cannot turn it yet",
+                    model.up.as_str()
+                ),
+            });
+        }
+        let deep = (!turned).then(|| {
+            analysis::deep::run(&analysis::deep::DeepInput {
+                urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
+                robot: &robot,
+                model: &model,
+                assets: &assets,
+                physics: &physics,
+                payload: payload(&model, options),
+                contact_links: options.overrides.contact_links.as_deref(),
+                options: &options.deep,
+                progress: options.progress.as_ref(),
+            })
         });
-        if let Some((section, deep_findings)) = deep {
+        if let Some((section, deep_findings)) = deep.flatten() {
             analysis::deep::mark_simulated(&mut physics, &section);
             physics.deep = Some(section);
             findings.extend(deep_findings);

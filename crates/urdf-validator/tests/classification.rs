@@ -662,3 +662,178 @@ fn rotors_are_found_by_their_shape() {
     let (kind, evidence) = detected(&tilted);
     assert_ne!(kind, Some(RobotType::Aerial), "{evidence:?}");
 }
+
+/// A y-up quadruped modelled like PyBullet's `laikago.urdf` (pybullet_data/laikago): the body lies in the
+/// x–z plane, each leg leaves it at a hip motor turning about z, and its upper and lower leg (turning about
+/// x) hang along −y, the knee bent back by `knee_z` so the leg leans as laikago's do.
+fn y_up_quadruped(knee_z: f64) -> String {
+    let inertia = r#"<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>"#;
+    let mut urdf = format!(
+        r#"<robot name="y_up_quadruped">
+  <link name="chassis">
+    <inertial><origin xyz="0 0.03 0.02"/><mass value="13.7"/>{inertia}</inertial>
+    <collision><geometry><box size="0.2 0.12 0.5"/></geometry></collision>
+  </link>
+"#
+    );
+    for (leg, x, z) in [
+        ("FR", -0.08, 0.24),
+        ("FL", 0.08, 0.24),
+        ("RR", -0.08, -0.19),
+        ("RL", 0.08, -0.19),
+    ] {
+        urdf.push_str(&format!(
+            r#"  <link name="{leg}_hip_motor">
+    <inertial><mass value="1.1"/>{inertia}</inertial>
+    <collision><geometry><cylinder radius="0.04" length="0.06"/></geometry></collision>
+  </link>
+  <joint name="{leg}_hip_motor_2_chassis_joint" type="continuous">
+    <parent link="chassis"/><child link="{leg}_hip_motor"/><axis xyz="0 0 1"/>
+    <origin xyz="{x} 0 {z}"/><limit effort="100" velocity="100"/>
+  </joint>
+  <link name="{leg}_upper_leg">
+    <inertial><origin xyz="0 -0.1 0"/><mass value="1.5"/>{inertia}</inertial>
+    <collision><origin xyz="0 -0.1 {half}" rpy="1.5708 0 0"/><geometry><cylinder radius="0.025" length="0.2"/></geometry></collision>
+  </link>
+  <joint name="{leg}_upper_leg_2_hip_motor_joint" type="continuous">
+    <parent link="{leg}_hip_motor"/><child link="{leg}_upper_leg"/><axis xyz="1 0 0"/>
+    <limit effort="100" velocity="100"/>
+  </joint>
+  <link name="{leg}_lower_leg">
+    <inertial><origin xyz="0 -0.1 0"/><mass value="0.24"/>{inertia}</inertial>
+    <collision><origin xyz="0 -0.1 0" rpy="1.5708 0 0"/><geometry><cylinder radius="0.015" length="0.2"/></geometry></collision>
+    <collision><origin xyz="0 -0.21 0"/><geometry><sphere radius="0.02"/></geometry></collision>
+  </link>
+  <joint name="{leg}_lower_leg_2_upper_leg_joint" type="continuous">
+    <parent link="{leg}_upper_leg"/><child link="{leg}_lower_leg"/><axis xyz="1 0 0"/>
+    <origin xyz="0 -0.2 {knee_z}"/><limit effort="100" velocity="100"/>
+  </joint>
+"#,
+            half = knee_z / 2.0,
+        ));
+    }
+    urdf.push_str("</robot>\n");
+    urdf
+}
+
+fn y_up_report(options: &Options) -> Report {
+    urdf_validator::validate_text(
+        y_up_quadruped(-0.14),
+        std::path::Path::new("y_up_quadruped.urdf"),
+        options,
+    )
+    .unwrap()
+    .report
+}
+
+#[test]
+fn a_y_up_quadruped_is_a_quadruped_with_a_warning_and_up_axis_y_stands_it_up() {
+    let options = || {
+        let mut options = Options::default();
+        options.workspace.samples = 200;
+        options.deep.automatic = false;
+        options
+    };
+    // As written (z up, as a simulator loads it): a quadruped by the structure in the y-up frame, U731 says
+    // so, and the physics judges the robot lying on its side.
+    let report = y_up_report(&options());
+    assert_eq!(report.robot_type, Some(RobotType::Quadruped));
+    let warned: Vec<_> = report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U731")
+        .collect();
+    assert_eq!(warned.len(), 1, "{:?}", report.findings);
+    assert!(
+        warned[0].message.contains("+y up") && warned[0].message.contains("quadruped"),
+        "{}",
+        warned[0].message
+    );
+    assert_eq!(warned[0].line, Some(2), "at the root link");
+    assert!(warned[0].help.as_deref().unwrap().contains("--up-axis y"));
+    // Declared y up: gravity along −y for every analysis; it stands on its four feet.
+    let mut declared = options();
+    declared.overrides.up_axis = urdf_validator::model::UpAxis::parse("y");
+    let standing = y_up_report(&declared);
+    assert!(standing.findings.iter().all(|f| f.rule != "U731"));
+    assert_eq!(standing.robot_type, Some(RobotType::Quadruped));
+    let stability = standing.stability.unwrap();
+    assert_eq!(stability.status, Status::Pass, "{:?}", stability.reason);
+    assert!(stability.margin_mm.unwrap() > 50.0, "{stability:?}");
+    assert_eq!(stability.support_polygon.len(), 4, "one point per foot");
+    let statics = standing.statics.unwrap();
+    let height = statics.com_height_above_ground.unwrap();
+    assert!(
+        (0.4..0.5).contains(&height),
+        "COM {height} m above the feet"
+    );
+    // The same robot turned z-up in the file (a root link holding the body a quarter turn about x) shows no
+    // other up axis and stands as the declared one does.
+    let turned = y_up_quadruped(-0.14).replace(
+        "  <link name=\"chassis\">",
+        "  <link name=\"base\"/>\n  <joint name=\"base_to_chassis\" type=\"fixed\"><parent link=\"base\"/><child link=\"chassis\"/><origin rpy=\"1.5708 0 0\"/></joint>\n  <link name=\"chassis\">",
+    );
+    let z_up = urdf_validator::validate_text(
+        turned,
+        std::path::Path::new("z_up_quadruped.urdf"),
+        &options(),
+    )
+    .unwrap()
+    .report;
+    assert!(z_up.findings.iter().all(|f| f.rule != "U731"));
+    assert_eq!(z_up.robot_type, Some(RobotType::Quadruped));
+    assert_eq!(z_up.stability.unwrap().status, Status::Pass);
+    // MuJoCo loads the file z-up: --deep with a declared up axis is refused, not run on the lying robot.
+    declared.deep.requested = true;
+    let refused = urdf_validator::validate_text(
+        y_up_quadruped(-0.14),
+        std::path::Path::new("y_up_quadruped.urdf"),
+        &declared,
+    );
+    assert!(
+        matches!(&refused, Err(urdf_validator::input::LoadError::Usage { message, .. }) if message.contains("--deep with --up-axis +y")),
+        "{refused:?}"
+    );
+}
+
+/// PyBullet's laikago files (pybullet 3.2.7, `pybullet_data/laikago`): the y-up ones are quadrupeds with a
+/// U731 naming +y, and stand with `--up-axis y`; the z-up export is a quadruped without U731.
+#[test]
+fn pybullet_laikago_is_a_y_up_quadruped() {
+    let Some(data) = common::pybullet_data() else {
+        return;
+    };
+    let laikago = data.join("laikago");
+    let options = |up: Option<&str>| {
+        let mut options = Options::default();
+        options.workspace.samples = 200;
+        options.deep.automatic = false;
+        options.overrides.up_axis = up.and_then(urdf_validator::model::UpAxis::parse);
+        options
+    };
+    let run = report;
+    for (file, y_up) in [
+        ("laikago.urdf", true),
+        ("laikago_toes.urdf", true),
+        ("laikago_toes_limits.urdf", true),
+        ("laikago_toes_zup.urdf", false),
+    ] {
+        let found = run(&laikago.join(file), &options(None));
+        assert_eq!(found.robot_type, Some(RobotType::Quadruped), "{file}");
+        let warned: Vec<_> = found.findings.iter().filter(|f| f.rule == "U731").collect();
+        assert_eq!(warned.len(), usize::from(y_up), "{file}: {warned:?}");
+        if y_up {
+            assert!(warned[0].message.contains("+y up"), "{}", warned[0].message);
+            let standing = run(&laikago.join(file), &options(Some("y")));
+            assert!(standing.findings.iter().all(|f| f.rule != "U731"));
+            assert_eq!(standing.robot_type, Some(RobotType::Quadruped), "{file}");
+            let stability = standing.stability.unwrap();
+            assert_eq!(
+                stability.status,
+                Status::Pass,
+                "{file}: {:?}",
+                stability.reason
+            );
+        }
+    }
+}

@@ -547,6 +547,87 @@ fn sdformat_invalid_files_get_a_critical_finding() {
     }
 }
 
+/// Drake's `interface_api_test/arm_merge_include.sdf` (tests/data/sdf/drake_packages) merge-includes
+/// `package://interface_api_test/gripper.sdf` and welds the merged `grasp_frame` to `flange`. Drake 1.51.1
+/// reads 4 kg with the COM at (0, 1, 1) (golden `arm_merge_include.json`): the gripper link sits at
+/// `flange::gripper_mount`, named in the including model's scope.
+fn merge_include_checks(v: &Validation, how: &str) {
+    let not_read: Vec<_> = v
+        .report
+        .findings
+        .iter()
+        .filter(|f| ["U023", "U024", "U028"].contains(&f.rule.as_str()))
+        .map(|f| (&f.rule, &f.message))
+        .collect();
+    assert!(not_read.is_empty(), "{how}: {not_read:?}");
+    let names: Vec<&str> = v.report.links.iter().map(|l| l.name.as_str()).collect();
+    assert!(names.contains(&"gripper_link"), "{how}: {names:?}");
+    let statics = v.report.statics.as_ref().expect("statics");
+    let mass = statics.total_mass.expect("a mass");
+    assert!((mass - 4.0).abs() < 1e-9, "{how}: {mass} kg");
+    let com = statics.full_body_com.expect("a COM");
+    for (ours, drake) in com.iter().zip([0.0, 1.0, 1.0]) {
+        assert!((ours - drake).abs() < 1e-9, "{how}: COM {com:?}");
+    }
+}
+
+#[test]
+fn a_package_uri_include_resolves_like_urdf_meshes_and_a_merge_include_joins_the_model() {
+    let packages = data().join("drake_packages");
+    let source =
+        std::fs::read_to_string(packages.join("interface_api_test/arm_merge_include.sdf")).unwrap();
+    // A copy outside the package, so the walk up from the file cannot find it.
+    let dir = Scratch::new("package");
+    let arm = dir.file("arm_merge_include.sdf", &source);
+    let with = |resolver| {
+        let options = Options {
+            resolver,
+            ..options(Vec::new())
+        };
+        validate(&arm, &options).unwrap()
+    };
+    merge_include_checks(
+        &with(PackageResolver::new(vec![packages.clone()], None, None)),
+        "--package-path",
+    );
+    merge_include_checks(
+        &with(PackageResolver::new(Vec::new(), packages.to_str(), None)),
+        "ROS_PACKAGE_PATH",
+    );
+    // In place, the walk up from the file finds the package.xml naming interface_api_test.
+    merge_include_checks(
+        &run(&packages.join("interface_api_test/arm_merge_include.sdf")),
+        "package.xml",
+    );
+    // Not found: U024 says which package and where it looked.
+    let v = with(PackageResolver::new(Vec::new(), None, None));
+    let unresolved = at_line(&v, "U024", 50);
+    assert!(
+        unresolved
+            .message
+            .contains("package 'interface_api_test' not found")
+            && unresolved.message.contains("--package-path"),
+        "{}",
+        unresolved.message
+    );
+}
+
+#[test]
+fn an_undefined_frame_is_one_sentence_and_its_suggestion_is_the_help() {
+    let dir = Scratch::new("undefined");
+    let path = dir.file(
+        "m.sdf",
+        &model("1.9", &format!("<link name=\"base\">{INERTIAL}</link>\n<link name=\"arm\">{INERTIAL}<pose relative_to=\"zzzzzz\"/></link>\n<frame name=\"f\" attached_to=\"bsae\"/>")),
+    );
+    let v = run(&path);
+    let far = at_line(&v, "U023", 5);
+    assert_eq!(far.message, "'zzzzzz' names no frame of the model");
+    assert_eq!(far.help.as_deref(), Some("no similarly named item exists"));
+    let near = at_line(&v, "U023", 6);
+    assert_eq!(near.message, "'bsae' names no frame of the model");
+    assert_eq!(near.help.as_deref(), Some("did you mean 'base'?"));
+}
+
 #[test]
 fn model_uri_meshes_resolve_like_package_uris() {
     let dir = Scratch::new("mesh");

@@ -79,12 +79,13 @@ fn workspace_of(urdf: &str, overrides: Overrides, workspace: WorkspaceOptions) -
         .expect("a robot has a workspace section")
 }
 
-/// The (code, line) of every finding of the task and collision sections.
+/// The (code, line) of every task and self-collision finding (the workspace section's but the contacts at
+/// the reference pose and a declared arm that differs).
 fn verdicts(report: &Report) -> Vec<(String, Option<u32>)> {
     report
         .findings
         .iter()
-        .filter(|f| matches!(f.section, Section::Task | Section::Collision) && f.rule != "U601")
+        .filter(|f| f.section == Section::Workspace && !["U601", "U730"].contains(&f.rule.as_str()))
         .map(|f| (f.rule.clone(), f.line))
         .collect()
 }

@@ -117,6 +117,8 @@ pub struct Classification {
     pub ground_z: Option<f64>,
     /// One sentence saying why.
     pub evidence: String,
+    /// The legs were found by their names only: none stands on the ground with z up.
+    pub legs_by_name: bool,
 }
 
 /// How close to the lowest geometry a link must come to count as touching the ground: 5% of the robot's
@@ -685,6 +687,7 @@ pub fn classify(
         rotors,
         ground_z,
         evidence,
+        legs_by_name: false,
     };
     if !ground.is_finite() {
         let (robot_type, evidence) = if rotors > 0 {
@@ -909,6 +912,7 @@ pub fn classify(
         rotors,
         ground_z: Some(ground),
         evidence,
+        legs_by_name: by_name,
     }
 }
 

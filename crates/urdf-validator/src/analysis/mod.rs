@@ -13,6 +13,7 @@ pub mod profiles;
 pub mod stability;
 pub mod statics;
 pub mod symmetry;
+pub mod up_axis;
 pub mod workspace;
 
 use nalgebra::Vector3;
@@ -47,6 +48,9 @@ pub struct Overrides {
     pub contact_links: Option<Vec<String>>,
     /// `--arm-root` / `--arm-tip` pairs, in order: the arms to analyse instead of the detected ones.
     pub arms: Vec<(String, String)>,
+    /// `--up-axis`: the root frame's axis that points up (the model is turned so it does, which turns
+    /// gravity for every analysis); no U731 when declared.
+    pub up_axis: Option<crate::model::UpAxis>,
 }
 
 /// The physics sections of a report.
@@ -167,11 +171,24 @@ pub fn analyse(
     let reference = pose::resolve(robot, model, None, &PoseOptions::default())?;
     let mut data = Data::new(model);
     forward_kinematics(model, &reference.q, &mut data);
-    let classification = classify(robot, model, &data, supports);
-    clock.lap("classify");
-    let detected = classification.robot_type;
+    let mut classification = classify(robot, model, &data, supports);
     let mut findings = statics_findings;
     findings.extend(symmetry_findings);
+    // Another up axis: classified in its frame, the physics keeps the model's (the ground stays its).
+    if let Some(other) = overrides
+        .up_axis
+        .is_none()
+        .then(|| up_axis::detect(robot, model, &data, supports, &classification))
+        .flatten()
+    {
+        findings.push(up_axis::finding(robot, model, &other));
+        classification = classify::Classification {
+            ground_z: classification.ground_z,
+            ..other.classification
+        };
+    }
+    clock.lap("classify");
+    let detected = classification.robot_type;
     let root_span = model
         .root
         .map_or(robot.span, |root| robot.links[root.0].span);

@@ -44,7 +44,9 @@ impl Severity {
     }
 }
 
-/// The part of the report a finding belongs to (the report section whose verdict it explains).
+/// The part of the report a finding belongs to: the report section whose verdict it explains, one key of
+/// the report with a `status` (self-collision and `--task` are verdicts of `workspace`, `--payload-mass`
+/// of `statics`).
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, schemars::JsonSchema,
 )]
@@ -56,14 +58,11 @@ pub enum Section {
     Statics,
     /// Support polygon and tipping: `[STABILITY]`.
     Stability,
-    /// Reach of the arms: `[WORKSPACE]`.
+    /// Reach of the arms, their self-collision, the `--task` height, orientation and the COM during the
+    /// reach: `[WORKSPACE]`.
     Workspace,
-    /// Self-collision of the arms.
-    Collision,
-    /// The `--task` height, orientation and the COM during the reach.
-    Task,
-    /// The `--payload-mass` carried by the arm.
-    Payload,
+    /// Mirrored left/right chains that differ.
+    Symmetry,
     /// The simulator cross-check (`--deep`).
     Deep,
 }
@@ -76,9 +75,7 @@ impl Section {
             Section::Statics => "statics",
             Section::Stability => "stability",
             Section::Workspace => "workspace",
-            Section::Collision => "collision",
-            Section::Task => "task",
-            Section::Payload => "payload",
+            Section::Symmetry => "symmetry",
             Section::Deep => "deep",
         }
     }

@@ -144,7 +144,7 @@ rules! {
         fix: "Validate the robot's own model file to analyse another model.",
     }
     SDF_NOT_READ = "U028" "sdf-not-read" Info {
-        what: "An SDFormat element this validator does not turn into the robot: a plane, heightmap, polyline or ellipsoid geometry, a `<frame>` in a file older than SDFormat 1.7, an `<include>` with `merge` or `placement_frame`, a nested static model.",
+        what: "An SDFormat element this validator does not turn into the robot: a plane, heightmap, polyline or ellipsoid geometry, a `<frame>` in a file older than SDFormat 1.7, an `<include>` with `placement_frame`, a nested static model.",
         why: "What it describes is left out of the analyses (a plane collision does not count as a contact, for instance).",
         fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
     }
@@ -324,13 +324,13 @@ rules! {
         fix: "Re-export the mesh as binary STL, OBJ or COLLADA; the message says where the file is broken.",
     }
     SRDF_PROBLEM = "U602" "srdf-problem" Warn {
-        section: Collision,
+        section: Workspace,
         what: "The SRDF used for self-collision (`--srdf`, or `<stem>.srdf` / `<robot name>.srdf` beside the URDF or in `../srdf/`) cannot be read, or one of its `<disable_collisions>`, `<enable_collisions>` or `<disable_default_collisions>` names a link the robot does not have.",
         why: "Its allowed collisions (or that entry) are not applied, so self-collision may report contacts MoveIt would ignore; a stale SRDF also misleads MoveIt itself.",
         fix: "Fix the SRDF (the message gives its line and column), or regenerate it with the MoveIt setup assistant.",
     }
     CONTACT_AT_REFERENCE = "U601" "links-in-contact-at-reference" Info {
-        section: Collision,
+        section: Workspace,
         what: "Two links that are not joined to each other have collision geometry in contact at the zero pose (joints clamped into their limits).",
         why: "Usually oversized or misplaced collision geometry (or a convex hull filling a concave part): simulators push the links apart or report constant contacts. The pair is left out of self-collision sampling, as MoveIt's setup assistant does.",
         fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
@@ -367,31 +367,31 @@ rules! {
         fix: "Declare masses; name the ground-contact links with `--contact-links`, or declare the robot type (`--robot-type`) when the contacts were guessed wrong.",
     }
     TASK_UNREACHABLE = "U720" "task-unreachable" Fail {
-        section: Task,
+        section: Workspace,
         what: "No arm reaches the `--task` height (no sampled tip pose free of self-collision and above the ground is at that height).",
         why: "The robot cannot do the task it is checked for.",
         fix: "Check the joint limits of the arm and of the body joints held at `--pose` (a torso lift), or the task height (`--height`).",
     }
     TASK_TIPS_OVER = "U721" "task-tips-over" Fail {
-        section: Task,
+        section: Workspace,
         what: "Reaching furthest at the `--task` height (with `--payload-mass` in the hand) moves the centre of mass outside the support polygon.",
         why: "The robot falls over while doing the task.",
         fix: "Reduce the reach or payload, widen the base, or add a counterweight low on the base.",
     }
     TASK_TIPS_SOMETIMES = "U722" "task-tips-at-some-poses" Warn {
-        section: Task,
+        section: Workspace,
         what: "Some sampled arm poses at the `--task` height put the centre of mass outside the support polygon (the furthest one does not).",
         why: "The robot is stable reaching one way and falls reaching another (over a short edge of its base).",
         fix: "Restrict the arm's headings at that height, or widen the base.",
     }
     ORIENTATION_RARELY_REACHED = "U723" "orientation-rarely-reached" Warn {
-        section: Task,
+        section: Workspace,
         what: "Fewer than 5% of the sampled poses at the `--task` height meet the `--orientation` within its tolerance.",
         why: "The hand can reach the height but hardly ever with the requested approach: grasps will be rare or impossible.",
         fix: "Check the wrist's joint limits and the approach axis (`--approach-axis`), or loosen `--orientation-tolerance`.",
     }
     SELF_COLLISION_FREQUENT = "U724" "self-collision-frequent" Warn {
-        section: Collision,
+        section: Workspace,
         what: "Fewer than 95% of the sampled arm poses are free of self-collision.",
         why: "Planners will reject many poses; oversized collision geometry is a common cause (convex hulls fill concave parts).",
         fix: "Check the collision geometry of the pair named, and add the pairs that can never collide on the real robot to the SRDF's `<disable_collisions>`.",
@@ -401,6 +401,12 @@ rules! {
         what: "A declared `--robot-type` or `--arm-root`/`--arm-tip` arm differs from what the structure shows.",
         why: "The declaration wins, as the spec says; the difference is shown so that a wrong declaration (or a misleading structure) is noticed.",
         fix: "Nothing if the declaration is right; otherwise correct it.",
+    }
+    NOT_Z_UP = "U731" "not-z-up" Warn {
+        section: Stability,
+        what: "The structure shows an up axis other than z: the legs stand only when another axis of the root frame points up (PyBullet's `laikago.urdf` hangs its legs along −y from a body lying in the x–z plane). The robot is classified in that frame; statics, stability and workspace keep z up, as a simulator loads the file.",
+        why: "REP 103 puts z up. A simulator loading the file as written drops the robot on its side, and every gravity torque, support polygon and reach height here is computed for that lying robot, not the standing one.",
+        fix: "Re-export the model z-up (turn the root link's children, or its visual and collision origins), or load it with the base rotation its simulator uses and validate it with `--up-axis` (e.g. `--up-axis y`), which turns gravity for every analysis.",
     }
     SIMULATOR_CANNOT_LOAD = "U740" "simulator-cannot-load" Fail {
         section: Deep,
@@ -517,6 +523,7 @@ rules! {
         fix: "Declare an inertia tensor for the link, or give it collision geometry; import with `import_inertia_tensor` on.",
     }
     MIRRORED_PAIR_DIFFERS = "U770" "mirrored-pair-differs" Warn {
+        section: Symmetry,
         what: "Two mirrored chains (sibling joints whose origins mirror each other across the parent link's x–z plane, walked together below) differ: a link pair's mass or principal moments of inertia by more than 10 % of the larger, a joint pair's effort or velocity by more than 10 %, its position limits by more than 0.01 (rad or m) + 1 % of the range (mirrored limits `[l, u]` / `[−u, −l]` count as equal), or a value is declared on one side only. Left/right names only break ties; they never make a pair.",
         why: "A left and a right arm, leg or wheel built from the same part should weigh and move the same: a difference is usually a copy-paste slip (a mass typed for one side, a limit not mirrored) that makes the robot pull to one side in simulation or gives one side motors too weak for what the other side holds.",
         fix: "Compare the two elements the message names and correct the one that is wrong; if the robot really is asymmetric, suppress the finding with a reason.",

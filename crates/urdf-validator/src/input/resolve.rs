@@ -190,22 +190,33 @@ impl PackageResolver {
         let target = match split_scheme(uri) {
             Some((scheme, rest)) if scheme.eq_ignore_ascii_case("model") => {
                 let (name, inner) = rest.split_once('/').unwrap_or((rest, ""));
-                match self.find_model_searched(name, dir) {
-                    (Some(folder), _) => folder.join(inner.trim_start_matches('/')),
-                    (None, searched) => {
-                        return Err(format!(
-                            "model '{name}' not found; looked in {} (set GZ_SIM_RESOURCE_PATH or pass --package-path with the folder holding it)",
-                            list_paths(&searched)
-                        ))
-                    }
-                }
+                inside(
+                    self.find_model_searched(name, dir),
+                    inner,
+                    &format!("model '{name}'"),
+                    "GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, SDF_PATH and --package-path are unset, and no folder of that name is above the file",
+                    "set GZ_SIM_RESOURCE_PATH or pass --package-path with the folder holding it",
+                )?
+            }
+            // Drake resolves it through its package map, Gazebo through the ROS package path: the
+            // package search of URDF meshes (--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH,
+            // package.xml above the file).
+            Some((scheme, rest)) if scheme.eq_ignore_ascii_case("package") => {
+                let (name, inner) = rest.split_once('/').unwrap_or((rest, ""));
+                inside(
+                    self.find_package_searched(name, dir),
+                    inner,
+                    &format!("package '{name}'"),
+                    "--package-path, ROS_PACKAGE_PATH and AMENT_PREFIX_PATH are unset, and no folder of that name holding a package.xml is above the file",
+                    "pass --package-path with the folder holding it, or set ROS_PACKAGE_PATH or AMENT_PREFIX_PATH",
+                )?
             }
             Some((scheme, rest)) if scheme.eq_ignore_ascii_case("file") => {
                 absolute_or_relative(Path::new(&percent_decode(rest)), dir)
             }
             Some((scheme, _)) => {
                 return Err(format!(
-                    "URI scheme '{scheme}' cannot be resolved offline (download the model and use model:// or a path)"
+                    "URI scheme '{scheme}' cannot be resolved offline (download the model and use model://, package:// or a path)"
                 ))
             }
             None => absolute_or_relative(Path::new(uri), dir),
@@ -417,16 +428,30 @@ fn percent_decode(s: &str) -> String {
     String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
-/// `a, b, c` for a message (`nowhere` when empty).
-fn list_paths(paths: &[PathBuf]) -> String {
-    if paths.is_empty() {
-        return "no folder: GZ_SIM_RESOURCE_PATH, IGN_GAZEBO_RESOURCE_PATH, SDF_PATH and --package-path are unset, and no folder of that name is above the file".to_string();
+/// `inner` inside the folder `found` (a package or model search: the folder, and every folder tried), or
+/// an error naming `what` was not found, where it was looked for (`nowhere` says why when no folder was
+/// tried) and `hint`.
+fn inside(
+    found: (Option<PathBuf>, Vec<PathBuf>),
+    inner: &str,
+    what: &str,
+    nowhere: &str,
+    hint: &str,
+) -> Result<PathBuf, String> {
+    match found {
+        (Some(folder), _) => Ok(folder.join(inner.trim_start_matches('/'))),
+        (None, searched) if searched.is_empty() => Err(format!(
+            "{what} not found; looked in no folder: {nowhere} ({hint})"
+        )),
+        (None, searched) => Err(format!(
+            "{what} not found; looked in {} ({hint})",
+            searched
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
     }
-    paths
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The newest SDFormat version this validator reads; `model.config` entries above it are passed over.

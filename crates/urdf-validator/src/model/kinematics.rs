@@ -244,7 +244,7 @@ pub fn forward_kinematics_links(model: &Model, q: &[f64], links: &[LinkId], data
                 let value = q.get(joint.0).copied().unwrap_or(0.0);
                 data.link_placement[parent.0] * info.placement * info.motion(value)
             }
-            None => Isometry3::identity(),
+            None => model.up.root_placement(),
         };
     }
 }

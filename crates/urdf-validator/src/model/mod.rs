@@ -3,6 +3,8 @@
 
 pub mod kinematics;
 mod tree;
+pub mod up_axis;
 
 pub use kinematics::{forward_kinematics, Configuration, Data, JointData, LinkMass};
 pub use tree::{JointId, LinkId, MimicLink, Model, Motion};
+pub use up_axis::UpAxis;

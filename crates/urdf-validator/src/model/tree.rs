@@ -67,6 +67,9 @@ pub struct Model {
     pub joint_data: Vec<JointData>,
     /// For each link, its mass properties.
     pub link_mass: Vec<LinkMass>,
+    /// The root frame's axis that points up in the world (`--up-axis`; +z, REP 103, unless declared): the
+    /// root link is placed turned so it does.
+    pub up: super::UpAxis,
     link_index: HashMap<String, LinkId>,
     joint_index: HashMap<String, JointId>,
 }

@@ -1,9 +1,11 @@
 //! JUnit XML: one `<testsuite>` per robot, one `<testcase>` per check.
 //!
-//! The checks: `schema`; `statics: <joint>` for every actuated joint (`statics` alone when the robot has
-//! none, or for statics findings naming no joint); `payload` with `--payload-mass`; `stability`;
-//! `workspace: <tip>` for every arm (`workspace` alone without arms); `collision` and `task` when they ran
-//! or have findings; `deep` with findings. A check fails (`<failure>`, listing `file:line:col` of each) when
+//! The checks, named by the report section they belong to: `schema`; `statics: <joint>` for every actuated
+//! joint (`statics` alone when the robot has none, or for statics findings naming no joint); `statics:
+//! payload` with `--payload-mass`; `stability`; `workspace: <tip>` for every arm (`workspace` alone without
+//! arms, or for the workspace findings: reach, self-collision, task); `workspace: self-collision` and
+//! `workspace: task` when they ran; `symmetry` and `deep` with findings. A check fails (`<failure>`, listing
+//! `file:line:col` of each) when
 //! it has a CRITICAL or FAIL finding; otherwise it is skipped (`<skipped>`) when its status is UNKNOWN or
 //! N/A, and passes otherwise. WARN and INFO findings, and the numbers behind a verdict, go to the test
 //! case's `<system-out>`. An input that gave no report is a suite with one errored test case `load`.
@@ -266,8 +268,7 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                 base,
             ));
         }
-        let payload = findings_in(&[Section::Payload]);
-        if statics.payload_mass.is_some() || !payload.is_empty() {
+        if statics.payload_mass.is_some() {
             let mut out = String::new();
             if let (Some(mass), Some(link)) = (statics.payload_mass, &statics.payload_link) {
                 let _ = writeln!(out, "payload: {mass} kg at {link}");
@@ -276,25 +277,15 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                 let _ = writeln!(out, "payload capacity: {capacity:.2} kg");
             }
             cases.push(case(
-                "payload".into(),
+                "statics: payload".into(),
                 Status::Pass,
                 None,
-                &payload,
+                &[],
                 out,
                 report,
                 base,
             ));
         }
-    } else if !findings_in(&[Section::Payload]).is_empty() {
-        cases.push(case(
-            "payload".into(),
-            Status::Pass,
-            None,
-            &findings_in(&[Section::Payload]),
-            String::new(),
-            report,
-            base,
-        ));
     }
 
     if let Some(stability) = &report.stability {
@@ -353,8 +344,7 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                 base,
             ));
         }
-        let collision = findings_in(&[Section::Collision]);
-        if !workspace.arms.is_empty() || !collision.is_empty() {
+        if !workspace.arms.is_empty() {
             let (status, reason) = match workspace.self_collision_free_fraction {
                 Some(_) => (Status::Pass, None),
                 None => (
@@ -367,17 +357,16 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                 let _ = writeln!(out, "collision-free poses: {:.1}%", free * 100.0);
             }
             cases.push(case(
-                "collision".into(),
+                "workspace: self-collision".into(),
                 status,
                 reason,
-                &collision,
+                &[],
                 out,
                 report,
                 base,
             ));
         }
-        let task = findings_in(&[Section::Task]);
-        if workspace.task.is_some() || workspace.orientation.is_some() || !task.is_empty() {
+        if workspace.task.is_some() || workspace.orientation.is_some() {
             let status = if workspace.task_height_reachable.is_none()
                 && workspace.orientation_reachable.is_none()
             {
@@ -386,42 +375,38 @@ fn suite(report: &Report, base: Option<&Path>) -> Suite {
                 Status::Pass
             };
             cases.push(case(
-                "task".into(),
+                "workspace: task".into(),
                 status,
                 workspace.task_com_not_assessed.clone(),
-                &task,
+                &[],
                 String::new(),
                 report,
                 base,
             ));
         }
-    } else {
-        for (name, section) in [("collision", Section::Collision), ("task", Section::Task)] {
-            let findings = findings_in(&[section]);
-            if !findings.is_empty() {
-                cases.push(case(
-                    name.into(),
-                    Status::Pass,
-                    None,
-                    &findings,
-                    String::new(),
-                    report,
-                    base,
-                ));
-            }
-        }
     }
-    let deep = findings_in(&[Section::Deep]);
-    if !deep.is_empty() {
-        cases.push(case(
-            "deep".into(),
-            Status::Pass,
-            None,
-            &deep,
-            String::new(),
-            report,
-            base,
-        ));
+    // Findings of a section the report does not hold (`--task` on a file that is not a robot) and of the
+    // sections without cases of their own: one case per section.
+    let sections = [
+        (Section::Statics, report.statics.is_some()),
+        (Section::Stability, report.stability.is_some()),
+        (Section::Workspace, report.workspace.is_some()),
+        (Section::Symmetry, false),
+        (Section::Deep, false),
+    ];
+    for (section, has_case) in sections {
+        let findings = findings_in(&[section]);
+        if !has_case && !findings.is_empty() {
+            cases.push(case(
+                section.as_str().into(),
+                Status::Pass,
+                None,
+                &findings,
+                String::new(),
+                report,
+                base,
+            ));
+        }
     }
 
     Suite {

@@ -66,15 +66,11 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     header(&mut out, report);
     schema_section(&mut out, validation, options);
     physics_line(&mut out, report);
+    findings_block(&mut out, validation, options, &[Section::Symmetry]);
     if let Some(statics) = &report.statics {
         statics_section(&mut out, statics, options.verbose);
     }
-    findings_block(
-        &mut out,
-        validation,
-        options,
-        &[Section::Statics, Section::Payload],
-    );
+    findings_block(&mut out, validation, options, &[Section::Statics]);
     if let Some(stability) = &report.stability {
         stability_section(&mut out, report, stability);
     }
@@ -82,12 +78,7 @@ pub fn render_text(validation: &Validation, options: &TextOptions) -> String {
     if let Some(workspace) = &report.workspace {
         workspace_section(&mut out, workspace, options.detailed);
     }
-    findings_block(
-        &mut out,
-        validation,
-        options,
-        &[Section::Workspace, Section::Task, Section::Collision],
-    );
+    findings_block(&mut out, validation, options, &[Section::Workspace]);
     if let Some(deep) = &report.deep {
         deep_section(&mut out, deep);
         findings_block(&mut out, validation, options, &[Section::Deep]);

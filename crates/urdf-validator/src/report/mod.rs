@@ -127,8 +127,8 @@ pub struct FindingReport {
     pub name: String,
     /// CRITICAL, FAIL, WARN or INFO.
     pub severity: Severity,
-    /// The report section whose verdict it explains: schema, statics, stability, workspace, collision,
-    /// task, payload or deep.
+    /// The report section whose verdict it explains, a key of the report with a `status`: schema, statics,
+    /// stability, workspace, symmetry or deep.
     pub section: Section,
     /// What is wrong, naming the element.
     pub message: String,

@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 use super::frames::FrameGraph;
 use super::link::{self, Placement};
 use super::pose::{self, to_pose, Transform};
-use super::scene::{model_frame, El, JointDef, Scene, Sink, FRAME_SEMANTICS};
+use super::scene::{El, JointDef, Scene, Sink, FRAME_SEMANTICS};
 use crate::diagnostics::rules;
 use crate::input::source::{Span, Spanned};
 use crate::urdf::robot::{Dynamics, Joint, JointKind, Limit, Link, Mimic, Robot};
@@ -305,7 +305,7 @@ fn urdf_joint(
         Some(Mimic {
             span: sink.span(m),
             joint: Spanned {
-                value: super::scene::scoped(&def.scope, leader),
+                value: def.scope.resolve(leader),
                 span: sink.attr_span(m, "joint"),
             },
             multiplier,
@@ -412,7 +412,7 @@ fn axis(
         }
         None => [0.0, 0.0, 1.0],
     };
-    let model = model_frame(&def.scope);
+    let model = def.scope.frame.clone();
     let expressed_in = if def.version >= FRAME_SEMANTICS {
         match xyz_el.and_then(|x| {
             x.node

@@ -60,10 +60,15 @@ impl<'s, 'a> FrameGraph<'s, 'a> {
             &reference.name,
             self.scene.frames.keys().map(String::as_str),
         );
-        self.report(
-            &rules::SDF_UNDEFINED_FRAME,
-            reference.span,
-            format!("'{}' names no frame of the model{help}", reference.written),
+        self.reported
+            .insert((reference.span, rules::SDF_UNDEFINED_FRAME.code));
+        self.findings.push(
+            Finding::new(
+                &rules::SDF_UNDEFINED_FRAME,
+                reference.span,
+                format!("'{}' names no frame of the model", reference.written),
+            )
+            .with_help(help),
         );
         reference.fallback.clone()
     }

@@ -16,7 +16,7 @@ use crate::diagnostics::rules;
 use crate::input::sdf::SdfFiles;
 use crate::input::xml_options;
 use crate::urdf::robot::Robot;
-use scene::{Collector, El, Overrides, Scene, Sink, Version};
+use scene::{Collector, El, Overrides, Scene, Scope, Sink, Version};
 
 /// The SDFormat versions read: 1.4 to 1.11.
 pub const SUPPORTED: (Version, Version) = ((1, 4), (1, 11));
@@ -60,7 +60,10 @@ pub fn parse_sdf(files: &SdfFiles, wanted: Option<&str>) -> Result<(Robot, Vec<F
         models_read: 0,
     };
     match pick_model(root, &mut collector, wanted)? {
-        Some((model, overrides)) => collector.model(model, "", overrides, 0),
+        Some((model, overrides)) => {
+            let root = Scope::default();
+            collector.model(model, &root, &root, overrides, 0)
+        }
         None => {
             let span = collector.sink.span(root);
             collector.sink.report(
@@ -148,7 +151,7 @@ fn pick_model<'a>(
             };
             match child.node.tag_name().name() {
                 "model" => candidates.push((child, Overrides::default())),
-                "include" => candidates.extend(collector.included_model(child, "")),
+                "include" => candidates.extend(collector.included_model(child, &Scope::default())),
                 _ => {}
             }
         }
@@ -179,7 +182,7 @@ fn pick_model<'a>(
                     .collect::<Vec<_>>()
                     .join(", ");
                 return Err(format!(
-                    "--model {wanted}: no such model in the file (models: {}){}",
+                    "--model {wanted}: no such model in the file (models: {}); {}",
                     if listed.is_empty() {
                         "none".to_string()
                     } else {

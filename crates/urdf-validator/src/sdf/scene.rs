@@ -118,8 +118,8 @@ pub struct LinkDef<'a> {
     pub name_span: Span,
     /// The element.
     pub el: El<'a>,
-    /// Scope prefix of its model (`""` or `arm::`).
-    pub scope: String,
+    /// Its model's scope.
+    pub scope: Scope,
     /// Version of its file.
     pub version: Version,
 }
@@ -133,8 +133,8 @@ pub struct JointDef<'a> {
     pub name_span: Span,
     /// The element.
     pub el: El<'a>,
-    /// Scope prefix of its model.
-    pub scope: String,
+    /// Its model's scope.
+    pub scope: Scope,
     /// Version of its file.
     pub version: Version,
     /// `<parent>`.
@@ -177,24 +177,52 @@ pub struct Overrides {
     pub is_static: Option<(bool, Span)>,
 }
 
-/// The scope prefix's model frame: `arm::` → `arm`, `""` → `""`.
-pub fn model_frame(scope: &str) -> String {
-    scope.strip_suffix("::").unwrap_or(scope).to_string()
+/// Where the names written inside one `<model>` live: the prefix of the names it defines and its model
+/// frame. A nested model `arm` defines `arm::link` and has frame `arm`; a merge-included model
+/// (`<include merge="true">`, SDFormat 1.9) defines its names in the including model's scope, and its
+/// model frame is the proxy frame `_merged__NAME__model__` there, as libsdformat names it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Scope {
+    /// Prefix of the names it defines: `""` or `arm::`.
+    pub prefix: String,
+    /// Scoped name of its model frame: `""` for the analysed model.
+    pub frame: String,
 }
 
-/// The scoped name of `written` referred to from `scope`: `__model__` is the scope's model frame, `world`
-/// the world.
-pub fn scoped(scope: &str, written: &str) -> String {
-    if written == "world" {
-        return "world".to_string();
+impl Scope {
+    /// The scope of nested model `name`.
+    fn nested(&self, name: &str) -> Scope {
+        Scope {
+            prefix: format!("{}{name}::", self.prefix),
+            frame: format!("{}{name}", self.prefix),
+        }
     }
-    let full = format!("{scope}{written}");
-    if full == "__model__" {
-        String::new()
-    } else if let Some(model) = full.strip_suffix("::__model__") {
-        model.to_string()
-    } else {
-        full
+
+    /// The scope of model `name` merge-included into this one.
+    fn merged(&self, name: &str) -> Scope {
+        Scope {
+            prefix: self.prefix.clone(),
+            frame: format!("{}_merged__{name}__model__", self.prefix),
+        }
+    }
+
+    /// The scoped name of `written` referred to from this scope: `__model__` is its model frame, `world`
+    /// the world.
+    pub fn resolve(&self, written: &str) -> String {
+        if written == "world" {
+            "world".to_string()
+        } else if written == "__model__" {
+            self.frame.clone()
+        } else if let Some(model) = written.strip_suffix("::__model__") {
+            format!("{}{model}", self.prefix)
+        } else {
+            format!("{}{written}", self.prefix)
+        }
+    }
+
+    /// Whether this is the analysed model's scope.
+    fn is_root(&self) -> bool {
+        self.frame.is_empty() && self.prefix.is_empty()
     }
 }
 
@@ -242,7 +270,7 @@ impl<'a> Sink<'a> {
     pub fn pose_of(
         &mut self,
         el: El<'_>,
-        scope: &str,
+        scope: &Scope,
         version: Version,
     ) -> (Transform, Option<Ref>, Span) {
         let Some(pose_el) = el.child("pose") else {
@@ -266,12 +294,12 @@ impl<'a> Sink<'a> {
     }
 
     /// A reference written in attribute `attr` of `el`.
-    pub fn reference(&self, el: El<'_>, attr: &str, written: &str, scope: &str) -> Ref {
+    pub fn reference(&self, el: El<'_>, attr: &str, written: &str, scope: &Scope) -> Ref {
         Ref {
-            name: scoped(scope, written),
+            name: scope.resolve(written),
             written: written.to_string(),
             span: self.attr_span(el, attr),
-            fallback: model_frame(scope),
+            fallback: scope.frame.clone(),
         }
     }
 }
@@ -292,22 +320,22 @@ pub struct Collector<'a> {
 
 impl<'a> Collector<'a> {
     /// A reference written as the text of element `el`.
-    fn text_reference(&self, el: El<'a>, scope: &str) -> Ref {
+    fn text_reference(&self, el: El<'a>, scope: &Scope) -> Ref {
         Ref {
-            name: scoped(scope, el.text()),
+            name: scope.resolve(el.text()),
             written: el.text().to_string(),
             span: self.sink.span(el),
-            fallback: model_frame(scope),
+            fallback: scope.frame.clone(),
         }
     }
 
     /// A default reference to `name` (no attribute written).
-    fn implicit(&self, name: String, span: Span, scope: &str) -> Ref {
+    fn implicit(&self, name: String, span: Span, scope: &Scope) -> Ref {
         Ref {
             written: name.clone(),
             name,
             span,
-            fallback: model_frame(scope),
+            fallback: scope.frame.clone(),
         }
     }
 
@@ -351,8 +379,16 @@ impl<'a> Collector<'a> {
         Some((name.to_string(), span))
     }
 
-    /// Read model `el` whose contents are named with prefix `scope` (`""` for the analysed model).
-    pub fn model(&mut self, el: El<'a>, scope: &str, overrides: Overrides, depth: usize) {
+    /// Read model `el` whose contents live in `scope` ([`Scope::default`] for the analysed model), inside
+    /// the model of scope `parent` (the analysed model's own for it).
+    pub fn model(
+        &mut self,
+        el: El<'a>,
+        scope: &Scope,
+        parent: &Scope,
+        overrides: Overrides,
+        depth: usize,
+    ) {
         self.models_read += 1;
         if self.models_read > MAX_MODELS {
             if self.models_read == MAX_MODELS + 1 {
@@ -371,8 +407,7 @@ impl<'a> Collector<'a> {
             .copied()
             .unwrap_or(FRAME_SEMANTICS);
         let legacy = version < FRAME_SEMANTICS;
-        let (own_pose, own_relative, pose_span) =
-            self.sink.pose_of(el, &parent_scope(scope), version);
+        let (own_pose, own_relative, pose_span) = self.sink.pose_of(el, parent, version);
         let (pose, relative_to, pose_span) =
             overrides
                 .pose
@@ -387,7 +422,7 @@ impl<'a> Collector<'a> {
             .map(|v| (v, static_el.map(|s| self.sink.span(s)).unwrap_or_default()));
         let is_static = overrides.is_static.or(own_static);
         let span = self.sink.span(el);
-        if scope.is_empty() {
+        if scope.is_root() {
             self.scene.span = span;
             self.scene.model_pose = pose;
             self.scene.name = overrides.name.clone().or_else(|| {
@@ -407,7 +442,7 @@ impl<'a> Collector<'a> {
                 at,
                 format!(
                     "nested model '{}' is static: analysed as part of the moving model",
-                    model_frame(scope)
+                    scope.frame
                 ),
             );
         }
@@ -436,9 +471,9 @@ impl<'a> Collector<'a> {
                 "frame" => self.frame(child, scope, version),
                 "model" => {
                     if let Some((name, _)) = self.name(child, "model") {
-                        let inner = format!("{scope}{name}::");
-                        self.model(child, &inner, Overrides::default(), depth + 1);
-                        first_nested.get_or_insert(format!("{scope}{name}"));
+                        let inner = scope.nested(&name);
+                        self.model(child, &inner, scope, Overrides::default(), depth + 1);
+                        first_nested.get_or_insert(inner.frame);
                     }
                 }
                 "include" => {
@@ -474,29 +509,28 @@ impl<'a> Collector<'a> {
                 ),
             );
         }
-        if scope.is_empty() {
+        if scope.is_root() {
             self.scene.canonical = canonical;
         } else {
-            let parent = parent_scope(scope);
             let relative_to =
-                relative_to.unwrap_or_else(|| self.implicit(model_frame(&parent), span, &parent));
+                relative_to.unwrap_or_else(|| self.implicit(parent.frame.clone(), span, parent));
             let def = FrameDef {
                 kind: Kind::Model { canonical },
                 pose,
                 relative_to,
                 span: pose_span,
             };
-            self.define(&model_frame(scope), def, legacy);
+            self.define(&scope.frame, def, legacy);
         }
     }
 
     /// A `<link>`: its frame and the link to build; returns a reference to it.
-    fn link(&mut self, el: El<'a>, scope: &str, version: Version) -> Option<Ref> {
+    fn link(&mut self, el: El<'a>, scope: &Scope, version: Version) -> Option<Ref> {
         let (name, name_span) = self.name(el, "link")?;
-        let full = format!("{scope}{name}");
+        let full = format!("{}{name}", scope.prefix);
         let (pose, relative_to, pose_span) = self.sink.pose_of(el, scope, version);
         let relative_to =
-            relative_to.unwrap_or_else(|| self.implicit(model_frame(scope), pose_span, scope));
+            relative_to.unwrap_or_else(|| self.implicit(scope.frame.clone(), pose_span, scope));
         self.define(
             &full,
             FrameDef {
@@ -511,18 +545,18 @@ impl<'a> Collector<'a> {
             name: full.clone(),
             name_span,
             el,
-            scope: scope.to_string(),
+            scope: scope.clone(),
             version,
         });
         Some(self.implicit(full, name_span, scope))
     }
 
     /// A `<joint>`: its frame (attached to its child) and the joint to build.
-    fn joint(&mut self, el: El<'a>, scope: &str, version: Version) {
+    fn joint(&mut self, el: El<'a>, scope: &Scope, version: Version) {
         let Some((name, name_span)) = self.name(el, "joint") else {
             return;
         };
-        let full = format!("{scope}{name}");
+        let full = format!("{}{name}", scope.prefix);
         let parent = el.child("parent").map(|p| self.text_reference(p, scope));
         let child = el.child("child").map(|c| self.text_reference(c, scope));
         let span = self.sink.span(el);
@@ -560,7 +594,7 @@ impl<'a> Collector<'a> {
             name: full,
             name_span,
             el,
-            scope: scope.to_string(),
+            scope: scope.clone(),
             version,
             parent,
             child,
@@ -568,7 +602,7 @@ impl<'a> Collector<'a> {
     }
 
     /// A `<frame>` (SDFormat 1.7 on).
-    fn frame(&mut self, el: El<'a>, scope: &str, version: Version) {
+    fn frame(&mut self, el: El<'a>, scope: &Scope, version: Version) {
         if version < FRAME_SEMANTICS {
             let span = self.sink.span(el);
             self.sink.report(
@@ -586,12 +620,12 @@ impl<'a> Collector<'a> {
         };
         let attached_to = match el.node.attribute("attached_to").filter(|a| !a.is_empty()) {
             Some(written) => self.sink.reference(el, "attached_to", written, scope),
-            None => self.implicit(model_frame(scope), self.sink.span(el), scope),
+            None => self.implicit(scope.frame.clone(), self.sink.span(el), scope),
         };
         let (pose, relative_to, pose_span) = self.sink.pose_of(el, scope, version);
         let relative_to = relative_to.unwrap_or_else(|| attached_to.clone());
         self.define(
-            &format!("{scope}{name}"),
+            &format!("{}{name}", scope.prefix),
             FrameDef {
                 kind: Kind::Frame { attached_to },
                 pose,
@@ -602,23 +636,28 @@ impl<'a> Collector<'a> {
         );
     }
 
-    /// An `<include>` inside a model: the included model nested under its (possibly overridden) name.
-    /// Returns the nested model's scoped name.
-    fn include(&mut self, el: El<'a>, scope: &str, depth: usize) -> Option<String> {
+    /// An `<include>` inside a model: the included model nested under its (possibly overridden) name,
+    /// or with `merge="true"` its contents in this scope, placed by its proxy model frame. Returns the
+    /// scoped name of the included model's frame.
+    fn include(&mut self, el: El<'a>, scope: &Scope, depth: usize) -> Option<String> {
         let (model, overrides) = self.included_model(el, scope)?;
         let name = overrides
             .name
             .as_ref()
             .map(|n| n.value.clone())
             .or_else(|| model.node.attribute("name").map(str::to_string))?;
-        let inner = format!("{scope}{name}::");
-        self.model(model, &inner, overrides, depth + 1);
-        Some(format!("{scope}{name}"))
+        let inner = if el.node.attribute("merge") == Some("true") {
+            scope.merged(&name)
+        } else {
+            scope.nested(&name)
+        };
+        self.model(model, &inner, scope, overrides, depth + 1);
+        Some(inner.frame)
     }
 
     /// The `<model>` an `<include>` pulls in and what the include overrides; a finding when it cannot be
     /// read.
-    pub fn included_model(&mut self, el: El<'a>, scope: &str) -> Option<(El<'a>, Overrides)> {
+    pub fn included_model(&mut self, el: El<'a>, scope: &Scope) -> Option<(El<'a>, Overrides)> {
         let span = self.sink.span(el);
         let file = match self.sink.files.include(span) {
             Some(IncludeTarget::File(file)) => *file,
@@ -658,11 +697,12 @@ impl<'a> Collector<'a> {
             );
             return None;
         };
-        if el.child("placement_frame").is_some() || el.node.attribute("merge") == Some("true") {
+        if el.child("placement_frame").is_some() {
             self.sink.report(
                 &rules::SDF_NOT_READ,
                 span,
-                "<include> with merge or <placement_frame>: read as a nested model placed by its model frame".to_string(),
+                "<include> with <placement_frame>: the model is placed by its model frame"
+                    .to_string(),
             );
         }
         let version = self
@@ -693,28 +733,27 @@ impl<'a> Collector<'a> {
     }
 }
 
-/// The scope enclosing `scope`: `a::b::` → `a::`, `a::` → `""`.
-fn parent_scope(scope: &str) -> String {
-    let inner = scope.strip_suffix("::").unwrap_or(scope);
-    match inner.rfind("::") {
-        Some(i) => inner[..i + 2].to_string(),
-        None => String::new(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn names_are_scoped_from_the_analysed_model() {
-        assert_eq!(scoped("", "__model__"), "");
-        assert_eq!(scoped("arm::", "__model__"), "arm");
-        assert_eq!(scoped("", "arm::__model__"), "arm");
-        assert_eq!(scoped("arm::", "link"), "arm::link");
-        assert_eq!(scoped("arm::", "world"), "world");
-        assert_eq!(parent_scope("a::b::"), "a::");
-        assert_eq!(parent_scope("a::"), "");
-        assert_eq!(model_frame("a::b::"), "a::b");
+        let root = Scope::default();
+        let arm = root.nested("arm");
+        assert_eq!(root.resolve("__model__"), "");
+        assert_eq!(arm.resolve("__model__"), "arm");
+        assert_eq!(root.resolve("arm::__model__"), "arm");
+        assert_eq!(arm.resolve("link"), "arm::link");
+        assert_eq!(arm.resolve("world"), "world");
+        assert_eq!(arm.nested("b").frame, "arm::b");
+        // A merge-included model names in its includer's scope; its model frame is the proxy frame.
+        let gripper = arm.merged("gripper");
+        assert_eq!(gripper.resolve("link"), "arm::link");
+        assert_eq!(
+            gripper.resolve("__model__"),
+            "arm::_merged__gripper__model__"
+        );
+        assert_eq!(gripper.resolve("inner::__model__"), "arm::inner");
     }
 }

@@ -58,6 +58,23 @@ pub fn corpus() -> Option<PathBuf> {
     )
 }
 
+/// PyBullet's `pybullet_data` folder inside the test venv (PyPI `pybullet`, `scripts/setup-test-env.sh`).
+pub fn pybullet_data() -> Option<PathBuf> {
+    let default = std::fs::read_dir(repo_root().join(".venv/lib"))
+        .ok()
+        .and_then(|entries| {
+            entries
+                .flatten()
+                .map(|e| e.path().join("site-packages/pybullet_data"))
+                .find(|p| p.is_dir())
+        });
+    data_dir(
+        "URDF_VALIDATOR_PYBULLET_DATA",
+        default,
+        "PyBullet's pybullet_data",
+    )
+}
+
 /// Every `*.urdf` below `dir`, sorted.
 pub fn urdfs_below(dir: &Path) -> Vec<PathBuf> {
     let mut found = Vec::new();

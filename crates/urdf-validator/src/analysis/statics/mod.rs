@@ -222,7 +222,7 @@ pub fn analyse(
                 robot.span,
                 format!("--payload-mass {mass}: no link to carry it (no actuated chain; name one with --payload-link)"),
             )
-            .in_section(Section::Payload),
+            .in_section(Section::Statics),
         );
     }
     let heaviest = model

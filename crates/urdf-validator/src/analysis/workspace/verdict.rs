@@ -48,7 +48,7 @@ pub fn findings(
                         section.reason.as_deref().unwrap_or("no arm to reach with")
                     ),
                 )
-                .in_section(Section::Task),
+                .in_section(Section::Workspace),
             );
         }
         return findings;
@@ -150,7 +150,7 @@ fn task_findings(
                     "--task {task}: the centre of mass during the reach was not checked: {why}"
                 ),
             )
-            .in_section(Section::Task),
+            .in_section(Section::Workspace),
         );
     }
 }
