@@ -129,7 +129,16 @@ impl Assets {
             .map(|link| link_supports(link, &|uri| assets.mesh_points(uri)))
             .collect();
         let robot_name = robot.name.as_ref().map(|n| n.value.as_str());
-        assets.srdf = srdf::find(source.urdf_path, robot_name, source.srdf).map(Srdf::read);
+        assets.srdf =
+            srdf::find(source.urdf_path, robot_name, source.srdf).map(|path| {
+                match source.resolver.sandbox().check_file(&path) {
+                    Ok(()) => Srdf::read(path),
+                    Err(refusal) => Srdf {
+                        path,
+                        text: Err(format!("refused to read: {refusal}")),
+                    },
+                }
+            });
         assets
     }
 
