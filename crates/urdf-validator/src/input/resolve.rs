@@ -150,6 +150,17 @@ impl PackageResolver {
                 Ok(()) => Resolution::Found(path),
                 Err(refusal) => Resolution::Refused(refusal),
             },
+            // Untrusted mode says why a device or a FIFO named like a mesh is not read.
+            Resolution::NotFound { searched } if self.sandbox.is_untrusted() => {
+                let refused = searched
+                    .iter()
+                    .filter(|path| path.exists())
+                    .find_map(|path| self.sandbox.check_file(path).err());
+                match refused {
+                    Some(refusal) => Resolution::Refused(refusal),
+                    None => Resolution::NotFound { searched },
+                }
+            }
             other => other,
         }
     }
@@ -1172,9 +1183,19 @@ mod tests {
             empty_resolver().resolve_include("m", &t.0),
             Ok(dir.join("new.sdf"))
         );
-        assert!(empty_resolver()
-            .resolve_include("https://fuel.gazebosim.org/x", &t.0)
-            .unwrap_err()
-            .contains("offline"));
+        assert!(matches!(
+            empty_resolver().resolve_include("https://fuel.gazebosim.org/x", &t.0),
+            Err(IncludeFailure::Unresolved(why)) if why.contains("offline")
+        ));
+        // Untrusted: the model folder is outside the roots, so it is refused, not read.
+        let sandboxed = empty_resolver().with_sandbox(Sandbox::untrusted([t.dir("elsewhere")], []));
+        assert!(matches!(
+            sandboxed.resolve_include("m", &t.0),
+            Err(IncludeFailure::Unresolved(why)) if why.contains("outside")
+        ));
+        assert!(matches!(
+            sandboxed.resolve_include("bare/model.sdf", &t.0),
+            Err(IncludeFailure::Refused(_))
+        ));
     }
 }

@@ -90,7 +90,7 @@ pub fn expand(
         gate: resolver
             .sandbox()
             .is_untrusted()
-            .then(|| Arc::new(SandboxGate(resolver.sandbox().clone())) as Arc<dyn ::xacro::Gate>),
+            .then(|| Arc::new(SandboxGate(resolver.sandbox().clone())) as Arc<dyn xacro::Gate>),
         banner,
         ..xacro::Options::default()
     };
@@ -105,7 +105,7 @@ pub fn expand(
 /// The expander's gate: the validator's sandbox.
 struct SandboxGate(Sandbox);
 
-impl ::xacro::Gate for SandboxGate {
+impl xacro::Gate for SandboxGate {
     fn file(&self, path: &Path) -> Result<(), String> {
         self.0.check_file(path).map_err(|r| r.0)
     }
