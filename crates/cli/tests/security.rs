@@ -306,6 +306,13 @@ fn check_untrusted(tree: &Tree, hostile: &Hostile) -> Vec<String> {
         ],
     );
     runs.push(("html".to_string(), everything(&page, Some(&html))));
+    // What was done with it, for the record (`cargo test --test security -- --nocapture`).
+    let said: Vec<&str> = runs[0]
+        .1
+        .lines()
+        .filter(|l| l.contains("refused") || l.starts_with("error:") || l.contains("[OVERALL]"))
+        .collect();
+    eprintln!("{}: {}", hostile.file, said.join(" | "));
     for (format, all) in &runs {
         for canary in [ENV_CANARY, FILE_CANARY] {
             if all.contains(canary) {
