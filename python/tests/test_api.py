@@ -238,3 +238,25 @@ def test_a_xacro_error_points_at_the_xacro_line(tmp_path: Path) -> None:
     error = caught.value
     assert error.file == str(robot) and error.line == 2 and error.column is not None, vars(error)
     assert "undefined_width" in error.message and not error.message.startswith(str(robot))
+
+
+def test_validate_string_is_untrusted_by_default(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    secret_env, secret_file = "CANARYENVpy5q", "CANARYFILEpy7w"
+    monkeypatch.setenv("URDF_PY_CANARY", secret_env)
+    (tmp_path / "outside").mkdir()
+    (tmp_path / "outside" / "m.stl").write_text(f"solid {secret_file}\nendsolid\n")
+    (tmp_path / "root").mkdir()
+    xml = (
+        "<robot name='r'><link name='a'><visual><geometry>"
+        f"<mesh filename='file://{tmp_path}/outside/m.stl'/></geometry></visual></link></robot>"
+    )
+    report = urdf_validator.validate_string(xml, base_dir=tmp_path / "root", samples=100, no_cache=True)
+    document = json.dumps(report.to_dict())
+    assert secret_file not in document
+    assert any(f["rule"] == "U013" for f in report.findings), document
+    # Trusted on request: the command's default behaviour (the mesh is read).
+    trusted = urdf_validator.validate_string(
+        xml, base_dir=tmp_path / "root", untrusted=False, samples=100, no_cache=True
+    )
+    assert not any(f["rule"] == "U013" for f in trusted.findings)
+    assert secret_env not in document

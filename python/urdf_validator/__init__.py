@@ -53,10 +53,24 @@ def validate_many(paths: Iterable[PathLike], **options: Any) -> List[Report]:
 
 
 def validate_string(
-    xml: str, base_dir: Optional[PathLike] = None, name: str = "robot.urdf", **options: Any
+    xml: str,
+    base_dir: Optional[PathLike] = None,
+    name: str = "robot.urdf",
+    untrusted: bool = True,
+    **options: Any,
 ) -> Report:
     """Validate URDF text. ``base_dir`` is where relative mesh paths (and configuration files) are
     looked up, default the current directory; ``name`` is the file name the report uses. Raises
-    ``ValidationError`` for text that is not well-formed XML."""
+    ``ValidationError`` for text that is not well-formed XML.
+
+    Untrusted by default (text often comes from a request; see SECURITY.md): files are read only from
+    ``base_dir`` when given and the ``root=[...]`` folders, only regular files, and no environment
+    variable unless ``allow_env=[...]`` names it; what the text asked for and was refused is a U013
+    finding. ``untrusted=False`` validates as the command does by default."""
     path = os.path.join(os.fspath(base_dir) if base_dir is not None else os.getcwd(), name)
+    if untrusted:
+        roots = list(options.pop("root", None) or [])
+        if base_dir is not None:
+            roots.append(base_dir)
+        options = {"untrusted": True, "root": roots, **options}
     return Report._from_json(_native.validate_string(xml, path, flags_from_options(options)))._raise_error()

@@ -50,6 +50,22 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub package_path: Vec<PathBuf>,
 
+    /// Untrusted input (pull requests, downloads): read files only below the roots (the input's folder
+    /// tree, or its git work tree; --package-path and --root folders; symlinks resolved first), only
+    /// regular files, and no environment variable unless --allow-env names it. What is refused is a
+    /// finding (U013). See SECURITY.md.
+    #[arg(long)]
+    pub untrusted: bool,
+
+    /// With --untrusted: another folder files may be read from (repeatable).
+    #[arg(long, value_name = "DIR", requires = "untrusted")]
+    pub root: Vec<PathBuf>,
+
+    /// With --untrusted: an environment variable $(env), $(optenv) and the package path look-ups may
+    /// read (repeatable; default none).
+    #[arg(long, value_name = "NAME", requires = "untrusted")]
+    pub allow_env: Vec<String>,
+
     /// Joint configuration for statics: zero (clamped into limits), limits (upper limits), custom
     /// (--joint-angles), home (SRDF group_state), worst (largest torque per joint over seeded samples).
     #[arg(long, value_enum, default_value_t = PoseArg::Zero)]

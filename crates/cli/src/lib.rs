@@ -51,6 +51,7 @@ use urdf_validator::analysis::Overrides;
 use urdf_validator::diagnostics::rules::{self, Rule};
 use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::input::sandbox::Sandbox;
 use urdf_validator::render::FormatOptions;
 use urdf_validator::report::baseline::{self, Baseline};
 use urdf_validator::value_overrides::ValueOverride;
@@ -150,7 +151,8 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         errln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
         return 2;
     }
-    let resolver = PackageResolver::from_env(args.package_path.clone());
+    let sandbox = sandbox_of(&args);
+    let resolver = PackageResolver::from_env_in(args.package_path.clone(), &sandbox);
     if args.expand_only {
         if paths.len() != 1 || paths[0].is_dir() {
             errln!(
@@ -164,7 +166,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             );
             return 2;
         }
-        return expand_only(&files, &input_errors, &xacro_args, &resolver);
+        return expand_only(&files, &input_errors, &xacro_args, &resolver, &sandbox);
     }
     // One set of options per configuration file (the nearest to each input, unless named or turned off).
     let meshes = mesh_cache(args.no_cache);
@@ -451,19 +453,37 @@ fn configured_options(
     let effective = config::load(config, args, matches)?;
     let mut group_args = args.clone();
     effective.apply_to(&mut group_args);
-    options_for(&group_args, effective.settings, xacro_args, meshes).map_err(|message| match config
-    {
-        Some(path) => format!("{message} (with the settings of {})", path.display()),
-        None => message,
+    // The roots come from the command line only: a configuration file beside an untrusted input is as
+    // untrusted as the input.
+    let sandbox = sandbox_of(args);
+    options_for(&group_args, effective.settings, xacro_args, meshes, sandbox).map_err(|message| {
+        match config {
+            Some(path) => format!("{message} (with the settings of {})", path.display()),
+            None => message,
+        }
     })
 }
 
-/// The library options from the flags (already merged with a configuration file) and `settings`.
+/// The sandbox the flags ask for: trusted, or `--untrusted` with the `--package-path` and `--root`
+/// folders as roots and the `--allow-env` variables.
+fn sandbox_of(args: &Args) -> Sandbox {
+    if !args.untrusted {
+        return Sandbox::default();
+    }
+    Sandbox::untrusted(
+        args.package_path.iter().chain(&args.root).cloned(),
+        args.allow_env.iter().cloned(),
+    )
+}
+
+/// The library options from the flags (already merged with a configuration file), `settings` and the
+/// `sandbox`.
 fn options_for(
     args: &Args,
     settings: urdf_validator::diagnostics::Settings,
     xacro_args: &[(String, String)],
     meshes: &MeshCache,
+    sandbox: Sandbox,
 ) -> Result<Options, String> {
     if let Some(mass) = args.payload_mass.filter(|m| !(m.is_finite() && *m >= 0.0)) {
         return Err(format!("--payload-mass {mass}: expected a mass ≥ 0 in kg"));
@@ -471,7 +491,8 @@ fn options_for(
     Ok(Options {
         workspace: workspace_options(args)?,
         xacro_args: xacro_args.to_vec(),
-        resolver: PackageResolver::from_env(args.package_path.clone()),
+        resolver: PackageResolver::from_env_in(args.package_path.clone(), &sandbox),
+        sandbox,
         statics: StaticsOptions {
             pose: PoseOptions {
                 kind: args.pose.into(),
@@ -632,6 +653,7 @@ fn expand_only(
     input_errors: &[String],
     xacro_args: &[(String, String)],
     resolver: &PackageResolver,
+    sandbox: &Sandbox,
 ) -> u8 {
     for error in input_errors {
         errln!("error: {error}");
@@ -647,10 +669,12 @@ fn expand_only(
             status = 2;
             continue;
         }
-        match urdf_validator::input::xacro::expand(file, xacro_args, resolver, true) {
+        let resolver = resolver.with_sandbox(sandbox.for_input(file));
+        match urdf_validator::input::xacro::expand(file, xacro_args, &resolver, true) {
             Ok(expanded) => {
-                for (message, location) in expanded.warnings() {
-                    match location {
+                for warning in expanded.warnings() {
+                    let message = warning.message;
+                    match warning.location {
                         Some(at) => {
                             errln!("warning: {}:{}:{}: {message}", at.file, at.line, at.column)
                         }

@@ -5,6 +5,7 @@
 //! A failure (a missing file, a bad argument, an unknown rule) is a tool result with `isError` and a
 //! one-line message; the server goes on. stdout carries the protocol only; messages go to stderr.
 
+mod policy;
 mod tools;
 
 use std::ffi::OsString;
@@ -22,12 +23,18 @@ use rmcp::{ErrorData, RoleServer, ServerHandler, ServiceExt};
 const HELP: &str = "\
 Serve the validator to AI agents over the Model Context Protocol (MCP), on stdin/stdout.
 
-Usage: urdf_validate mcp
+Usage: urdf_validate mcp [--root DIR]... [--allow-env NAME]... [--trusted]
 
 An MCP client (Claude Desktop, an agent framework) starts this command and speaks JSON-RPC to it, one
 message a line; messages for people go to stderr. Tools: validate_urdf, validate_urdf_string,
 run_pick_task, run_pick_sweep, list_rules, explain_rule. Client set-up and every tool's arguments:
 docs/mcp.md. Relative paths in tool arguments start from this command's working directory.
+
+Untrusted by default: an agent passes on files and text from anywhere, so every validation runs as
+`urdf_validate --untrusted` (see SECURITY.md). Path arguments must be inside the --root folders (default:
+the working directory; repeatable), files are read only from there, no environment variable is read
+unless --allow-env NAME names it, `xml` is at most 4 MiB and every call has a time limit (timeout 0 is
+refused). --trusted turns this off.
 
 A file named `mcp` is validated as `urdf_validate ./mcp`.
 ";
@@ -42,18 +49,14 @@ paths. Each call is independent and writes no report file.";
 
 /// Run `urdf_validate mcp ARGS`: serve until stdin closes. Exit status 0, or 2 when the server cannot run.
 pub(crate) fn main(args: &[OsString]) -> u8 {
-    match args.first() {
-        None => {}
-        Some(arg) if arg == "-h" || arg == "--help" => {
-            out!("{HELP}");
-            return 0;
-        }
-        Some(arg) => {
-            errln!(
-                "error: `urdf_validate mcp` takes no arguments (got '{}'); to validate a file named mcp, \
-                 write ./mcp",
-                arg.to_string_lossy()
-            );
+    if args.iter().any(|arg| arg == "-h" || arg == "--help") {
+        out!("{HELP}");
+        return 0;
+    }
+    match policy::Policy::parse(args) {
+        Ok(policy) => policy.install(),
+        Err(message) => {
+            errln!("error: urdf_validate mcp: {message}");
             return 2;
         }
     }

@@ -25,10 +25,26 @@ struct Server {
 }
 
 impl Server {
-    /// Start the server in `dir` and initialise the session.
+    /// Start the server in `dir`, allowed to read the repository's example robots, and initialise the
+    /// session.
     fn start(dir: &Path) -> Server {
+        let examples = common::repo_root().join("examples");
+        let temp = std::env::temp_dir();
+        let roots = [
+            "--root".as_ref(),
+            examples.as_os_str(),
+            "--root".as_ref(),
+            temp.as_os_str(),
+        ];
+        Server::start_with(dir, &roots)
+    }
+
+    /// Start the server in `dir` with `args` (`--root DIR`, ...) and initialise the session.
+    fn start_with(dir: &Path, args: &[&std::ffi::OsStr]) -> Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
             .arg("mcp")
+            .args(args)
+            .env("URDF_MCP_CANARY", "CANARYENVmcp47")
             .current_dir(dir)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
@@ -459,5 +475,67 @@ fn a_file_named_mcp_is_validated_as_dot_slash_mcp() {
         String::from_utf8_lossy(&output.stdout).contains("urdf_validate — mcp"),
         "{output:?}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_server_is_untrusted_by_default_and_keeps_to_its_roots() {
+    let dir = std::env::temp_dir().join(format!("urdf_validate_mcp_roots_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("root")).expect("dir");
+    std::fs::create_dir_all(dir.join("outside")).expect("dir");
+    let secret = "CANARYFILEmcp31";
+    std::fs::write(dir.join("outside/secret.yaml"), format!("name: {secret}\n")).expect("write");
+    std::fs::write(
+        dir.join("outside/robot.urdf"),
+        "<robot name='r'><link name='a'/></robot>\n",
+    )
+    .expect("write");
+    std::fs::write(
+        dir.join("root/robot.urdf.xacro"),
+        "<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>\
+         <xacro:property name='y' value=\"${load_yaml('../outside/secret.yaml')}\"/>\
+         <link name='a'/><link name='b_$(env URDF_MCP_CANARY)'/></robot>\n",
+    )
+    .expect("write");
+    let root = dir.join("root");
+    let mut server = Server::start_with(&dir, &["--root".as_ref(), root.as_os_str()]);
+    // A path outside --root: a clear error, naming the path and the roots.
+    let outside = server.call(
+        "validate_urdf",
+        json!({"path": dir.join("outside/robot.urdf").display().to_string()}),
+    );
+    let message = error_text(&outside);
+    assert!(
+        message.contains("outside the folders this server may read"),
+        "{message}"
+    );
+    assert!(message.contains("--root"), "{message}");
+    let relative = server.call("validate_urdf", json!({"path": "outside/robot.urdf"}));
+    assert!(error_text(&relative).contains("outside the folders"));
+    // Inside: validated in untrusted mode, the refusals reported, no secret in the reply.
+    let inside = server.call(
+        "validate_urdf",
+        json!({"path": root.join("robot.urdf.xacro").display().to_string(), "samples": 100}),
+    );
+    let reply = inside.to_string();
+    assert!(!reply.contains(secret), "{reply}");
+    assert!(!reply.contains("CANARYENVmcp47"), "{reply}");
+    assert!(reply.contains("U013"), "{reply}");
+    // Every call is bounded: no timeout 0, no xml above the limit.
+    let unbounded = server.call(
+        "validate_urdf",
+        json!({"path": root.join("robot.urdf.xacro").display().to_string(), "timeout": 0}),
+    );
+    assert!(error_text(&unbounded).contains("bounds every call"));
+    let huge = format!("<robot name='r'><!--{}--></robot>", "x".repeat(5 << 20));
+    let too_big = server.call("validate_urdf", json!({"xml": huge}));
+    assert!(error_text(&too_big).contains("at most"));
+    let base_dir = server.call(
+        "validate_urdf",
+        json!({"xml": "<robot name='r'><link name='a'/></robot>", "base_dir": dir.join("outside").display().to_string()}),
+    );
+    assert!(error_text(&base_dir).contains("outside the folders"));
+    assert!(server.close().success());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -44,6 +44,7 @@ use analysis::{statics::StaticsOptions, Overrides};
 use assets::{AssetSource, Assets};
 use input::mesh::MeshCache;
 use input::resolve::PackageResolver;
+use input::sandbox::Sandbox;
 use input::source::SourceText;
 use input::{LoadError, Loaded};
 use model::Model;
@@ -64,6 +65,9 @@ pub const DEFAULT_SEED: u64 = 7;
 pub struct Options {
     /// Where `package://` URIs are looked up.
     pub resolver: PackageResolver,
+    /// What the robot's files may read (`--untrusted`): every file and variable the stages read is
+    /// checked against it. Trusted by default.
+    pub sandbox: Sandbox,
     /// Pose and payload for statics.
     pub statics: StaticsOptions,
     /// Samples, task and orientation for the workspace.
@@ -116,28 +120,45 @@ impl Validation {
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
     let mut clock = Stopwatch::reporting_to(options.progress.clone());
-    let loaded = Loaded::read(path, &options.xacro_args, &options.resolver)?;
+    let sandbox = options.sandbox.for_input(path);
+    sandbox
+        .check_file(path)
+        .map_err(|refusal| LoadError::Usage {
+            path: path.to_path_buf(),
+            message: format!("refused to read: {refusal}"),
+        })?;
+    let resolver = options.resolver.with_sandbox(sandbox);
+    let loaded = Loaded::read(path, &options.xacro_args, &resolver)?;
     clock.lap("load");
-    run(loaded, options, clock)
+    run(loaded, options, &resolver, clock)
 }
 
 /// Validate URDF or SDFormat `text` that was read from `path` (used for positions, relative meshes and
-/// includes, and the report). SDFormat is told by its `<sdf>` root, as [`validate`] tells it.
+/// includes, and the report). SDFormat is told by its `<sdf>` root, as [`validate`] tells it. In untrusted
+/// mode only the sandbox's own roots are readable (`path`'s folder is not added: the text is not from there).
 pub fn validate_text(
     text: String,
     path: &Path,
     options: &Options,
 ) -> Result<Validation, LoadError> {
     let clock = Stopwatch::reporting_to(options.progress.clone());
+    let resolver = options.resolver.with_sandbox(options.sandbox.clone());
     run(
-        Loaded::from_document(text, path, &options.resolver)?,
+        Loaded::from_document(text, path, &resolver)?,
         options,
+        &resolver,
         clock,
     )
 }
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
-fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Validation, LoadError> {
+/// `resolver` is the run's, checking against this file's sandbox.
+fn run(
+    loaded: Loaded,
+    options: &Options,
+    resolver: &PackageResolver,
+    mut clock: Stopwatch,
+) -> Result<Validation, LoadError> {
     // A URDF's XML document is read once: the parse reads the robot from it, the report element paths.
     let urdf_text = loaded
         .sdf()
@@ -186,7 +207,7 @@ fn run(loaded: Loaded, options: &Options, mut clock: Stopwatch) -> Result<Valida
         .any(|f| f.rule == &diagnostics::rules::NOT_A_ROBOT);
     let analyses = if is_robot {
         give_up_if_cancelled(options, &loaded.path)?;
-        let assets = Assets::load(&robot, &asset_source(&loaded.path, options));
+        let assets = Assets::load(&robot, &asset_source(&loaded.path, options, resolver));
         clock.lap("assets");
         give_up_if_cancelled(options, &loaded.path)?;
         findings.extend(checks::run(&robot, &model, &assets));
@@ -304,10 +325,14 @@ fn payload(model: &Model, options: &Options) -> Option<(model::LinkId, f64)> {
     Some((link, mass))
 }
 
-fn asset_source<'a>(path: &'a Path, options: &'a Options) -> AssetSource<'a> {
+fn asset_source<'a>(
+    path: &'a Path,
+    options: &'a Options,
+    resolver: &'a PackageResolver,
+) -> AssetSource<'a> {
     AssetSource {
         urdf_path: path,
-        resolver: &options.resolver,
+        resolver,
         meshes: &options.meshes,
         srdf: options.statics.pose.srdf.as_deref(),
     }

@@ -288,8 +288,8 @@ fn xacro_warnings_inside_macros_carry_the_call_stack() {
     let stacks: Vec<Vec<String>> = expanded
         .warnings()
         .into_iter()
-        .filter(|(message, _)| message.contains("bogus"))
-        .map(|(_, at)| at.expect("located").stack)
+        .filter(|w| w.message.contains("bogus"))
+        .map(|w| w.location.expect("located").stack)
         .collect();
     assert_eq!(stacks.len(), 2, "{stacks:?}");
     assert!(

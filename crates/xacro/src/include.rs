@@ -50,6 +50,13 @@ pub(crate) fn is_glob(spec: &str) -> bool {
     spec.contains(['*', '[', '?'])
 }
 
+/// The folder a glob lists: its path up to the first component with a wildcard.
+pub(crate) fn glob_folder(spec: &Path) -> PathBuf {
+    spec.components()
+        .take_while(|c| !is_glob(&c.as_os_str().to_string_lossy()))
+        .collect()
+}
+
 /// The files matching a glob, sorted (Python's `sorted(glob.glob(spec))`).
 pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
     let opts = glob::MatchOptions {
@@ -70,9 +77,13 @@ pub(crate) fn glob_files(spec: &str) -> Vec<PathBuf> {
     files
 }
 
-/// The `<name>` of a `package.xml`.
-fn package_xml_name(dir: &Path) -> Option<String> {
-    let text = read_text(&dir.join("package.xml"), MAX_PACKAGE_XML).ok()?;
+/// The `<name>` of a `package.xml` (none when the gate refuses the file).
+fn package_xml_name(dir: &Path, opts: &Options) -> Option<String> {
+    let file = dir.join("package.xml");
+    if let Some(gate) = &opts.gate {
+        gate.file(&file).ok()?;
+    }
+    let text = read_text(&file, MAX_PACKAGE_XML).ok()?;
     let start = text.find("<name>")? + "<name>".len();
     let end = start + text[start..].find("</name>")?;
     Some(text[start..end].trim().to_string())
@@ -105,7 +116,7 @@ pub(crate) fn find_package(
         if candidate.is_dir() {
             return Ok(candidate);
         }
-        if package_xml_name(dir).as_deref() == Some(pkg) {
+        if package_xml_name(dir, opts).as_deref() == Some(pkg) {
             return Ok(dir.clone());
         }
         searched.push(candidate.display().to_string());
@@ -125,7 +136,7 @@ pub(crate) fn find_package(
     if let Some(paths) = env("ROS_PACKAGE_PATH") {
         for dir in paths.split(':').filter(|p| !p.is_empty()) {
             let dir = Path::new(dir);
-            if package_xml_name(dir).as_deref() == Some(pkg) {
+            if package_xml_name(dir, opts).as_deref() == Some(pkg) {
                 return Ok(dir.to_path_buf());
             }
             let candidate = dir.join(pkg);
@@ -137,11 +148,11 @@ pub(crate) fn find_package(
     }
     let start = std::path::absolute(current).unwrap_or_else(|_| current.to_path_buf());
     for dir in start.ancestors().skip(1).take(MAX_WALK_UP) {
-        if package_xml_name(dir).as_deref() == Some(pkg) {
+        if package_xml_name(dir, opts).as_deref() == Some(pkg) {
             return Ok(dir.to_path_buf());
         }
         let child = dir.join(pkg);
-        if package_xml_name(&child).as_deref() == Some(pkg) {
+        if package_xml_name(&child, opts).as_deref() == Some(pkg) {
             return Ok(child);
         }
     }

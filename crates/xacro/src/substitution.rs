@@ -4,14 +4,18 @@
 
 use crate::error::{ErrorKind, XacroError};
 
+/// A variable the gate refused (already reported): `$(env)` expands to empty, `$(optenv)` to its default.
+pub(crate) struct Refused;
+
 const VALID: [&str; 5] = ["find", "env", "optenv", "dirname", "arg"];
 
 /// What substitutions need from the expander.
 pub(crate) trait SubstitutionHost {
     /// The value of argument `name` (given by the caller or declared by `xacro:arg`).
     fn arg(&self, name: &str) -> Result<String, XacroError>;
-    /// An environment variable.
-    fn env(&self, name: &str) -> Option<String>;
+    /// An environment variable (`Ok(None)`: unset), or `Err` when the gate refused it (the expander has
+    /// reported the refusal).
+    fn env(&self, name: &str) -> Result<Option<String>, Refused>;
     /// The directory of package `pkg`.
     fn find(&self, pkg: &str) -> Result<String, XacroError>;
     /// The absolute directory of the file being processed.
@@ -58,9 +62,16 @@ fn resolve_pass(
                         "$(env var) command only accepts one argument [{a}]"
                     )));
                 }
-                host.env(args[0]).ok_or_else(|| {
-                    subst_error(format!("environment variable '{}' is not set", args[0]))
-                })?
+                match host.env(args[0]) {
+                    Ok(Some(value)) => value,
+                    Ok(None) => {
+                        return Err(subst_error(format!(
+                            "environment variable '{}' is not set",
+                            args[0]
+                        )))
+                    }
+                    Err(Refused) => String::new(),
+                }
             }
             "optenv" => {
                 let Some((name, default)) = args.split_first() else {
@@ -68,7 +79,10 @@ fn resolve_pass(
                         "$(optenv var) must specify an environment variable [{a}]"
                     )));
                 };
-                host.env(name).unwrap_or_else(|| default.join(" "))
+                host.env(name)
+                    .ok()
+                    .flatten()
+                    .unwrap_or_else(|| default.join(" "))
             }
             "dirname" => host.dirname()?,
             "arg" => match args {
@@ -179,8 +193,11 @@ mod tests {
                 _ => Err(XacroError::new(ErrorKind::UndefinedArgument, name)),
             }
         }
-        fn env(&self, name: &str) -> Option<String> {
-            (name == "HOME").then(|| "/home/u".into())
+        fn env(&self, name: &str) -> Result<Option<String>, Refused> {
+            match name {
+                "SECRET" => Err(Refused),
+                _ => Ok((name == "HOME").then(|| "/home/u".into())),
+            }
         }
         fn find(&self, pkg: &str) -> Result<String, XacroError> {
             Ok(format!("/share/{pkg}"))
@@ -197,6 +214,8 @@ mod tests {
         assert_eq!(resolve_args("$(optenv NOPE a b)", &Host).unwrap(), "a b");
         assert_eq!(resolve_args("$(env HOME)", &Host).unwrap(), "/home/u");
         assert_eq!(resolve_args("$()", &Host).unwrap(), "$()");
+        assert_eq!(resolve_args("[$(env SECRET)]", &Host).unwrap(), "[]");
+        assert_eq!(resolve_args("$(optenv SECRET d)", &Host).unwrap(), "d");
         assert_eq!(
             resolve_args("$(bogus x)", &Host).unwrap_err().kind,
             ErrorKind::Substitution

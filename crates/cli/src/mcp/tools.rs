@@ -20,6 +20,7 @@ use urdf_validator::diagnostics::suggest::did_you_mean;
 use urdf_validator::report::Report;
 use urdf_validator::task_query::{self, TaskQueryRequest, TaskQueryResponse};
 
+use super::policy::Policy;
 use crate::api::Session;
 use crate::args::Args;
 
@@ -273,9 +274,28 @@ struct Flags {
 }
 
 impl Flags {
-    /// The command's options for the files near `anchor` (their configuration file applies).
+    /// The command's options for the files near `anchor` (their configuration file applies), under the
+    /// server's policy: the path arguments must be inside its roots, and its sandbox flags are added.
     fn session(&self, anchor: &Path) -> Result<Session, String> {
-        Session::from_flags(&self.command_line(), Some(anchor))
+        let policy = Policy::current();
+        let paths = [
+            ("srdf", self.srdf.as_slice()),
+            ("config", self.config.as_slice()),
+            ("baseline", self.baseline.as_slice()),
+            (
+                "package_path",
+                self.package_path.as_deref().unwrap_or_default(),
+            ),
+        ];
+        for (name, values) in paths {
+            for value in values {
+                policy.check_path(name, Path::new(value))?;
+            }
+        }
+        policy.check_timeout(self.timeout)?;
+        let mut line = self.command_line();
+        line.extend(policy.flags());
+        Session::from_flags(&line, Some(anchor))
     }
 
     /// `--flag=value ...`.
@@ -413,6 +433,7 @@ fn validate_urdf(arguments: JsonObject) -> Result<Output, String> {
                 return Err("base_dir goes with xml, not with path".to_string());
             }
             let file = existing_file(&path)?;
+            Policy::current().check_path("path", &file)?;
             let validation = flags
                 .session(&file)?
                 .validate(&file)
@@ -432,6 +453,11 @@ fn validate_urdf_string(arguments: JsonObject) -> Result<Output, String> {
 
 /// Validate URDF `xml` as the file robot.urdf in `base_dir`.
 fn validate_text(xml: String, base_dir: Option<String>, flags: &Flags) -> Result<Output, String> {
+    let policy = Policy::current();
+    policy.check_xml(&xml)?;
+    if let Some(dir) = &base_dir {
+        policy.check_path("base_dir", Path::new(dir))?;
+    }
     let dir = match base_dir {
         Some(dir) if Path::new(&dir).is_dir() => PathBuf::from(dir),
         Some(dir) => {
@@ -492,6 +518,7 @@ fn pick_responses(
     }
     let mut responses: Vec<Option<TaskQueryResponse>> = vec![None; requests.len()];
     for (path, indices) in robots {
+        Policy::current().check_path("urdf_path", &path)?;
         let session = flags.session(&path)?;
         let batch: Vec<TaskQueryRequest> = indices.iter().map(|&i| requests[i].clone()).collect();
         for (i, response) in indices

@@ -17,6 +17,7 @@ use rayon::prelude::*;
 
 use crate::input::mesh::{summary_of, MeshCache, MeshData, MeshError, MeshSummary};
 use crate::input::resolve::{PackageResolver, Resolution};
+use crate::input::sandbox::Refusal;
 use crate::input::srdf::{self, Srdf};
 use crate::urdf::robot::{Geometry, Robot, Shape};
 
@@ -59,6 +60,8 @@ pub struct Assets {
     pub supports: Vec<LinkSupports>,
     /// The SRDF (`--srdf`, else `<stem>.srdf` or `<robot name>.srdf` beside the URDF), read once.
     pub srdf: Option<Srdf>,
+    /// The SRDF found beside the URDF that the sandbox did not let be read (untrusted mode), and why.
+    pub srdf_refused: Option<(PathBuf, Refusal)>,
 }
 
 impl Assets {
@@ -122,6 +125,7 @@ impl Assets {
             cache: source.meshes.clone(),
             supports: Vec::new(),
             srdf: None,
+            srdf_refused: None,
         };
         assets.supports = robot
             .links
@@ -129,7 +133,12 @@ impl Assets {
             .map(|link| link_supports(link, &|uri| assets.mesh_points(uri)))
             .collect();
         let robot_name = robot.name.as_ref().map(|n| n.value.as_str());
-        assets.srdf = srdf::find(source.urdf_path, robot_name, source.srdf).map(Srdf::read);
+        if let Some(path) = srdf::find(source.urdf_path, robot_name, source.srdf) {
+            match source.resolver.sandbox().check_file(&path) {
+                Ok(()) => assets.srdf = Some(Srdf::read(path)),
+                Err(refusal) => assets.srdf_refused = Some((path, refusal)),
+            }
+        }
         assets
     }
 

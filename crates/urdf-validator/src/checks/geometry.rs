@@ -54,6 +54,11 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                         };
                         findings.push(finding);
                     }
+                    Some(Resolution::Refused(why)) => findings.push(Finding::new(
+                        &rules::ACCESS_REFUSED,
+                        filename.span,
+                        format!("{owner}: refused to read mesh '{}': {why}", filename.value),
+                    )),
                     Some(Resolution::Unsupported(why)) => findings.push(Finding::new(
                         &rules::MESH_NOT_FOUND,
                         filename.span,

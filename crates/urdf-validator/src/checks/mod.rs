@@ -36,6 +36,13 @@ pub fn run(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     findings.extend(joints::check(robot, model));
     findings.extend(references::check(robot, model));
     findings.extend(geometry::check(robot, model, assets));
+    if let Some((path, refusal)) = &assets.srdf_refused {
+        findings.push(Finding::new(
+            &rules::ACCESS_REFUSED,
+            None,
+            format!("refused to read the SRDF {}: {refusal}", path.display()),
+        ));
+    }
     if robot.links.len() > MANY_LINKS {
         findings.push(Finding::new(
             &rules::TOO_MANY_LINKS,

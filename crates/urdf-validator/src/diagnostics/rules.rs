@@ -103,6 +103,11 @@ rules! {
         why: "urdfdom (TinyXML2) skips it and loads the file, but XML requires the declaration to be the very first bytes: Python's xml and lxml (xacro, urdf_parser_py, yourdfpy), and most other XML tools refuse the file.",
         fix: "Delete everything before `<?xml`, or drop the declaration.",
     }
+    ACCESS_REFUSED = "U013" "access-refused" Warn {
+        what: "Untrusted mode (`--untrusted`, the MCP server, Python's `validate_string`) refused something the file asked for: a file outside the allowed folders (an include, `load_yaml`, a mesh, an SDFormat include, found through a path, `..`, a symlink, `file://`, `package://`, `model://` or `$(find)`), a file that is not a regular file (a device, a FIFO), or an environment variable not on the allow-list (`$(env)` then expands to empty, `$(optenv)` to its default).",
+        why: "Robot files from strangers (pull requests, downloads, agents) must not read the machine's files or secrets into reports; what was refused is not checked, so the report is incomplete.",
+        fix: "If the file is yours, allow the folder with `--root DIR` (or `--package-path DIR`) and the variable with `--allow-env NAME`, or validate in trusted mode; otherwise the file is trying to read what it should not.",
+    }
     SDF_STRUCTURE = "U020" "sdf-structure" Critical {
         what: "The SDFormat document breaks a rule of its structure that sdformat (libsdformat, which Gazebo and Drake load SDF with) enforces: no `<model>` (or a `<world>` without one), a required element or attribute missing, a name used twice in one model, a reserved name (`world`, `__model__`, names starting and ending with `__`), a joint whose child is `world` or whose parent and child are the same link, a model without links.",
         why: "sdformat refuses the file (`sdf::Errors`), so Gazebo and Drake do not load it; what is read here around the problem may not be what the author meant.",

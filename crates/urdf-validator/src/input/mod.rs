@@ -3,6 +3,7 @@
 
 pub mod mesh;
 pub mod resolve;
+pub mod sandbox;
 pub mod sdf;
 pub mod source;
 pub mod srdf;
@@ -266,7 +267,7 @@ impl Loaded {
     }
 
     /// The xacro expander's warnings, located in the xacro sources (none for a URDF).
-    pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
+    pub fn warnings(&self) -> Vec<xacro::Warning> {
         match &self.origin {
             Origin::Urdf(_) | Origin::Sdf(_) => Vec::new(),
             Origin::Xacro(expanded) => expanded.warnings(),

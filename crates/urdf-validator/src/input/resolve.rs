@@ -13,6 +13,8 @@ use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
+use crate::input::sandbox::{Refusal, Sandbox};
+
 /// Maximum depth of the recursive search below a `ROS_PACKAGE_PATH` entry.
 const ROS_SEARCH_DEPTH: usize = 4;
 /// Maximum number of directories visited when walking up from the URDF.
@@ -32,6 +34,8 @@ pub struct PackageResolver {
     /// (package name, start folder) -> package roots found by walking up;
     /// every mesh of a URDF asks the same question.
     walk_cache: Arc<Mutex<WalkCache>>,
+    /// What files may be read (every resolution is checked against it).
+    sandbox: Sandbox,
 }
 
 type WalkCache = HashMap<(String, PathBuf), Vec<PathBuf>>;
@@ -52,6 +56,17 @@ pub enum Resolution {
     /// A scheme we cannot resolve offline (http://, https://, model://, etc.)
     /// or a malformed URI; the String says why in one short sentence.
     Unsupported(String),
+    /// The file exists but the sandbox does not let it be read (untrusted mode).
+    Refused(Refusal),
+}
+
+/// Why an SDFormat `<include>` gives no file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum IncludeFailure {
+    /// Not found, or not a model; says what was tried.
+    Unresolved(String),
+    /// Found, but the sandbox does not let it be read.
+    Refused(Refusal),
 }
 
 impl PackageResolver {
@@ -73,13 +88,33 @@ impl PackageResolver {
             model_paths: Vec::new(),
             cache: Arc::default(),
             walk_cache: Arc::default(),
+            sandbox: Sandbox::default(),
         }
+    }
+
+    /// This resolver checking every file it resolves against `sandbox` (the search caches are shared).
+    pub fn with_sandbox(&self, sandbox: Sandbox) -> Self {
+        Self {
+            sandbox,
+            ..self.clone()
+        }
+    }
+
+    /// The sandbox every resolution is checked against.
+    pub fn sandbox(&self) -> &Sandbox {
+        &self.sandbox
     }
 
     /// Same, reading `ROS_PACKAGE_PATH`, `AMENT_PREFIX_PATH` and the Gazebo model path variables
     /// (`GZ_SIM_RESOURCE_PATH`, `IGN_GAZEBO_RESOURCE_PATH`, `SDF_PATH`) from the process environment.
     pub fn from_env(package_paths: Vec<PathBuf>) -> Self {
-        let var = |name| std::env::var(name).ok();
+        Self::from_env_in(package_paths, &Sandbox::default())
+    }
+
+    /// Same, reading only the variables `sandbox` lets through (untrusted mode: none unless allowed), and
+    /// checking every resolution against it.
+    pub fn from_env_in(package_paths: Vec<PathBuf>, sandbox: &Sandbox) -> Self {
+        let var = |name| sandbox.var(name).ok().flatten();
         let ros = var("ROS_PACKAGE_PATH");
         let ament = var("AMENT_PREFIX_PATH");
         let models = [
@@ -90,6 +125,7 @@ impl PackageResolver {
         .map(var);
         Self::new(package_paths, ros.as_deref(), ament.as_deref())
             .with_model_paths(models.iter().map(Option::as_deref))
+            .with_sandbox(sandbox.clone())
     }
 
     /// Add Gazebo model folders, each value a `PATH`-style list (`GZ_SIM_RESOURCE_PATH`, ...), searched
@@ -109,6 +145,28 @@ impl PackageResolver {
     /// Resolve a URI as it appears in a `<mesh filename="...">` (or any
     /// resource attribute), for a URDF living in `urdf_dir`.
     pub fn resolve(&self, uri: &str, urdf_dir: &Path) -> Resolution {
+        match self.resolve_unchecked(uri, urdf_dir) {
+            Resolution::Found(path) => match self.sandbox.check_file(&path) {
+                Ok(()) => Resolution::Found(path),
+                Err(refusal) => Resolution::Refused(refusal),
+            },
+            // Untrusted mode says why a device or a FIFO named like a mesh is not read.
+            Resolution::NotFound { searched } if self.sandbox.is_untrusted() => {
+                let refused = searched
+                    .iter()
+                    .filter(|path| path.exists())
+                    .find_map(|path| self.sandbox.check_file(path).err());
+                match refused {
+                    Some(refusal) => Resolution::Refused(refusal),
+                    None => Resolution::NotFound { searched },
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// [`Self::resolve`] before the sandbox check.
+    fn resolve_unchecked(&self, uri: &str, urdf_dir: &Path) -> Resolution {
         let uri = uri.trim();
         if uri.is_empty() {
             return Resolution::Unsupported("the URI is empty".to_string());
@@ -185,7 +243,19 @@ impl PackageResolver {
     /// The SDFormat file an `<include><uri>` names, for a file in `dir`: `model://NAME[/path]`, `file://`
     /// or a plain path, to a file or to a model folder (then its `model.config` decides, see
     /// [`model_sdf_file`]). The error says what was tried.
-    pub fn resolve_include(&self, uri: &str, dir: &Path) -> Result<PathBuf, String> {
+    pub fn resolve_include(&self, uri: &str, dir: &Path) -> Result<PathBuf, IncludeFailure> {
+        let path = self
+            .resolve_include_unchecked(uri, dir)
+            .map_err(IncludeFailure::Unresolved)?;
+        self.sandbox
+            .check_file(&path)
+            .map_err(IncludeFailure::Refused)?;
+        Ok(path)
+    }
+
+    /// [`Self::resolve_include`] before the sandbox check of the file found (a model folder's
+    /// `model.config` is read only when the sandbox allows it).
+    fn resolve_include_unchecked(&self, uri: &str, dir: &Path) -> Result<PathBuf, String> {
         let uri = uri.trim();
         let target = match split_scheme(uri) {
             Some((scheme, rest)) if scheme.eq_ignore_ascii_case("model") => {
@@ -224,6 +294,9 @@ impl PackageResolver {
         if target.is_file() {
             Ok(target)
         } else if target.is_dir() {
+            self.sandbox
+                .check_file(&target.join("model.config"))
+                .map_err(|refusal| format!("{}: {refusal}", target.display()))?;
             model_sdf_file(&target)
         } else {
             Err(format!("{} does not exist", target.display()))
@@ -322,11 +395,17 @@ impl PackageResolver {
         let mut roots = Vec::new();
         for dir in &self.explicit {
             push_unique(&mut roots, dir.join(package));
-            if dir_basename_is(dir, package) || package_xml_name(dir).as_deref() == Some(package) {
+            if dir_basename_is(dir, package)
+                || self.package_xml_name(dir).as_deref() == Some(package)
+            {
                 push_unique(&mut roots, dir.clone());
             }
         }
-        for entry in &self.ros_paths {
+        for entry in self
+            .ros_paths
+            .iter()
+            .filter(|entry| self.sandbox.check_dir(entry).is_ok())
+        {
             if dir_basename_is(entry, package) && has_package_xml(entry) {
                 push_unique(&mut roots, entry.clone());
             }
@@ -335,7 +414,7 @@ impl PackageResolver {
                 push_unique(&mut roots, direct);
             }
             let mut found = Vec::new();
-            search_ros_tree(entry, package, ROS_SEARCH_DEPTH, &mut found);
+            self.search_ros_tree(entry, package, &mut found);
             for dir in found {
                 push_unique(&mut roots, dir);
             }
@@ -345,6 +424,44 @@ impl PackageResolver {
         }
         self.lock_cache().insert(package.to_string(), roots.clone());
         roots
+    }
+
+    /// The `<name>` declared in `dir/package.xml`, if readable and the sandbox allows it.
+    fn package_xml_name(&self, dir: &Path) -> Option<String> {
+        self.sandbox.check_file(&dir.join("package.xml")).ok()?;
+        package_xml_name(dir)
+    }
+
+    /// Recursively collect packages named `package` below `dir`, at most [`ROS_SEARCH_DEPTH`] levels down
+    /// (ROS 1 crawl): hidden directories are skipped and package directories are not descended into; a
+    /// folder the sandbox refuses (a symlink out of the roots) is not entered. A package matches by folder
+    /// name or by its `package.xml` `<name>`.
+    fn search_ros_tree(&self, dir: &Path, package: &str, found: &mut Vec<PathBuf>) {
+        let mut walk = walkdir::WalkDir::new(dir)
+            .min_depth(1)
+            .max_depth(ROS_SEARCH_DEPTH)
+            .follow_links(true)
+            .sort_by_file_name()
+            .into_iter();
+        while let Some(entry) = walk.next() {
+            let Ok(entry) = entry else { continue };
+            if !entry.file_type().is_dir() {
+                continue;
+            }
+            let child = entry.path();
+            if entry.file_name().to_string_lossy().starts_with('.')
+                || self.sandbox.check_dir(child).is_err()
+            {
+                walk.skip_current_dir();
+            } else if has_package_xml(child) {
+                let matches = child.file_name().is_some_and(|n| n == package)
+                    || self.package_xml_name(child).as_deref() == Some(package);
+                if matches {
+                    found.push(child.to_path_buf());
+                }
+                walk.skip_current_dir();
+            }
+        }
     }
 
     /// Lock the cache, recovering from a poisoned mutex (the map is always
@@ -583,35 +700,6 @@ fn package_xml_name(dir: &Path) -> Option<String> {
         .text()?
         .trim();
     (!name.is_empty()).then(|| name.to_string())
-}
-
-/// Recursively collect packages named `package` below `dir`, at most `depth` levels down (ROS 1 crawl):
-/// hidden directories are skipped and package directories are not descended into. A package matches by
-/// folder name or by its `package.xml` `<name>`.
-fn search_ros_tree(dir: &Path, package: &str, depth: usize, found: &mut Vec<PathBuf>) {
-    let mut walk = walkdir::WalkDir::new(dir)
-        .min_depth(1)
-        .max_depth(depth)
-        .follow_links(true)
-        .sort_by_file_name()
-        .into_iter();
-    while let Some(entry) = walk.next() {
-        let Ok(entry) = entry else { continue };
-        if !entry.file_type().is_dir() {
-            continue;
-        }
-        let child = entry.path();
-        if entry.file_name().to_string_lossy().starts_with('.') {
-            walk.skip_current_dir();
-        } else if has_package_xml(child) {
-            let matches = child.file_name().is_some_and(|n| n == package)
-                || package_xml_name(child).as_deref() == Some(package);
-            if matches {
-                found.push(child.to_path_buf());
-            }
-            walk.skip_current_dir();
-        }
-    }
 }
 
 /// Package roots found by walking up from `start_dir`: `A/package` holding a
@@ -1120,9 +1208,19 @@ mod tests {
             empty_resolver().resolve_include("m", &t.0),
             Ok(dir.join("new.sdf"))
         );
-        assert!(empty_resolver()
-            .resolve_include("https://fuel.gazebosim.org/x", &t.0)
-            .unwrap_err()
-            .contains("offline"));
+        assert!(matches!(
+            empty_resolver().resolve_include("https://fuel.gazebosim.org/x", &t.0),
+            Err(IncludeFailure::Unresolved(why)) if why.contains("offline")
+        ));
+        // Untrusted: the model folder is outside the roots, so it is refused, not read.
+        let sandboxed = empty_resolver().with_sandbox(Sandbox::untrusted([t.dir("elsewhere")], []));
+        assert!(matches!(
+            sandboxed.resolve_include("m", &t.0),
+            Err(IncludeFailure::Unresolved(why)) if why.contains("outside")
+        ));
+        assert!(matches!(
+            sandboxed.resolve_include("bare/model.sdf", &t.0),
+            Err(IncludeFailure::Refused(_))
+        ));
     }
 }

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use crate::input::resolve::PackageResolver;
+use crate::input::resolve::{IncludeFailure, PackageResolver};
 use crate::input::source::{SourceText, Span};
 use crate::input::xacro::SourceLocation;
 use crate::input::{read_text, xml_options, LoadError, MAX_FILE_BYTES};
@@ -60,6 +60,8 @@ pub enum IncludeTarget {
     File(usize),
     /// Why it could not be read (not found, unreadable, malformed, a cycle, too deep).
     Unresolved(String),
+    /// The sandbox refused to read it (untrusted mode); why.
+    Refused(String),
 }
 
 /// The entry SDFormat file and its includes.
@@ -157,7 +159,12 @@ impl SdfFiles {
         }
         let path = match resolver.resolve_include(uri, dir) {
             Ok(path) => path,
-            Err(why) => return IncludeTarget::Unresolved(format!("cannot resolve '{uri}': {why}")),
+            Err(IncludeFailure::Unresolved(why)) => {
+                return IncludeTarget::Unresolved(format!("cannot resolve '{uri}': {why}"))
+            }
+            Err(IncludeFailure::Refused(why)) => {
+                return IncludeTarget::Refused(format!("refused to read include '{uri}': {why}"))
+            }
         };
         let key = canonical(&path);
         if chain.contains(&key) {

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::input::resolve::PackageResolver;
+use crate::input::sandbox::Sandbox;
 use crate::input::source::{SourceText, Span};
 use crate::input::LoadError;
 
@@ -19,6 +20,17 @@ pub fn is_xacro(path: &Path) -> bool {
 #[derive(Debug)]
 pub struct Expanded {
     expansion: xacro::Expansion,
+}
+
+/// A warning of the expander, located in the xacro sources.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Warning {
+    /// What it says.
+    pub message: String,
+    /// Where, when known.
+    pub location: Option<SourceLocation>,
+    /// The sandbox refused a file or variable the input asked for (an `access-refused` finding).
+    pub refused: bool,
 }
 
 /// Where a finding is, in the sources the user edits.
@@ -75,6 +87,10 @@ pub fn expand(
             },
         )),
         package_hint: Some(package_hint.to_string()),
+        gate: resolver
+            .sandbox()
+            .is_untrusted()
+            .then(|| Arc::new(SandboxGate(resolver.sandbox().clone())) as Arc<dyn xacro::Gate>),
         banner,
         ..xacro::Options::default()
     };
@@ -84,6 +100,23 @@ pub fn expand(
         location: error.location.clone(),
     })?;
     Ok(Expanded { expansion })
+}
+
+/// The expander's gate: the validator's sandbox.
+struct SandboxGate(Sandbox);
+
+impl xacro::Gate for SandboxGate {
+    fn file(&self, path: &Path) -> Result<(), String> {
+        self.0.check_file(path).map_err(|r| r.0)
+    }
+
+    fn dir(&self, path: &Path) -> Result<(), String> {
+        self.0.check_dir(path).map_err(|r| r.0)
+    }
+
+    fn env(&self, name: &str) -> Result<Option<String>, String> {
+        self.0.var(name).map_err(|r| r.0)
+    }
 }
 
 impl Expanded {
@@ -145,7 +178,7 @@ impl Expanded {
     }
 
     /// Warnings of the expansion, with where they are.
-    pub fn warnings(&self) -> Vec<(String, Option<SourceLocation>)> {
+    pub fn warnings(&self) -> Vec<Warning> {
         self.expansion
             .warnings
             .iter()
@@ -171,7 +204,11 @@ impl Expanded {
                         stack: w.stack.iter().map(stack_line).collect(),
                     }
                 });
-                (w.message.clone(), location)
+                Warning {
+                    message: w.message.clone(),
+                    location,
+                    refused: w.refused,
+                }
             })
             .collect()
     }

@@ -67,10 +67,15 @@ pub fn build(outcome: Outcome) -> Report {
         })
         .collect();
     // Expander warnings are located in the xacro sources already (not in the expanded text).
-    for (message, location) in loaded.warnings() {
-        let finding = Finding::new(&rules::XACRO_WARNING, None, message);
+    for warning in loaded.warnings() {
+        let rule = if warning.refused {
+            &rules::ACCESS_REFUSED
+        } else {
+            &rules::XACRO_WARNING
+        };
+        let finding = Finding::new(rule, None, warning.message);
         let mut report = finding_report(&finding);
-        if let Some(at) = location {
+        if let Some(at) = warning.location {
             report.place(at);
         }
         pairs.push((finding, report));

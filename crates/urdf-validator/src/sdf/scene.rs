@@ -661,6 +661,11 @@ impl<'a> Collector<'a> {
         let span = self.sink.span(el);
         let file = match self.sink.files.include(span) {
             Some(IncludeTarget::File(file)) => *file,
+            Some(IncludeTarget::Refused(why)) => {
+                let why = why.clone();
+                self.sink.report(&rules::ACCESS_REFUSED, span, why);
+                return None;
+            }
             Some(IncludeTarget::Unresolved(why)) => {
                 let why = why.clone();
                 self.sink.report(

@@ -15,7 +15,7 @@ use crate::include;
 use crate::macros::{parse_params, Macro, MacroEntry, MacroTable, MacroTableRef};
 use crate::properties::{boolean_value, Entry, Table, TableRef};
 use crate::source_map::{FrameKind, SourceFile};
-use crate::substitution::{self, SubstitutionHost};
+use crate::substitution::{self, Refused, SubstitutionHost};
 use crate::{Expansion, Options, Warning};
 
 mod tags;
@@ -70,6 +70,8 @@ pub(crate) struct Expander<'o> {
     /// The detailed error behind an `EvalError` returned to the evaluator through [`Scope`].
     pending: RefCell<Option<XacroError>>,
     warnings: RefCell<Vec<Warning>>,
+    /// The attribute or text being evaluated: where a refused `$(env)` or `load_yaml` is reported.
+    at: Cell<Option<Loc>>,
     nodes: Cell<usize>,
     bytes: Cell<usize>,
     nesting: Cell<usize>,
@@ -111,6 +113,7 @@ pub(crate) fn run(
         open_files: RefCell::new(vec![Some(lexical_absolute(path))]),
         pending: RefCell::default(),
         warnings: RefCell::default(),
+        at: Cell::new(None),
         nodes: Cell::new(0),
         bytes: Cell::new(0),
         nesting: Cell::new(0),
@@ -125,6 +128,20 @@ pub(crate) fn run(
     };
     let result = x.expand(text, path);
     (result, exhausted.get())
+}
+
+/// `e` with the gate's refusals noted: a refused include or YAML file often makes a later step fail, and
+/// the error then says why.
+fn with_refusals(mut e: XacroError, warnings: &[Warning]) -> XacroError {
+    let refused: Vec<&str> = warnings
+        .iter()
+        .filter(|w| w.refused)
+        .map(|w| w.message.as_str())
+        .collect();
+    if !refused.is_empty() {
+        e.message = format!("{} (after: {})", e.message, refused.join("; "));
+    }
+    e
 }
 
 impl Expander<'_> {
@@ -161,7 +178,9 @@ impl Expander<'_> {
             }
             _ => root,
         };
-        let built = x.eval_element(&root, &macros, &symbols, &ctx)?;
+        let built = x
+            .eval_element(&root, &macros, &symbols, &ctx)
+            .map_err(|e| with_refusals(e, &x.warnings.borrow()))?;
         x.warn_unknown_args(root.src.loc);
         let mut top: Vec<NodeRef> = doc.children.clone();
         if let Some(slot) = top.get_mut(doc.root) {
@@ -342,7 +361,27 @@ impl<'o> Expander<'o> {
             message,
             location,
             stack,
+            refused: false,
         });
+    }
+
+    /// Record an access the gate refused, at the attribute or text being evaluated.
+    fn refuse(&self, message: String) {
+        let location = self.at.get().and_then(|l| self.location(l));
+        self.warnings.borrow_mut().push(Warning {
+            message,
+            location,
+            stack: Vec::new(),
+            refused: true,
+        });
+    }
+
+    /// Record an access the gate refused, at `loc`, with the macro calls and includes that led there.
+    fn warn_refused(&self, message: String, loc: Loc, ctx: &Ctx) {
+        self.warn(message, Some(loc), ctx);
+        if let Some(last) = self.warnings.borrow_mut().last_mut() {
+            last.refused = true;
+        }
     }
 
     /// Warn about each given argument that no `xacro:arg` declared and no `$(arg)` read (Python xacro
@@ -484,6 +523,7 @@ impl<'o> Expander<'o> {
 
     /// Evaluate an attribute's text, locating errors at the attribute.
     fn eval_attr(&self, attr: &Attr, symbols: &TableRef, ctx: &Ctx) -> Result<Value, XacroError> {
+        self.at.set(Some(attr.src.loc));
         self.eval_text(&attr.value, symbols, ctx)
             .map_err(|e| self.locate(e, attr.src.loc, ctx))
     }
@@ -670,6 +710,7 @@ impl<'o> Expander<'o> {
                     }
                     Kind::Text(t) => {
                         let value = if t.contains('$') {
+                            self.at.set(Some(node.src.loc));
                             into_text(
                                 self.eval_text(t, symbols, ctx)
                                     .map_err(|e| self.locate(e, node.src.loc, ctx))?,

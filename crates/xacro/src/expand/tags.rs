@@ -359,6 +359,7 @@ impl Expander<'_> {
                 continue;
             }
             if let Some((forward, default)) = m.defaults.get(&param) {
+                self.at.set(Some(loc));
                 let value = match forward {
                     None => self.eval_text(default.as_deref().unwrap_or(""), symbols, ctx),
                     Some(fwd) => match self.lookup_property(symbols, fwd, ctx)? {
@@ -454,7 +455,13 @@ impl Expander<'_> {
         let spec = self.eval_attr(filename, symbols, ctx)?.to_xacro_string();
         let path = include::abs_filename(&spec, &self.current_file());
         let path_text = path.display().to_string();
+        let refused = |why: String| format!("refused to read include '{spec}': {why}");
         let files = if include::is_glob(&path_text) {
+            let listed = include::glob_folder(&path);
+            if let Some(Err(why)) = self.opts.gate.as_ref().map(|gate| gate.dir(&listed)) {
+                self.warn_refused(refused(why), loc, ctx);
+                return Ok(());
+            }
             let files = include::glob_files(&path_text);
             if files.is_empty() {
                 self.warn(
@@ -469,6 +476,10 @@ impl Expander<'_> {
         };
         let mut included = Vec::new();
         for file in files {
+            if let Some(Err(why)) = self.opts.gate.as_ref().map(|gate| gate.file(&file)) {
+                self.warn_refused(refused(why), loc, ctx);
+                continue;
+            }
             if ctx.include_depth >= self.opts.limits.max_include_depth {
                 let e = XacroError::new(
                     ErrorKind::Limit,

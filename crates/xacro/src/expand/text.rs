@@ -354,11 +354,29 @@ impl Expander<'_> {
         })
     }
 
+    /// A variable the expander looks up for itself (`$(find)`'s `AMENT_PREFIX_PATH`, `ROS_PACKAGE_PATH`): a
+    /// refused one is unset, silently.
     pub(super) fn env_var(&self, name: &str) -> Option<String> {
+        if let Some(gate) = &self.opts.gate {
+            if gate.env(name).is_err() {
+                return None;
+            }
+        }
         match &self.opts.env {
             Some(env) => env(name),
             None => std::env::var(name).ok(),
         }
+    }
+
+    /// A variable the input asks for (`$(env)`, `$(optenv)`): a refused one is reported as a refusal.
+    pub(super) fn asked_env(&self, name: &str) -> Result<Option<String>, Refused> {
+        if let Some(Err(why)) = self.opts.gate.as_ref().map(|gate| gate.env(name)) {
+            self.refuse(format!(
+                "refused to read environment variable '{name}': {why}"
+            ));
+            return Err(Refused);
+        }
+        Ok(self.env_var(name))
     }
 
     pub(super) fn find_package(&self, pkg: &str) -> Result<String, XacroError> {
@@ -593,15 +611,17 @@ impl Expander<'_> {
                 .map_err(|e| self.stash(e)),
             "xacro.eval_env" => {
                 let n = str_arg(args, 0).unwrap_or_default();
-                match self.env_var(&n) {
-                    Some(v) => Ok(Value::Str(v.into())),
-                    None => Err(host_error("KeyError", format!("'{n}'"))),
+                match self.asked_env(&n) {
+                    Ok(Some(v)) => Ok(Value::Str(v.into())),
+                    Ok(None) => Err(host_error("KeyError", format!("'{n}'"))),
+                    Err(Refused) => Ok(Value::Str("".into())),
                 }
             }
             "xacro.eval_optenv" => {
                 let n = str_arg(args, 0).unwrap_or_default();
                 let default = str_arg(args, 1).unwrap_or_default();
-                Ok(Value::Str(self.env_var(&n).unwrap_or(default).into()))
+                let value = self.asked_env(&n).ok().flatten();
+                Ok(Value::Str(value.unwrap_or(default).into()))
             }
             "xacro.eval_find" => {
                 let n = str_arg(args, 0).unwrap_or_default();
@@ -618,6 +638,11 @@ impl Expander<'_> {
         let path = include::abs_filename(spec, &self.current_file());
         if let Some(value) = self.yaml_files.borrow().get(&path) {
             return Ok(value.clone());
+        }
+        if let Some(Err(why)) = self.opts.gate.as_ref().map(|gate| gate.file(&path)) {
+            // Not read: an empty mapping stands in for it (a later lookup in it fails, with this refusal noted).
+            self.refuse(format!("refused to read YAML file '{spec}': {why}"));
+            return Ok(Value::Dict(Rc::default()));
         }
         let text = include::read_text(&path, self.opts.limits.max_output_bytes).map_err(|e| {
             XacroError::new(
@@ -650,8 +675,8 @@ impl SubstitutionHost for SubstHost<'_, '_> {
         self.x.arg_value(name)
     }
 
-    fn env(&self, name: &str) -> Option<String> {
-        self.x.env_var(name)
+    fn env(&self, name: &str) -> Result<Option<String>, Refused> {
+        self.x.asked_env(name)
     }
 
     fn find(&self, pkg: &str) -> Result<String, XacroError> {
