@@ -399,7 +399,10 @@ fn concurrent_validations_of_robots_with_meshes_all_answer() {
         "anymal/anymal_b_simple_description/urdf/anymal.urdf",
         "spot/spot_description/model.urdf",
     ];
-    let mut server = Server::start(&std::env::temp_dir());
+    let mut server = Server::start_with(
+        &std::env::temp_dir(),
+        &["--root".as_ref(), robots.as_os_str()],
+    );
     let started = Instant::now();
     let ids: Vec<u64> = files
         .iter()
