@@ -332,6 +332,8 @@ const COVERED: &[&str] = &[
     "U027",
     "U028",
     "U029",
+    // Untrusted mode's refusals: u013_access_refused below; crates/cli/tests/security.rs runs 33 hostile inputs.
+    "U013",
     // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
     u801_unused_suppression::CODE,
     u802_unknown_rule_code::CODE,
@@ -3216,6 +3218,44 @@ rule_case! {
     fires: "\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
     at: (3, 1, "<?xml"),
     clean: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+}
+
+/// Untrusted mode refuses a mesh outside its roots at the filename that asked, naming the path as written;
+/// trusted mode (the default) reads it as before.
+#[test]
+fn u013_access_refused() {
+    let root = std::env::temp_dir().join(format!("u013-{}", std::process::id()));
+    fs::create_dir_all(&root).unwrap();
+    let urdf = "<robot name=\"r\">\n  <link name=\"base\">\n    <visual><geometry><mesh filename=\"file:///etc/hostname\"/></geometry></visual>\n  </link>\n</robot>\n";
+    let untrusted = Options {
+        sandbox: urdf_validator::input::sandbox::Sandbox::untrusted([root.clone()], Vec::new()),
+        ..Options::default()
+    };
+    let report = validate_text(urdf.to_string(), &root.join("r.urdf"), &untrusted)
+        .unwrap()
+        .report;
+    let refused = &report.findings;
+    assert_eq!(
+        positions_of(refused, "U013"),
+        vec![(3, 39)],
+        "{}",
+        describe(refused)
+    );
+    assert!(text_at(urdf, 3, 39).starts_with("file:///etc/hostname\""));
+    let finding = the_one(refused, "U013");
+    assert_eq!(finding.severity, Severity::Warn);
+    assert!(
+        finding.message.contains("file:///etc/hostname"),
+        "{}",
+        finding.message
+    );
+    let trusted = validate_text(urdf.to_string(), &root.join("r.urdf"), &Options::default())
+        .unwrap()
+        .report;
+    assert_eq!(
+        positions_of(&trusted.findings, "U013"),
+        Vec::<(u32, u32)>::new()
+    );
 }
 
 #[test]
