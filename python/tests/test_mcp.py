@@ -23,6 +23,7 @@ TOOLS = {
     "check_pick_task",
     "run_pick_task",
     "run_pick_sweep",
+    "fix_urdf",
     "list_rules",
     "explain_rule",
 }

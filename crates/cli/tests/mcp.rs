@@ -183,6 +183,7 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
         "check_pick_task",
         "run_pick_task",
         "run_pick_sweep",
+        "fix_urdf",
         "list_rules",
         "explain_rule",
     ] {
@@ -432,6 +433,36 @@ fn concurrent_validations_of_robots_with_meshes_all_answer() {
         "{:?}",
         started.elapsed()
     );
+    assert!(server.close().success());
+}
+
+/// `fix_urdf`: the diff `--diff` prints, safe fixes unless `unsafe_fixes`; the file is not written.
+#[test]
+fn fix_urdf_returns_the_diff_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("mcp_fix_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("axis.urdf");
+    let urdf = r#"<robot name="r">
+  <link name="base"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><origin xyz="0 0 0.5"/>
+    <axis xyz="0 2 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <link name="a"><inertial><origin xyz="0.5 0 0"/><mass value="2"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+</robot>
+"#;
+    std::fs::write(&file, urdf).unwrap();
+    let mut server = Server::start_with(&dir, &["--root".as_ref(), dir.as_os_str()]);
+    let safe = server.call("fix_urdf", json!({"path": "axis.urdf", "samples": 200}));
+    let diff = safe["structuredContent"]["diff"].as_str().unwrap();
+    assert!(diff.contains("+    <axis xyz=\"0 1 0\"/>"), "{safe}");
+    assert!(!diff.contains("effort=\"14.72\""), "{safe}");
+    assert_eq!(safe["structuredContent"]["unsafe_left"], 1, "{safe}");
+    let all = server.call(
+        "fix_urdf",
+        json!({"path": "axis.urdf", "samples": 200, "unsafe_fixes": true}),
+    );
+    let diff = all["structuredContent"]["diff"].as_str().unwrap();
+    assert!(diff.contains("effort=\"14.72\""), "{all}");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), urdf);
     assert!(server.close().success());
 }
 

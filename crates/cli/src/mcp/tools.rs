@@ -90,6 +90,17 @@ static TOOLS: &[ToolDef] = &[
         run: run_pick_sweep,
     },
     ToolDef {
+        name: "fix_urdf",
+        description: "The fixes of validate_urdf's findings for a file (`path`), as a unified diff of the \
+            files the user edits (the xacro source for xacro input): what `urdf_validate --diff` prints. \
+            Safe fixes only (an axis normalised, limits a continuous joint ignores removed, whitespace \
+            before <?xml) unless `unsafe_fixes` (effort, limits, mesh scale: the robot changes). Writes \
+            nothing; apply the diff, or run `urdf_validate --fix`. The structured result: diff, files, \
+            fixes, unsafe_left (fixes left out for want of unsafe_fixes) and skipped (each with why).",
+        schema: || merged(schema::<FixInput>(), schema::<Flags>()),
+        run: fix_urdf,
+    },
+    ToolDef {
         name: "list_rules",
         description: "Every rule the validator reports: its code (U205), name, default severity, report \
             section and what it checks, as {\"rules\": [...]}.",
@@ -396,6 +407,16 @@ struct FileInput {
     base_dir: Option<String>,
 }
 
+/// `fix_urdf`'s own arguments.
+#[derive(Debug, Deserialize, JsonSchema)]
+struct FixInput {
+    /// The URDF or xacro file. Relative paths start from the server's working directory.
+    path: String,
+    /// Also the unsafe fixes (effort, limits, mesh scale), and edits of files outside the input's package.
+    #[serde(default)]
+    unsafe_fixes: bool,
+}
+
 /// `validate_urdf_string`'s own arguments.
 #[derive(Debug, Deserialize, JsonSchema)]
 struct TextInput {
@@ -444,6 +465,53 @@ fn validate_urdf(arguments: JsonObject) -> Result<Output, String> {
         (Some(_), Some(_)) => Err("give path or xml, not both".to_string()),
         (None, None) => Err("missing path (a URDF or xacro file) or xml (URDF text)".to_string()),
     }
+}
+
+fn fix_urdf(arguments: JsonObject) -> Result<Output, String> {
+    let (input, flags): (FixInput, Flags) = parse_with(arguments)?;
+    let file = existing_file(&input.path)?;
+    Policy::current().check_path("path", &file)?;
+    let validation = flags
+        .session(&file)?
+        .validate(&file)
+        .map_err(|error| error.to_string())?;
+    let policy = crate::fixes::Policy {
+        unsafe_fixes: input.unsafe_fixes,
+        package_paths: flags
+            .package_path
+            .as_deref()
+            .unwrap_or_default()
+            .iter()
+            .map(PathBuf::from)
+            .collect(),
+    };
+    let plan = crate::fixes::plan(&[&validation], &policy);
+    let diff = crate::fixes::diff(&plan);
+    let fixes: usize = plan.files.iter().map(|f| f.fixes).sum();
+    let files: Vec<String> = plan
+        .files
+        .iter()
+        .map(|f| f.path.display().to_string())
+        .collect();
+    let mut output = Output::json(&json!({
+        "diff": diff,
+        "files": files,
+        "fixes": fixes,
+        "unsafe_left": plan.unsafe_left,
+        "skipped": plan.skipped,
+    }))?;
+    output.text = if diff.is_empty() {
+        format!(
+            "nothing to fix{}",
+            match plan.unsafe_left {
+                0 => String::new(),
+                n => format!(" ({n} unsafe fix(es) with unsafe_fixes)"),
+            }
+        )
+    } else {
+        diff
+    };
+    Ok(output)
 }
 
 fn validate_urdf_string(arguments: JsonObject) -> Result<Output, String> {
