@@ -174,11 +174,14 @@ const XACRO: &str = r#"<?xml version="1.0"?>
   <xacro:seg n="2" parent="l1"/>
   <joint name="k" type="revolute"><parent link="l2"/><child link="t"/><axis xyz="${ax}"/><limit lower="-1" upper="1" effort="100" velocity="1"/></joint>
   <link name="t"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="m" type="revolute"><parent link="t"/><child link="u"/><axis xyz="0 ${2*1.5} 0"/><limit lower="-1" upper="1" effort="100" velocity="1"/></joint>
+  <link name="u"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
 </robot>
 "#;
 
 #[test]
-fn xacro_literals_are_fixed_in_the_source_and_computed_values_say_where_they_come_from() {
+fn xacro_literals_and_properties_are_fixed_in_the_source_and_computed_values_say_where_they_come_from(
+) {
     let dir = scratch("xacro");
     let file = dir.join("x.urdf.xacro");
     std::fs::write(&file, XACRO).unwrap();
@@ -189,29 +192,48 @@ fn xacro_literals_are_fixed_in_the_source_and_computed_values_say_where_they_com
         .iter()
         .filter(|f| f["rule"] == "U310")
         .collect();
-    assert_eq!(axes.len(), 3);
-    let computed = axes
-        .iter()
-        .find(|f| f["message"].as_str().unwrap().contains("'k'"))
-        .unwrap();
+    assert_eq!(axes.len(), 4);
+    let axis_of = |joint: &str| {
+        *axes
+            .iter()
+            .find(|f| {
+                f["message"]
+                    .as_str()
+                    .unwrap()
+                    .contains(&format!("'{joint}'"))
+            })
+            .unwrap()
+    };
+    // `${ax}`: the property's one literal definition is edited, and the fix says so.
+    let property = axis_of("k");
+    assert_eq!(property["fix"]["edits"][0]["line"], 3, "{property}");
+    let description = property["fix"]["description"].as_str().unwrap();
+    assert!(
+        description.contains("edits the definition of property 'ax' at"),
+        "{description}"
+    );
+    // An expression: not applicable, saying what computes it and where.
+    let computed = axis_of("m");
     assert_eq!(computed["fix"]["edits"], Value::Array(Vec::new()));
     let why = computed["fix"]["not_applicable"].as_str().unwrap();
     assert!(
-        why.contains("computed from `${ax}`") && why.contains("x.urdf.xacro:12:"),
+        why.contains("computed from `0 ${2*1.5} 0`") && why.contains("x.urdf.xacro:14:"),
         "{why}"
     );
     let output = run(&[file.to_str().unwrap(), "--fix"]);
     assert!(
-        text(&output.stderr).contains("fixed 1 finding(s) in 1 file(s)"),
+        text(&output.stderr).contains("fixed 2 finding(s) in 1 file(s)"),
         "{}",
         text(&output.stderr)
     );
     let fixed = std::fs::read_to_string(&file).unwrap();
     assert_eq!(
         fixed,
-        XACRO.replace("<axis xyz=\"0 2 0\"/>", "<axis xyz=\"0 1 0\"/>")
+        XACRO
+            .replace("<axis xyz=\"0 2 0\"/>", "<axis xyz=\"0 1 0\"/>")
+            .replace("value=\"0 0 3\"", "value=\"0 0 1\"")
     );
-    // The macro's two joints are fixed by the one edit; the property's joint is left to the user.
+    // The macro's two joints are fixed by the one edit, k by its property; m is left to the user.
     assert_eq!(rules_of(&json_report(&file), true), Vec::<String>::new());
     assert_eq!(rules_of(&json_report(&file), false), ["U310"]);
 }

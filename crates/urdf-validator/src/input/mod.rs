@@ -255,9 +255,14 @@ impl Loaded {
     /// Where an edit anchored at `span` of the parsed text goes: the file the user edits, its text and the
     /// span in it. A `textual` edit (a deletion) goes only into the file the parser read itself. Otherwise
     /// why the edit cannot be made in a file (a xacro value computed from an expression; SDFormat).
-    pub fn edit_target(&self, span: Span, textual: bool) -> Result<(&Path, &str, Span), String> {
+    pub fn edit_target(&self, span: Span, textual: bool) -> Result<xacro::EditTarget<'_>, String> {
         match &self.origin {
-            Origin::Urdf(source) => Ok((source.path(), source.text(), span)),
+            Origin::Urdf(source) => Ok(xacro::EditTarget {
+                path: source.path(),
+                text: source.text(),
+                span,
+                note: None,
+            }),
             Origin::Xacro(_) if textual => {
                 Err("the text was produced by the xacro expansion: edit the xacro source".into())
             }

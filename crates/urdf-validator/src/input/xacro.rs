@@ -33,6 +33,19 @@ pub struct Warning {
     pub refused: bool,
 }
 
+/// Where an edit of the expanded text goes in the files the user edits.
+#[derive(Clone, Debug)]
+pub struct EditTarget<'a> {
+    /// The file.
+    pub path: &'a Path,
+    /// Its text.
+    pub text: &'a str,
+    /// The span there.
+    pub span: Span,
+    /// What the edit does beyond the flagged place (it edits a property's definition).
+    pub note: Option<String>,
+}
+
 /// Where a finding is, in the sources the user edits.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SourceLocation {
@@ -125,10 +138,12 @@ impl Expanded {
         &self.expansion.xml
     }
 
-    /// Where the text at `span` of the expanded URDF was written as it is (a literal in a xacro source): the
-    /// source's path, its text and the span there. Otherwise why it cannot be edited there: the text it
-    /// was computed from (a property, an expression, a macro argument) and where that is.
-    pub fn literal_source(&self, span: Span) -> Result<(&Path, &str, Span), String> {
+    /// Where the text at `span` of the expanded URDF was written as it is: a literal in a xacro source, or
+    /// the literal value of the one `<xacro:property>` definition the text names when it is just
+    /// `${name}` (then with a note saying so). The source's path, its text, the span there and the note.
+    /// Otherwise why it cannot be edited there: the text it was computed from (an expression, a macro
+    /// argument, a property defined more than once or from another) and where that is.
+    pub fn literal_source(&self, span: Span) -> Result<EditTarget<'_>, String> {
         let expanded = self
             .expansion
             .xml
@@ -146,17 +161,70 @@ impl Expanded {
             .ok_or("no xacro source wrote this value")?;
         let written = file.text.get(origin.span.clone()).unwrap_or_default();
         if written == expanded {
-            return Ok((
-                &file.path,
-                &file.text,
-                Span::from_range(origin.span.clone()),
-            ));
+            return Ok(EditTarget {
+                path: &file.path,
+                text: &file.text,
+                span: Span::from_range(origin.span.clone()),
+                note: None,
+            });
         }
         let (line, column) = file.line_col(origin.span.start);
-        Err(format!(
-            "the value is computed from `{written}` at {}:{line}:{column}; edit what sets it there",
-            file.path.display()
-        ))
+        let computed = || {
+            format!(
+                "the value is computed from `{written}` at {}:{line}:{column}; edit what sets it there",
+                file.path.display()
+            )
+        };
+        let name = written
+            .strip_prefix("${")
+            .and_then(|w| w.strip_suffix('}'))
+            .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_alphanumeric() || c == '_'))
+            .ok_or_else(computed)?;
+        match self.property_definitions(name).as_slice() {
+            [(index, value)] => {
+                let source = &self.expansion.sources[*index];
+                let literal = source.text.get(value.clone()).unwrap_or_default();
+                if literal != expanded {
+                    return Err(computed());
+                }
+                let (line, column) = source.line_col(value.start);
+                Ok(EditTarget {
+                    path: &source.path,
+                    text: &source.text,
+                    span: Span::from_range(value.clone()),
+                    note: Some(format!(
+                        "edits the definition of property '{name}' at {}:{line}:{column}, which every use of it follows",
+                        source.path.display()
+                    )),
+                })
+            }
+            _ => Err(computed()),
+        }
+    }
+
+    /// Every `<xacro:property name="NAME" value="...">` of the sources read: the source's index and the
+    /// value's byte range.
+    fn property_definitions(&self, name: &str) -> Vec<(usize, std::ops::Range<usize>)> {
+        let mut found = Vec::new();
+        for (index, source) in self.expansion.sources.iter().enumerate() {
+            let Ok(document) =
+                roxmltree::Document::parse_with_options(&source.text, crate::input::xml_options())
+            else {
+                continue;
+            };
+            for node in document.descendants().filter(|n| {
+                n.tag_name().name() == "property"
+                    && n.tag_name().namespace() == Some("http://www.ros.org/wiki/xacro")
+                    && n.attribute("name") == Some(name)
+            }) {
+                match node.attributes().find(|a| a.name() == "value") {
+                    Some(value) => found.push((index, value.range_value())),
+                    // Defined by its body, or with a default: not a literal to edit; counts as a definition.
+                    None => found.push((index, 0..0)),
+                }
+            }
+        }
+        found
     }
 
     /// The xacro sources read (entry file first), for snippets.

@@ -230,23 +230,25 @@ fn line_col(text: &str, byte: usize) -> (u32, u32) {
 
 /// `fix` as edits of the files the user edits (none, with the reason, when one of them cannot be made).
 fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
+    let mut notes: Vec<String> = Vec::new();
     let edits: Result<Vec<FileEdit>, String> = fix
         .edits
         .iter()
         .map(|edit| {
-            let (path, text, at) = loaded.edit_target(edit.anchor(), edit.is_textual())?;
-            let edit = edit
-                .resolve(text, at)
+            let target = loaded.edit_target(edit.anchor(), edit.is_textual())?;
+            let text_edit = edit
+                .resolve(target.text, target.span)
                 .ok_or("the text there is not the attribute the fix expects")?;
-            let (line, column) = line_col(text, edit.start);
-            let (end_line, end_column) = line_col(text, edit.end);
+            notes.extend(target.note);
+            let (line, column) = line_col(target.text, text_edit.start);
+            let (end_line, end_column) = line_col(target.text, text_edit.end);
             Ok(FileEdit {
-                file: path.display().to_string(),
+                file: target.path.display().to_string(),
                 line,
                 column,
                 end_line,
                 end_column,
-                edit,
+                edit: text_edit,
             })
         })
         .collect();
@@ -254,9 +256,14 @@ fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
         Ok(edits) => (edits, None),
         Err(why) => (Vec::new(), Some(why)),
     };
+    notes.dedup();
+    let description = std::iter::once(fix.description.clone())
+        .chain(notes)
+        .collect::<Vec<_>>()
+        .join("; ");
     FixReport {
         applicability: fix.applicability,
-        description: fix.description.clone(),
+        description,
         edits,
         not_applicable,
     }
