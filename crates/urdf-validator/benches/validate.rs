@@ -255,11 +255,9 @@ mod pr2_stages {
     }
 }
 
-/// A chain of `links` revolute joints, a 1 cm box on every link, 2 cm apart, bending by up to 1 rad: the
-/// whole pipeline should cost about linearly more with the links (self-collision uses sweep-and-prune).
-fn box_chain(links: usize) -> String {
-    let body = "<inertial><mass value=\"0.1\"/><inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial>\
-                <collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision>";
+/// A chain of `links` revolute joints (limits ±1 rad) from `l{i}` to `l{i+1}`: every link holds `body`,
+/// every joint `joint` (its origin and axis).
+fn chain(links: usize, body: &str, joint: &str) -> String {
     let mut urdf = String::from("<robot name=\"chain\">");
     for i in 0..=links {
         urdf.push_str(&format!("<link name=\"l{i}\">{body}</link>"));
@@ -267,8 +265,7 @@ fn box_chain(links: usize) -> String {
     for i in 0..links {
         urdf.push_str(&format!(
             "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
-             <origin xyz=\"0 0 0.02\"/><axis xyz=\"0 1 0\"/>\
-             <limit lower=\"-1\" upper=\"1\" effort=\"100\" velocity=\"1\"/></joint>",
+             {joint}<limit lower=\"-1\" upper=\"1\" effort=\"100\" velocity=\"1\"/></joint>",
             i + 1
         ));
     }
@@ -276,44 +273,31 @@ fn box_chain(links: usize) -> String {
     urdf
 }
 
+/// The whole pipeline on `text`, as `chain.urdf`.
+fn bench_pipeline(bencher: divan::Bencher, text: String) {
+    let options = Options::default();
+    bencher.bench(|| {
+        validate_text(text.clone(), Path::new("chain.urdf"), &options)
+            .map(|v| v.report.findings.len())
+    });
+}
+
+/// A chain of 1 cm boxes 2 cm apart, bending by up to 1 rad: the whole pipeline should cost about linearly
+/// more with the links (self-collision uses sweep-and-prune).
 #[divan::bench(args = [100, 1000], sample_count = 5)]
 fn box_chain_pipeline(bencher: divan::Bencher, links: usize) {
-    let text = box_chain(links);
-    let options = Options::default();
-    bencher.bench(|| {
-        validate_text(text.clone(), Path::new("chain.urdf"), &options)
-            .map(|v| v.report.findings.len())
-    });
+    let body = "<inertial><mass value=\"0.1\"/><inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial>\
+                <collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision>";
+    let joint = "<origin xyz=\"0 0 0.02\"/><axis xyz=\"0 1 0\"/>";
+    bench_pipeline(bencher, chain(links, body, joint));
 }
 
-/// A chain of `links` 10 g links lying on the ground, revolute joints 1 mm apart along x, no geometry
-/// (issue 26: classification walked every link's names up to the body, quadratic).
-fn lying_chain(links: usize) -> String {
-    let body = "<inertial><mass value=\"0.01\"/><inertia ixx=\"1e-6\" ixy=\"0\" ixz=\"0\" iyy=\"1e-6\" iyz=\"0\" izz=\"1e-6\"/></inertial>";
-    let mut urdf = String::from("<robot name=\"chain\">");
-    for i in 0..=links {
-        urdf.push_str(&format!("<link name=\"l{i}\">{body}</link>"));
-    }
-    for i in 0..links {
-        urdf.push_str(&format!(
-            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
-             <origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/>\
-             <limit lower=\"-1\" upper=\"1\" effort=\"100\" velocity=\"1\"/></joint>",
-            i + 1
-        ));
-    }
-    urdf.push_str("</robot>");
-    urdf
-}
-
-/// The whole pipeline on [`lying_chain`]s of 1,000 and 20,000 links (budget: ≤ 25× apart, the long one in
-/// ≤ 2 s on two cores).
+/// A chain of 10 g links lying on the ground, joints 1 mm apart along x, no geometry (issue 26:
+/// classification walked every link's names up to the body, quadratic). Budget: 1,000 and 20,000 links ≤ 25×
+/// apart, the long one in ≤ 2 s on two cores.
 #[divan::bench(args = [1000, 20000], sample_count = 3)]
 fn lying_chain_pipeline(bencher: divan::Bencher, links: usize) {
-    let text = lying_chain(links);
-    let options = Options::default();
-    bencher.bench(|| {
-        validate_text(text.clone(), Path::new("chain.urdf"), &options)
-            .map(|v| v.report.findings.len())
-    });
+    let body = "<inertial><mass value=\"0.01\"/><inertia ixx=\"1e-6\" ixy=\"0\" ixz=\"0\" iyy=\"1e-6\" iyz=\"0\" izz=\"1e-6\"/></inertial>";
+    let joint = "<origin xyz=\"0.001 0 0\"/><axis xyz=\"0 0 1\"/>";
+    bench_pipeline(bencher, chain(links, body, joint));
 }

@@ -115,6 +115,22 @@ fn written(values: &[f64]) -> String {
         .join(",")
 }
 
+/// The index of the joint or link (`kind`) `o` names among `names`, or an error naming the closest.
+fn index_of<'a>(
+    o: &ValueOverride,
+    kind: &str,
+    names: impl Iterator<Item = &'a str> + Clone,
+) -> Result<usize, String> {
+    names.clone().position(|n| n == o.name).ok_or_else(|| {
+        format!(
+            "override '{}': the robot has no {kind} '{}' ({})",
+            o.key,
+            o.name,
+            did_you_mean(&o.name, names)
+        )
+    })
+}
+
 /// Apply the joint and link overrides to `robot`; what each changed. An override naming a joint or link the
 /// robot does not have is an error naming the closest names. (`payload.mass` is the caller's, as the
 /// payload option.)
@@ -128,14 +144,11 @@ pub fn apply(
         let was = match o.field {
             Field::Payload => None,
             Field::Effort | Field::Lower | Field::Upper | Field::Velocity => {
-                let Some(index) = robot.joints.iter().position(|j| j.name.value == o.name) else {
-                    return Err(format!(
-                        "override '{}': the robot has no joint '{}' ({})",
-                        o.key,
-                        o.name,
-                        did_you_mean(&o.name, robot.joints.iter().map(|j| j.name.value.as_str()))
-                    ));
-                };
+                let index = index_of(
+                    o,
+                    "joint",
+                    robot.joints.iter().map(|j| j.name.value.as_str()),
+                )?;
                 let joint = &mut robot.joints[index];
                 let span = joint.span;
                 let limit = joint.limit.get_or_insert(Limit {
@@ -157,14 +170,7 @@ pub fn apply(
                 was
             }
             Field::Mass | Field::Com => {
-                let Some(index) = robot.links.iter().position(|l| l.name.value == o.name) else {
-                    return Err(format!(
-                        "override '{}': the robot has no link '{}' ({})",
-                        o.key,
-                        o.name,
-                        did_you_mean(&o.name, robot.links.iter().map(|l| l.name.value.as_str()))
-                    ));
-                };
+                let index = index_of(o, "link", robot.links.iter().map(|l| l.name.value.as_str()))?;
                 let link = &mut robot.links[index];
                 let span = link.span;
                 let inertial = link.inertial.get_or_insert(Inertial {
