@@ -113,16 +113,11 @@ fn accept(
             per_file.insert(path.clone(), (text, Vec::new(), 0));
         }
         let (_, edits, _) = &per_file[&path];
-        let overlaps = edits.iter().any(|e| {
-            edit.edit.start < e.end && e.start < edit.edit.end
-                || (edit.edit.start == e.start
-                    && (e.start == e.end || edit.edit.start == edit.edit.end))
-        });
-        if overlaps {
+        // The same edit from another finding is that fix again (a literal in a macro body many links use).
+        if edits.iter().any(|e| edit.edit.conflicts_with(e)) {
             return Err(format!("{}: overlaps the edit of another fix", edit.file));
         }
     }
-    // Several findings may carry the same fix (a literal in a macro body used by several links).
     let mut added = false;
     for edit in &fix.edits {
         let (_, edits, _) = per_file

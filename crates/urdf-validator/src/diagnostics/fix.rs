@@ -63,6 +63,17 @@ pub struct TextEdit {
     pub replacement: String,
 }
 
+impl TextEdit {
+    /// Whether `self` and `other` cannot both be applied: their spans overlap, or one inserts where the
+    /// other starts (which goes first is ambiguous). The same edit twice is one edit, not a conflict.
+    pub fn conflicts_with(&self, other: &TextEdit) -> bool {
+        self != other
+            && (self.start < other.end && other.start < self.end
+                || self.start == other.start
+                    && (self.start == self.end || other.start == other.end))
+    }
+}
+
 impl Edit {
     /// The span of the text the edit is anchored at (an attribute value, or the span to delete).
     pub fn anchor(&self) -> Span {
@@ -167,19 +178,18 @@ impl Fix {
     }
 }
 
-/// `text` with `edits` applied, and the edits left out because they overlap one applied before them (in
-/// the order given) or do not fit the text. Edits are applied from the end, so the spans of all of them
-/// refer to `text` as given.
+/// `text` with `edits` applied (an edit given twice once), and the edits left out because they conflict
+/// with one applied before them (in the order given) or do not fit the text. The spans of all of them refer
+/// to `text` as given.
 pub fn apply(text: &str, edits: &[TextEdit]) -> (String, Vec<TextEdit>) {
     let mut kept: Vec<&TextEdit> = Vec::new();
     let mut dropped = Vec::new();
     for edit in edits {
+        if kept.contains(&edit) {
+            continue;
+        }
         let fits = edit.start <= edit.end && text.get(edit.start..edit.end).is_some();
-        let overlaps = kept.iter().any(|k| {
-            edit.start < k.end && k.start < edit.end
-                || (edit.start == edit.end && edit.start == k.start && k.start == k.end)
-        });
-        if fits && !overlaps {
+        if fits && !kept.iter().any(|k| edit.conflicts_with(k)) {
             kept.push(edit);
         } else {
             dropped.push(edit.clone());
@@ -268,6 +278,10 @@ mod tests {
         );
         assert_eq!(out, "aXd-ef");
         assert_eq!(dropped, vec![edit(2, 4, "Y"), edit(5, 9, "Z")]);
+        // The same edit twice is applied once; an insertion where a replacement starts conflicts.
+        let (out, dropped) = apply(text, &[edit(1, 3, "X"), edit(1, 3, "X"), edit(1, 1, "-")]);
+        assert_eq!(out, "aXdef");
+        assert_eq!(dropped, vec![edit(1, 1, "-")]);
     }
 
     #[test]

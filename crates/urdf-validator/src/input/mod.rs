@@ -257,12 +257,7 @@ impl Loaded {
     /// why the edit cannot be made in a file (a xacro value computed from an expression; SDFormat).
     pub fn edit_target(&self, span: Span, textual: bool) -> Result<xacro::EditTarget<'_>, String> {
         match &self.origin {
-            Origin::Urdf(source) => Ok(xacro::EditTarget {
-                path: source.path(),
-                text: source.text(),
-                span,
-                note: None,
-            }),
+            Origin::Urdf(source) => Ok(xacro::EditTarget::in_file(source, span)),
             Origin::Xacro(_) if textual => {
                 Err("the text was produced by the xacro expansion: edit the xacro source".into())
             }

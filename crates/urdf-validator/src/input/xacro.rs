@@ -33,17 +33,59 @@ pub struct Warning {
     pub refused: bool,
 }
 
-/// Where an edit of the expanded text goes in the files the user edits.
+/// Where an edit of the parsed text goes in the files the user edits: a span of a URDF file or of a xacro
+/// source.
 #[derive(Clone, Debug)]
 pub struct EditTarget<'a> {
-    /// The file.
-    pub path: &'a Path,
-    /// Its text.
-    pub text: &'a str,
+    source: EditSource<'a>,
     /// The span there.
     pub span: Span,
     /// What the edit does beyond the flagged place (it edits a property's definition).
     pub note: Option<String>,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum EditSource<'a> {
+    File(&'a SourceText),
+    Xacro(&'a xacro::SourceFile),
+}
+
+impl<'a> EditTarget<'a> {
+    /// `span` of the URDF file `source` itself.
+    pub fn in_file(source: &'a SourceText, span: Span) -> Self {
+        EditTarget {
+            source: EditSource::File(source),
+            span,
+            note: None,
+        }
+    }
+
+    /// The file.
+    pub fn path(&self) -> &'a Path {
+        match self.source {
+            EditSource::File(source) => source.path(),
+            EditSource::Xacro(source) => &source.path,
+        }
+    }
+
+    /// Its text.
+    pub fn text(&self) -> &'a str {
+        match self.source {
+            EditSource::File(source) => source.text(),
+            EditSource::Xacro(source) => &source.text,
+        }
+    }
+
+    /// 1-based line and column (in characters) of `byte` of the text, as findings are located.
+    pub fn line_col(&self, byte: usize) -> (u32, u32) {
+        match self.source {
+            EditSource::File(source) => source.line_col(byte),
+            EditSource::Xacro(source) => {
+                let (line, column) = source.line_col(byte);
+                (to_u32(line), to_u32(column))
+            }
+        }
+    }
 }
 
 /// Where a finding is, in the sources the user edits.
@@ -162,8 +204,7 @@ impl Expanded {
         let written = file.text.get(origin.span.clone()).unwrap_or_default();
         if written == expanded {
             return Ok(EditTarget {
-                path: &file.path,
-                text: &file.text,
+                source: EditSource::Xacro(file),
                 span: Span::from_range(origin.span.clone()),
                 note: None,
             });
@@ -189,8 +230,7 @@ impl Expanded {
                 }
                 let (line, column) = source.line_col(value.start);
                 Ok(EditTarget {
-                    path: &source.path,
-                    text: &source.text,
+                    source: EditSource::Xacro(source),
                     span: Span::from_range(value.clone()),
                     note: Some(format!(
                         "edits the definition of property '{name}' at {}:{line}:{column}, which every use of it follows",

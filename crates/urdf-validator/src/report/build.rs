@@ -218,16 +218,6 @@ pub(super) fn finding_report(finding: &Finding) -> FindingReport {
     }
 }
 
-/// 1-based line and column (in characters) of byte `byte` of `text`.
-fn line_col(text: &str, byte: usize) -> (u32, u32) {
-    let before = text.get(..byte).unwrap_or(text);
-    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
-    let column = before[line_start..].chars().count() + 1;
-    let to_u32 = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
-    (to_u32(line), to_u32(column))
-}
-
 /// `fix` as edits of the files the user edits (none, with the reason, when one of them cannot be made).
 fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
     let mut notes: Vec<String> = Vec::new();
@@ -237,13 +227,13 @@ fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
         .map(|edit| {
             let target = loaded.edit_target(edit.anchor(), edit.is_textual())?;
             let text_edit = edit
-                .resolve(target.text, target.span)
+                .resolve(target.text(), target.span)
                 .ok_or("the text there is not the attribute the fix expects")?;
-            notes.extend(target.note);
-            let (line, column) = line_col(target.text, text_edit.start);
-            let (end_line, end_column) = line_col(target.text, text_edit.end);
+            notes.extend(target.note.clone());
+            let (line, column) = target.line_col(text_edit.start);
+            let (end_line, end_column) = target.line_col(text_edit.end);
             Ok(FileEdit {
-                file: target.path.display().to_string(),
+                file: target.path().display().to_string(),
                 line,
                 column,
                 end_line,
