@@ -253,7 +253,7 @@ pub struct Args {
     /// Apply the safe fixes of the findings (those that change nothing a simulator computes) to the files
     /// the user edits (a xacro source for xacro input), then validate again and report what is left.
     /// Files are written atomically; a file that changed since it was read is not overwritten.
-    #[arg(long, conflicts_with_all = ["overrides", "override_file"])]
+    #[arg(long)]
     pub fix: bool,
 
     /// With --fix or --diff, also the unsafe fixes (mass, inertia, limits, scale, effort change), and
@@ -262,8 +262,14 @@ pub struct Args {
     pub unsafe_fixes: bool,
 
     /// Print the fixes as a unified diff and write nothing (exit 1 when there is something to fix, else 0).
-    #[arg(long, conflicts_with_all = ["fix", "overrides", "override_file"])]
+    #[arg(long, conflicts_with = "fix")]
     pub diff: bool,
+
+    /// With --fix or --diff: write the --override/--override-file values into the files (as unsafe edits
+    /// the user asked for: applied without --unsafe-fixes). Without it, --override cannot be combined with
+    /// --fix or --diff (the fixes would be computed for values the file does not hold).
+    #[arg(long)]
+    pub from_overrides: bool,
 
     /// Report only the findings that baseline FILE (written by --write-baseline, or an earlier
     /// `<name>_validation.json`) does not hold: the status and the exit code follow the new ones alone;

@@ -13,6 +13,8 @@ use urdf_validator::Validation;
 pub struct Policy {
     /// Unsafe fixes too, and edits outside the trusted folders.
     pub unsafe_fixes: bool,
+    /// The overrides' fixes too (`--from-overrides`), first and whether or not `unsafe_fixes`.
+    pub from_overrides: bool,
     /// `--package-path` folders: files under them may be edited by safe fixes.
     pub package_paths: Vec<PathBuf>,
 }
@@ -50,6 +52,24 @@ pub fn plan(validations: &[&Validation], policy: &Policy) -> Plan {
     for validation in validations {
         let input = Path::new(&validation.report.urdf_path);
         let trusted = trusted_folders(input, &policy.package_paths);
+        let overrides = validation
+            .report
+            .overrides
+            .iter()
+            .filter(|_| policy.from_overrides);
+        for applied in overrides {
+            let outcome = match &applied.fix {
+                Some(fix) if !fix.edits.is_empty() => {
+                    accept(fix, validation, &trusted, policy, &mut per_file)
+                }
+                Some(fix) => Err(fix.not_applicable.clone().unwrap_or_default()),
+                None => Err("the file declares no attribute to hold it: add it by hand".into()),
+            };
+            if let Err(why) = outcome {
+                plan.skipped
+                    .push(format!("override {}: {why}", applied.key));
+            }
+        }
         for finding in &validation.report.findings {
             let Some(fix) = &finding.fix else { continue };
             if fix.edits.is_empty() {

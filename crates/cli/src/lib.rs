@@ -244,6 +244,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     if args.fix || args.diff {
         let policy = fixes::Policy {
             unsafe_fixes: args.unsafe_fixes,
+            from_overrides: args.from_overrides,
             package_paths: args.package_path.clone(),
         };
         let validations: Vec<&urdf_validator::Validation> = outcomes
@@ -427,6 +428,22 @@ type XacroArgs = Vec<(String, String)>;
 /// arguments (positional `name:=value` words and `--xacro-arg`).
 fn checked_inputs(args: &Args) -> Result<(Vec<PathBuf>, XacroArgs), String> {
     workspace_options(args)?;
+    let overriding = !args.overrides.is_empty() || args.override_file.is_some();
+    if args.from_overrides && !(args.fix || args.diff) {
+        return Err(
+            "--from-overrides writes the overrides as fixes: give it with --fix or --diff".into(),
+        );
+    }
+    if args.from_overrides && !overriding {
+        return Err("--from-overrides: no --override or --override-file to write".into());
+    }
+    if overriding && (args.fix || args.diff) && !args.from_overrides {
+        return Err(
+            "--override with --fix or --diff: the fixes would be computed for values the file does not hold; \
+             add --from-overrides to write the overrides into the file"
+                .into(),
+        );
+    }
     if args.arm_root.len() != args.arm_tip.len() {
         return Err(format!(
             "{} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",

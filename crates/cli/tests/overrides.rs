@@ -66,10 +66,17 @@ fn an_effort_override_changes_the_verdict_and_is_listed() {
     let after: Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(after["overall_status"], "PASS", "{after}");
     assert!((shoulder_margin(&after) - 80.0 / (2.0 * 9.81 * 0.5)).abs() < 1e-6);
+    let listed = &after["overrides"][0];
     assert_eq!(
-        after["overrides"],
-        serde_json::json!([{"key": "joint.shoulder.effort", "value": "80", "was": "1"}])
+        (&listed["key"], &listed["value"], &listed["was"]),
+        (&"joint.shoulder.effort".into(), &"80".into(), &"1".into()),
+        "{after}"
     );
+    // The edit that would write it (--fix --from-overrides): the effort value, 80.
+    let edit = &listed["fix"]["edits"][0];
+    let start = edit["start"].as_u64().unwrap() as usize;
+    assert_eq!(&ARM[start..edit["end"].as_u64().unwrap() as usize], "1");
+    assert_eq!(edit["replacement"], "80");
     assert_eq!(
         std::fs::read_to_string(&file).unwrap(),
         ARM,
@@ -170,4 +177,98 @@ fn unknown_names_and_bad_values_are_usage_errors() {
         Some(2),
         "--fix with --override is refused"
     );
+}
+
+#[test]
+fn from_overrides_writes_the_values_into_the_file() {
+    let file = robot("from_overrides");
+    let path = file.to_str().unwrap();
+    let overrides = [
+        "--override",
+        "joint.shoulder.effort=20",
+        "--override",
+        "joint.shoulder.upper=1.5",
+        "--override",
+        "link.arm.mass=1.5",
+        "--override",
+        "link.arm.com=0.25,0,0.125",
+        // No <origin> in base's <inertial>: nothing to hold it, reported and left out.
+        "--override",
+        "link.base.com=0,0,0.1",
+    ];
+    let evaluated: Value = serde_json::from_slice(
+        &run(&[&[path, "--format", "json"][..], &overrides[..]].concat()).stdout,
+    )
+    .unwrap();
+    assert_eq!(
+        evaluated["overrides"][0]["fix"]["applicability"], "unsafe",
+        "{evaluated}"
+    );
+    assert!(
+        evaluated["overrides"][4].get("fix").is_none(),
+        "{evaluated}"
+    );
+
+    // --diff shows the edits and writes nothing.
+    let diff = run(&[&[path, "--diff", "--from-overrides"][..], &overrides[..]].concat());
+    assert_eq!(diff.status.code(), Some(1));
+    let shown = String::from_utf8_lossy(&diff.stdout);
+    assert!(shown.contains(r#"+    <axis xyz="0 1 0"/><limit lower="-1" upper="1.5" effort="20" velocity="1"/></joint>"#), "{shown}");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), ARM);
+
+    let fixed = run(&[&[path, "--fix", "--from-overrides"][..], &overrides[..]].concat());
+    let stderr = String::from_utf8_lossy(&fixed.stderr);
+    assert!(
+        stderr.contains("override link.base.com: the file declares no attribute to hold it"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        text.contains(r#"<limit lower="-1" upper="1.5" effort="20" velocity="1"/>"#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"<origin xyz="0.25 0 0.125"/><mass value="1.5"/>"#),
+        "{text}"
+    );
+    assert!(!text.contains("0 0 0.1"), "{text}");
+    // The file alone now gives what the overrides gave (but base's COM, which was not written).
+    let after: Value = serde_json::from_slice(&run(&[path, "--format", "json"]).stdout).unwrap();
+    let with_written: Value = serde_json::from_slice(
+        &run(&[&[path, "--format", "json"][..], &overrides[..8]].concat()).stdout,
+    )
+    .unwrap();
+    assert_eq!(shoulder_margin(&after), shoulder_margin(&with_written));
+    assert!(after.get("overrides").is_none());
+}
+
+#[test]
+fn from_overrides_needs_fix_or_diff_and_an_override() {
+    let file = robot("from_overrides_usage");
+    let path = file.to_str().unwrap();
+    for (args, said) in [
+        (
+            &[
+                path,
+                "--from-overrides",
+                "--override",
+                "joint.shoulder.effort=8",
+            ][..],
+            "give it with --fix or --diff",
+        ),
+        (
+            &[path, "--fix", "--from-overrides"][..],
+            "no --override or --override-file to write",
+        ),
+        (
+            &[path, "--diff", "--override", "joint.shoulder.effort=8"][..],
+            "add --from-overrides to write the overrides into the file",
+        ),
+    ] {
+        let output = run(args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(said), "{args:?}: {stderr}");
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), ARM);
 }

@@ -172,12 +172,10 @@ fn run(
         (Some(text), Some(document)) => text.parse(document),
         _ => parse_sdf(&loaded, options)?,
     };
-    let overrides =
-        value_overrides::apply(&mut robot, &options.value_overrides).map_err(|message| {
-            LoadError::Usage {
-                path: loaded.path.clone(),
-                message,
-            }
+    let overrides = value_overrides::apply(&mut robot, &options.value_overrides, document.as_ref())
+        .map_err(|message| LoadError::Usage {
+            path: loaded.path.clone(),
+            message,
         })?;
     let with_payload;
     let options = match options

@@ -1,12 +1,15 @@
 //! `--override KEY=VALUE`: evaluate the robot with some of its declared values changed, the file untouched
 //! (`joint.NAME.effort=80`, `joint.NAME.lower`/`upper`/`velocity`, `link.NAME.mass=12`,
-//! `link.NAME.com=x,y,z`, `payload.mass=2`). The report lists each override with the value it replaced.
+//! `link.NAME.com=x,y,z`, `payload.mass=2`). The report lists each override with the value it replaced,
+//! and the edit that would write it into the file (`--fix --from-overrides`).
 
 use schemars::JsonSchema;
 use serde::Serialize;
 
+use crate::diagnostics::fix::{number, Edit, Fix};
 use crate::diagnostics::suggest::did_you_mean;
-use crate::input::source::Spanned;
+use crate::input::source::{Span, Spanned};
+use crate::report::FixReport;
 use crate::urdf::robot::{Inertial, Limit, Pose, Robot};
 
 /// What an override changes.
@@ -97,7 +100,7 @@ impl ValueOverride {
 }
 
 /// An override as applied, for the report.
-#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+#[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct AppliedOverride {
     /// The key (`joint.shoulder.effort`).
     pub key: String,
@@ -105,6 +108,19 @@ pub struct AppliedOverride {
     pub value: String,
     /// The value the file declares (null when it declares none).
     pub was: Option<String>,
+    /// The edit that writes the value into the file (`--fix --from-overrides`); absent when the file has no
+    /// attribute to hold it (no `<limit>`, `<mass>` or `<origin>` element: add it by hand) and for
+    /// `payload.mass`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fix: Option<FixReport>,
+}
+
+/// An override as applied, with the fix that would write it into the text the parser read.
+pub struct Applied {
+    /// What the report lists (its `fix` still empty: the report resolves [`Applied::fix`] into it).
+    pub report: AppliedOverride,
+    /// Writing the value into the file, when there is an attribute to hold it.
+    pub fix: Option<Fix>,
 }
 
 fn written(values: &[f64]) -> String {
@@ -131,18 +147,20 @@ fn index_of<'a>(
     })
 }
 
-/// Apply the joint and link overrides to `robot`; what each changed. An override naming a joint or link the
-/// robot does not have is an error naming the closest names. (`payload.mass` is the caller's, as the
-/// payload option.)
+/// Apply the joint and link overrides to `robot`; what each changed and how to write it into the file
+/// (`document` is the URDF the robot was read from: it locates the `xyz` of an inertial `<origin>`; `None`
+/// for SDFormat, whose files fixes do not edit). An override naming a joint or link the robot does not have
+/// is an error naming the closest names. (`payload.mass` is the caller's, as the payload option.)
 pub fn apply(
     robot: &mut Robot,
     overrides: &[ValueOverride],
-) -> Result<Vec<AppliedOverride>, String> {
+    document: Option<&roxmltree::Document>,
+) -> Result<Vec<Applied>, String> {
     let mut applied = Vec::new();
     for o in overrides {
         let value = o.values[0];
-        let was = match o.field {
-            Field::Payload => None,
+        let (was, edit) = match o.field {
+            Field::Payload => (None, None),
             Field::Effort | Field::Lower | Field::Upper | Field::Velocity => {
                 let index = index_of(
                     o,
@@ -150,6 +168,7 @@ pub fn apply(
                     robot.joints.iter().map(|j| j.name.value.as_str()),
                 )?;
                 let joint = &mut robot.joints[index];
+                let declared_limit = joint.limit.is_some();
                 let span = joint.span;
                 let limit = joint.limit.get_or_insert(Limit {
                     span,
@@ -158,16 +177,22 @@ pub fn apply(
                     effort: None,
                     velocity: None,
                 });
-                let slot = match o.field {
-                    Field::Effort => &mut limit.effort,
-                    Field::Lower => &mut limit.lower,
-                    Field::Upper => &mut limit.upper,
-                    _ => &mut limit.velocity,
+                // An attribute of the <limit> to insert a missing one after.
+                let sibling = [&limit.lower, &limit.upper, &limit.effort, &limit.velocity]
+                    .into_iter()
+                    .find_map(|v| v.as_ref().map(|v| v.span))
+                    .filter(|_| declared_limit);
+                let (slot, attribute) = match o.field {
+                    Field::Effort => (&mut limit.effort, "effort"),
+                    Field::Lower => (&mut limit.lower, "lower"),
+                    Field::Upper => (&mut limit.upper, "upper"),
+                    _ => (&mut limit.velocity, "velocity"),
                 };
                 let was = slot.as_ref().map(|v| v.value.to_string());
+                let edit = value_edit(slot.as_ref().map(|v| v.span), sibling, attribute, value);
                 let span = slot.as_ref().map_or(limit.span, |v| v.span);
                 *slot = Some(Spanned { value, span });
-                was
+                (was, edit)
             }
             Field::Mass | Field::Com => {
                 let index = index_of(o, "link", robot.links.iter().map(|l| l.name.value.as_str()))?;
@@ -181,23 +206,96 @@ pub fn apply(
                 });
                 if o.field == Field::Mass {
                     let was = inertial.mass.as_ref().map(|m| m.value.to_string());
+                    let edit =
+                        value_edit(inertial.mass.as_ref().map(|m| m.span), None, "value", value);
                     let span = inertial.mass.as_ref().map_or(inertial.span, |m| m.span);
                     inertial.mass = Some(Spanned { value, span });
-                    was
+                    (was, edit)
                 } else {
                     let was = written(&inertial.origin.xyz);
+                    let (xyz, rpy) = match (inertial.origin.span, document) {
+                        (Some(origin), Some(document)) => (
+                            attribute_value(document, origin, "xyz"),
+                            attribute_value(document, origin, "rpy"),
+                        ),
+                        _ => (None, None),
+                    };
+                    let edit = match xyz {
+                        Some(xyz) => Some(Edit::ReplaceValue {
+                            value: xyz,
+                            with: triple(&o.values),
+                        }),
+                        None => rpy.map(|rpy| Edit::InsertAttributeAfter {
+                            value: rpy,
+                            name: "xyz".into(),
+                            text: triple(&o.values),
+                        }),
+                    };
                     inertial.origin.xyz = [o.values[0], o.values[1], o.values[2]];
-                    Some(was)
+                    (Some(was), edit)
                 }
             }
         };
-        applied.push(AppliedOverride {
+        let report = AppliedOverride {
             key: o.key.clone(),
             value: written(&o.values),
-            was,
+            was: was.clone(),
+            fix: None,
+        };
+        let fix = edit.map(|edit| {
+            let was = was.map_or_else(|| "not declared".to_string(), |w| format!("was {w}"));
+            Fix::unsafe_(
+                format!(
+                    "write the override {}={} into the file ({was})",
+                    o.key, report.value
+                ),
+                vec![edit],
+            )
         });
+        applied.push(Applied { report, fix });
     }
     Ok(applied)
+}
+
+/// Replace the attribute value at `declared`, or insert `attribute` after the one at `sibling`.
+fn value_edit(
+    declared: Option<Span>,
+    sibling: Option<Span>,
+    attribute: &str,
+    value: f64,
+) -> Option<Edit> {
+    match (declared, sibling) {
+        (Some(at), _) => Some(Edit::ReplaceValue {
+            value: at,
+            with: number(value),
+        }),
+        (None, Some(after)) => Some(Edit::InsertAttributeAfter {
+            value: after,
+            name: attribute.to_string(),
+            text: number(value),
+        }),
+        (None, None) => None,
+    }
+}
+
+/// `x y z` as an `xyz` attribute writes it.
+fn triple(values: &[f64]) -> String {
+    values
+        .iter()
+        .map(|&v| number(v))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The span of the value of attribute `name` of the element at `element` in `document`.
+fn attribute_value(document: &roxmltree::Document, element: Span, name: &str) -> Option<Span> {
+    let range = element.start as usize..element.end as usize;
+    document
+        .descendants()
+        .find(|n| n.is_element() && n.range() == range)?
+        .attributes()
+        .find(|a| a.name() == name)
+        .map(|a| Span::from_range(a.range_value()))
 }
 
 #[cfg(test)]

@@ -477,6 +477,7 @@ fn fix_urdf(arguments: JsonObject) -> Result<Output, String> {
         .map_err(|error| error.to_string())?;
     let policy = crate::fixes::Policy {
         unsafe_fixes: input.unsafe_fixes,
+        from_overrides: false,
         package_paths: flags
             .package_path
             .as_deref()

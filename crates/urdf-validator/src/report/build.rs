@@ -9,7 +9,7 @@ use crate::model::Model;
 use crate::report::baseline::{self, Baseline, ElementPaths};
 use crate::report::{filter, FileEdit, FindingReport, FixReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
-use crate::value_overrides::AppliedOverride;
+use crate::value_overrides::{Applied, AppliedOverride};
 
 /// What the stages produced for one robot.
 pub struct Outcome<'a> {
@@ -31,7 +31,7 @@ pub struct Outcome<'a> {
     /// `--baseline`: the findings it holds are not reported.
     pub baseline: Option<&'a Baseline>,
     /// The `--override`s applied.
-    pub overrides: Vec<AppliedOverride>,
+    pub overrides: Vec<Applied>,
 }
 
 /// The report of one robot.
@@ -140,7 +140,13 @@ pub fn build(outcome: Outcome) -> Report {
         findings: finding_reports,
         suppressed: filtered.suppressed,
         baseline,
-        overrides,
+        overrides: overrides
+            .into_iter()
+            .map(|applied| AppliedOverride {
+                fix: applied.fix.as_ref().map(|fix| fix_report(fix, loaded)),
+                ..applied.report
+            })
+            .collect(),
         timings_ms: None,
     }
 }
