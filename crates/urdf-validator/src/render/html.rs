@@ -14,8 +14,9 @@ use std::fmt::Write;
 
 use crate::analysis::stability::support_polygon::convex_hull;
 use crate::diagnostics::finding::Severity;
+use crate::diagnostics::fix::Applicability;
 use crate::report::{
-    ArmWorkspace, Confidence, FindingReport, JointStatics, Report, StabilitySection,
+    ArmWorkspace, Confidence, FindingReport, FixReport, JointStatics, Report, StabilitySection,
     StaticsSection, Status, WorkspaceSection,
 };
 use crate::Validation;
@@ -352,6 +353,23 @@ fn source_lines<'a>(validation: &'a Validation, file: &str) -> Option<&'a str> {
         .map(|s| s.text())
 }
 
+/// A finding's fix under its message: what it does and the flags that apply it, or why it cannot be made.
+fn fix_note(fix: &FixReport) -> String {
+    let how = match (&fix.not_applicable, fix.applicability) {
+        (Some(why), _) => format!("no automatic fix here: {}", escape(why)),
+        (None, Applicability::Safe) => "<code>--fix</code>".to_string(),
+        (None, Applicability::Unsafe) => "<code>--fix --unsafe-fixes</code>".to_string(),
+    };
+    let class = match fix.applicability {
+        Applicability::Safe => "safe",
+        Applicability::Unsafe => "unsafe",
+    };
+    format!(
+        "<div class=\"fix {class}\">[*] fix: {} ({how})</div>",
+        escape(&fix.description)
+    )
+}
+
 fn findings_table(out: &mut String, validation: &Validation, order: &[usize]) {
     let report = &validation.report;
     out.push_str("<section id=\"findings\" class=\"panel\">\n<h2>Findings</h2>\n");
@@ -406,9 +424,10 @@ fn findings_table(out: &mut String, validation: &Validation, order: &[usize]) {
         let help = f.help.as_deref().map_or(String::new(), |h| {
             format!("<div class=\"help\">{}</div>", escape(h))
         });
+        let fix = f.fix.as_ref().map_or(String::new(), fix_note);
         let _ = writeln!(
             out,
-            "<tr id=\"finding-{i}\" class=\"sev-{cls}\"><td><span class=\"sev {cls}\">{}</span></td><td class=\"rule\"><code>{}</code><span>{}</span></td><td>{}</td><td class=\"msg\">{}{help}</td><td class=\"loc\">{location}</td></tr>",
+            "<tr id=\"finding-{i}\" class=\"sev-{cls}\"><td><span class=\"sev {cls}\">{}</span></td><td class=\"rule\"><code>{}</code><span>{}</span></td><td>{}</td><td class=\"msg\">{}{help}{fix}</td><td class=\"loc\">{location}</td></tr>",
             f.severity.label(),
             escape(&f.rule),
             escape(&f.name),
@@ -1583,6 +1602,7 @@ table.findings{width:100%;border-collapse:collapse;font-size:13px}
 .findings .rule span{color:var(--muted);font-size:12px;display:block}
 .findings .msg{overflow-wrap:anywhere;max-width:560px}
 .findings .help{color:var(--muted);font-size:12px;margin-top:2px}
+.findings .fix{font-size:12px;margin-top:2px}
 .findings .loc{white-space:nowrap;font-family:ui-monospace,SFMono-Regular,Menlo,Consolas,monospace;font-size:12px}
 .plot-row{display:flex;flex-wrap:wrap;gap:18px;align-items:flex-start}
 .figure{margin:0;flex:1 1 380px;min-width:0}
@@ -1750,6 +1770,17 @@ mod tests {
             );
         }
         assert!(html.contains("class=\"bar fail\""), "the weak joint's bar");
+        // A finding's fix is under its message, with the flags that apply it.
+        let fixed = report
+            .findings
+            .iter()
+            .filter_map(|f| f.fix.as_ref())
+            .collect::<Vec<_>>();
+        assert!(!fixed.is_empty(), "the weak joint's effort fix");
+        for fix in fixed {
+            assert!(html.contains(&format!("[*] fix: {}", escape(&fix.description))));
+        }
+        assert!(html.contains("(<code>--fix --unsafe-fixes</code>)"));
         for (i, f) in report.findings.iter().enumerate() {
             assert!(html.contains(&format!("<tr id=\"finding-{i}\"")), "row {i}");
             assert!(html.contains(&escape(&f.message)), "message {i}");
