@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Builds the VS Code extension (editors/vscode: a client that starts `urdf_validate server`) into
+# editors/vscode/urdf-validate.vsix with the machine's Node.js and npm: npm ci (the lock file's versions),
+# tsc, its unit tests, vsce package; then checks the package holds the compiled client and its runtime
+# dependency, and that the client loads (with a stand-in for the `vscode` module, which only VS Code has).
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root/editors/vscode"
+
+command -v npm >/dev/null 2>&1 || {
+    echo "build-vscode: npm not found (install Node.js 20 or later)" >&2
+    exit 1
+}
+node --version
+npm ci --no-audit --no-fund
+npm run compile
+npm test
+rm -f urdf-validate.vsix
+npm run package </dev/null
+
+listing="$(unzip -l urdf-validate.vsix)"
+for wanted in extension/package.json extension/out/extension.js \
+    extension/node_modules/vscode-languageclient/package.json; do
+    grep -q "$wanted" <<<"$listing" || {
+        echo "build-vscode: $wanted missing from urdf-validate.vsix" >&2
+        exit 1
+    }
+done
+
+node - <<'JS'
+const Module = require("node:module");
+const load = Module._load;
+// Any property of the stand-in is a constructible function whose properties are stand-ins too.
+const standIn = () =>
+  new Proxy(function () {}, {
+    get: (target, key) => (key === "prototype" ? target.prototype : standIn()),
+  });
+Module._load = function (request, ...rest) {
+  return request === "vscode" ? standIn() : load.call(this, request, ...rest);
+};
+const extension = require("./out/extension.js");
+for (const name of ["activate", "deactivate"]) {
+  if (typeof extension[name] !== "function") throw new Error(`out/extension.js exports no ${name}()`);
+}
+const patterns = extension.DOCUMENT_SELECTOR.map((s) => s.pattern).filter(Boolean);
+if (!patterns.includes("**/*.{urdf,xacro,sdf,world}")) throw new Error(`selector: ${patterns}`);
+console.log("build-vscode: the client loads; it serves", patterns.join(", "));
+JS
+echo "build-vscode: $(du -h urdf-validate.vsix | cut -f1) editors/vscode/urdf-validate.vsix"
