@@ -727,7 +727,7 @@ fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
             Some(b"f") => {
                 triangles = triangles.saturating_add(tokens.len().saturating_sub(3));
                 if let Some(list) = faces.as_mut() {
-                    if !obj_face(&tokens[1..], &indices, list) {
+                    if !obj_face(&tokens[1..], &indices, &sink.vertices, list) {
                         faces = None;
                     }
                 }
@@ -743,10 +743,17 @@ fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
     })
 }
 
-/// Add an OBJ face's triangles (a fan from its first vertex, as Drake's OBJ reader triangulates) to
-/// `faces`; `false` when a corner names no vertex read so far (1-based, or negative: counted back from
-/// the last) or the face has fewer than three corners.
-fn obj_face(corners: &[&[u8]], indices: &[u32], faces: &mut Vec<[u32; 3]>) -> bool {
+/// Add an OBJ face's triangles to `faces` as Drake's OBJ reader (tinyobjloader) splits them: a quad along
+/// its shorter diagonal (which matters when it is not planar), a larger polygon as a fan from its first
+/// vertex (tinyobjloader clips ears; the two agree for a planar convex polygon). `false` when a corner
+/// names no vertex read so far (1-based, or negative: counted back from the last) or the face has fewer
+/// than three corners.
+fn obj_face(
+    corners: &[&[u8]],
+    indices: &[u32],
+    vertices: &[[f64; 3]],
+    faces: &mut Vec<[u32; 3]>,
+) -> bool {
     let vertex = |token: &[u8]| -> Option<u32> {
         let first = token.split(|&b| b == b'/').next()?;
         let n: i64 = std::str::from_utf8(first).ok()?.parse().ok()?;
@@ -768,6 +775,18 @@ fn obj_face(corners: &[&[u8]], indices: &[u32], faces: &mut Vec<[u32; 3]>) -> bo
     };
     if corners.len() < 3 {
         return false;
+    }
+    if let &[a, b, c, d] = corners.as_slice() {
+        let squared = |i: u32, j: u32| match (vertices.get(i as usize), vertices.get(j as usize)) {
+            (Some(p), Some(q)) => (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>(),
+            _ => f64::INFINITY,
+        };
+        if squared(a, c) <= squared(b, d) {
+            faces.extend([[a, b, c], [a, c, d]]);
+        } else {
+            faces.extend([[a, b, d], [b, c, d]]);
+        }
+        return true;
     }
     for k in 1..corners.len() - 1 {
         faces.push([corners[0], corners[k], corners[k + 1]]);
