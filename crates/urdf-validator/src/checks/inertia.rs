@@ -75,7 +75,7 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
             let fix = positive_mass
                 .and_then(|m| inertia_fix::replace_tensor(inertial, inertia, &geometry().ok()?, m));
             findings.push(finding.with_fix_option(fix));
-        } else if let (Some(m), Ok(g)) = (positive_mass, geometry()) {
+        } else if let (true, Some(m), Ok(g)) = (moving, positive_mass, geometry()) {
             findings.extend(
                 against_geometry(inertial, inertia, &g, m, &owner).map(|f| {
                     f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, &g, m))
@@ -87,7 +87,9 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
 }
 
 /// U209 when the declared tensor cannot be that of a body of mass `mass` inside the geometry's bounding
-/// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's.
+/// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's. Only for
+/// moving links, like the other inertia rules: a rigidly attached link's tensor only adds to its parent's
+/// (and markers, sensors and casters attached so often carry placeholders).
 fn against_geometry(
     inertial: &Inertial,
     inertia: &Inertia,
