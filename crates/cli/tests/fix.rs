@@ -351,7 +351,10 @@ fn pr2_sensor_mount_link_gets_its_geometrys_inertia() {
     let file = dir.join("pr2.urdf");
     std::fs::copy(corpus.join("pr2_description/urdf/pr2.urdf"), &file).unwrap();
     let before = json_report(&file);
-    assert_eq!(findings_about(&before, "U206", "sensor_mount_link").len(), 1);
+    assert_eq!(
+        findings_about(&before, "U206", "sensor_mount_link").len(),
+        1
+    );
     let fix = &findings_about(&before, "U206", "sensor_mount_link")[0]["fix"];
     assert_eq!(fix["applicability"], "unsafe", "{fix}");
     let output = run(&[file.to_str().unwrap(), "--fix", "--unsafe-fixes"]);
@@ -413,7 +416,9 @@ fn spot_links_without_inertial_get_a_guessed_one() {
         .count();
     assert_eq!(left, missing.len() - fixable.len());
     assert!(
-        rules_of(&after, true).iter().all(|r| !["U201", "U208", "U209"].contains(&r.as_str())),
+        rules_of(&after, true)
+            .iter()
+            .all(|r| !["U201", "U208", "U209"].contains(&r.as_str())),
         "{:?}",
         rules_of(&after, true)
     );
