@@ -279,3 +279,59 @@ fn a_mirrored_stretched_placed_mesh_is_the_mirrored_solid() {
     assert!(close(i[2][2], 5.0 / 12.0), "{i:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// U206 on a link whose `<inertial>` has no `<origin>`, geometry off the link origin: the fix writes the
+/// box's tensor at the declared mass and inserts the origin at the box's centre, as Drake's fix_inertia
+/// does; validated again, no inertia finding is left.
+#[test]
+fn the_u206_fix_writes_the_geometrys_tensor_and_origin() {
+    use urdf_validator::diagnostics::fix::apply;
+    let urdf = r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="12"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3"/>
+    </inertial>
+    <collision>
+      <origin xyz="0 0 0.5"/>
+      <geometry><box size="0.1 0.2 1"/></geometry>
+    </collision>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1000" velocity="1"/>
+  </joint>
+</robot>
+"#;
+    let path = Path::new("r.urdf");
+    let options = urdf_validator::Options::default();
+    let report = urdf_validator::validate_text(urdf.to_string(), path, &options)
+        .unwrap()
+        .report;
+    let finding = report.findings.iter().find(|f| f.rule == "U206").unwrap();
+    let fix = finding.fix.as_ref().expect("a fix");
+    let edits: Vec<_> = fix.edits.iter().map(|e| e.edit.clone()).collect();
+    let (fixed, dropped) = apply(urdf, &edits);
+    assert!(dropped.is_empty());
+    // 12 kg box 0.1 × 0.2 × 1: Ixx = 12 (0.04 + 1)/12 = 1.04, Iyy = 12 (0.01 + 1)/12 = 1.01,
+    // Izz = 12 (0.01 + 0.04)/12 = 0.05.
+    assert!(
+        fixed.contains(r#"<inertia ixx="1.04" ixy="0" ixz="0" iyy="1.01" iyz="0" izz="0.05"/>"#),
+        "{fixed}"
+    );
+    assert!(
+        fixed.contains("<inertial>\n      <origin xyz=\"0 0 0.5\" rpy=\"0 0 0\"/>\n      <mass"),
+        "{fixed}"
+    );
+    let again = urdf_validator::validate_text(fixed, path, &options)
+        .unwrap()
+        .report;
+    let left: Vec<_> = again
+        .findings
+        .iter()
+        .filter(|f| ["U204", "U205", "U206", "U208", "U209"].contains(&f.rule.as_str()))
+        .map(|f| &f.message)
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}
