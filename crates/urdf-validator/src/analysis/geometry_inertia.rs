@@ -120,28 +120,9 @@ pub fn of_link(link: &Link, assets: &Assets) -> Result<GeometryInertia, NoGeomet
         };
         let local = shape_solid(&geometry.value, assets)?;
         hulls.extend(local.hull);
-        let placement = pose_isometry(&shape.origin);
-        let r = placement.rotation.to_rotation_matrix();
-        let m = r.matrix();
-        let rows = [0, 1, 2].map(|a| [m[(a, 0)], m[(a, 1)], m[(a, 2)]]);
-        let t = placement.translation.vector;
-        let t = [t.x, t.y, t.z];
+        let (rows, t) = placement(shape);
         total = total.plus(&local.integrals.transformed(rows).translated(t));
-        let (low, high) = local.bounds;
-        for corner in 0..8 {
-            let p = [0, 1, 2].map(|k| {
-                if corner >> k & 1 == 0 {
-                    low[k]
-                } else {
-                    high[k]
-                }
-            });
-            for a in 0..3 {
-                let q = rows[a][0] * p[0] + rows[a][1] * p[1] + rows[a][2] * p[2] + t[a];
-                bounds.0[a] = bounds.0[a].min(q);
-                bounds.1[a] = bounds.1[a].max(q);
-            }
-        }
+        widen(&mut bounds, shape, local.bounds);
     }
     if !(total.is_finite() && total.volume > 0.0) {
         return Err(NoGeometry::Unknown(format!(
@@ -155,6 +136,52 @@ pub fn of_link(link: &Link, assets: &Assets) -> Result<GeometryInertia, NoGeomet
         hulls,
         bounds,
     })
+}
+
+/// A box in the link frame (min, max) holding every collision and visual shape of `link` whose size is
+/// known (a mesh that cannot be read is left out); `None` when there is none.
+pub fn bounds_of_all_shapes(link: &Link, assets: &Assets) -> Option<([f64; 3], [f64; 3])> {
+    let mut bounds = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for shape in link.collisions.iter().chain(&link.visuals) {
+        let Some(geometry) = &shape.geometry else {
+            continue;
+        };
+        if let Ok(local) = shape_solid(&geometry.value, assets) {
+            widen(&mut bounds, shape, local.bounds);
+        }
+    }
+    bounds.0.iter().all(|v| v.is_finite()).then_some(bounds)
+}
+
+/// A shape's placement in the link frame: rotation rows and translation.
+fn placement(shape: &Shape) -> ([[f64; 3]; 3], [f64; 3]) {
+    let placement = pose_isometry(&shape.origin);
+    let m = *placement.rotation.to_rotation_matrix().matrix();
+    let t = placement.translation.vector;
+    (
+        [0, 1, 2].map(|a| [m[(a, 0)], m[(a, 1)], m[(a, 2)]]),
+        [t.x, t.y, t.z],
+    )
+}
+
+/// Grow `bounds` to hold the box `local` of `shape`, placed in the link frame.
+fn widen(bounds: &mut ([f64; 3], [f64; 3]), shape: &Shape, local: ([f64; 3], [f64; 3])) {
+    let (rows, t) = placement(shape);
+    let (low, high) = local;
+    for corner in 0..8 {
+        let p = [0, 1, 2].map(|k| {
+            if corner >> k & 1 == 0 {
+                low[k]
+            } else {
+                high[k]
+            }
+        });
+        for a in 0..3 {
+            let q = rows[a][0] * p[0] + rows[a][1] * p[1] + rows[a][2] * p[2] + t[a];
+            bounds.0[a] = bounds.0[a].min(q);
+            bounds.1[a] = bounds.1[a].max(q);
+        }
+    }
 }
 
 /// One shape in its own frame.

@@ -8,7 +8,7 @@ use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
-use crate::urdf::robot::{Inertia, Inertial, Robot};
+use crate::urdf::robot::{Inertia, Inertial, Link, Robot};
 
 use super::inertia_fix;
 
@@ -77,7 +77,7 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
             findings.push(finding.with_fix_option(fix));
         } else if let (true, Some(m), Ok(g)) = (moving, positive_mass, geometry()) {
             findings.extend(
-                against_geometry(inertial, inertia, &g, m, &owner).map(|f| {
+                against_geometry(link, assets, inertial, inertia, &g, m, &owner).map(|f| {
                     f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, &g, m))
                 }),
             );
@@ -90,7 +90,10 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
 /// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's. Only for
 /// moving links, like the other inertia rules: a rigidly attached link's tensor only adds to its parent's
 /// (and markers, sensors and casters attached so often carry placeholders).
+#[allow(clippy::too_many_arguments)]
 fn against_geometry(
+    link: &Link,
+    assets: &Assets,
     inertial: &Inertial,
     inertia: &Inertia,
     geometry: &GeometryInertia,
@@ -100,7 +103,16 @@ fn against_geometry(
     let declared = principal_moments(&inertia.matrix())?;
     let from_geometry = principal_moments(&geometry.inertia(mass))?;
     let what = geometry_words(geometry);
-    if let Some(problem) = outside_bounds(inertial, inertia, geometry, mass) {
+    // The box of the shapes the inertia comes from first; when the tensor does not fit it, the box of
+    // every shape (collision shapes are often smaller than the part, its visuals closer to it).
+    let outside = outside_bounds(inertial, inertia, geometry.bounds, mass).and_then(|problem| {
+        match geometry_inertia::bounds_of_all_shapes(link, assets) {
+            Some(all) if all != geometry.bounds => outside_bounds(inertial, inertia, all, mass)
+                .map(|p| (p, "all its collision and visual shapes".to_string())),
+            _ => Some((problem, what.clone())),
+        }
+    });
+    if let Some((problem, what)) = outside {
         return Some(Finding::new(
             &rules::INERTIA_OUTSIDE_GEOMETRY,
             inertia.span,
@@ -137,13 +149,13 @@ fn geometry_words(geometry: &GeometryInertia) -> String {
     words
 }
 
-/// Why no body of `mass` inside `geometry`'s bounding box (widened by 1 % of its size on each side, for
+/// Why no body of `mass` inside `bounds` (widened by 1 % of its size on each side, for
 /// rounded numbers) has the declared tensor and centre of mass, if none can: by the Bhatia–Davis inequality a
 /// mass distribution on [lo, hi] with mean c has ∫(x − c)² dm ≤ m (c − lo)(hi − c).
 fn outside_bounds(
     inertial: &Inertial,
     inertia: &Inertia,
-    geometry: &GeometryInertia,
+    bounds: ([f64; 3], [f64; 3]),
     mass: f64,
 ) -> Option<String> {
     let placement = pose_isometry(&inertial.origin);
@@ -153,7 +165,7 @@ fn outside_bounds(
     // Second moments S = ½ tr(I) 1 − I, about the centre of mass, along the link axes.
     let half_trace = 0.5 * in_link.trace();
     let com = placement.translation.vector;
-    let (low, high) = geometry.bounds;
+    let (low, high) = bounds;
     let axes = ["x", "y", "z"];
     for k in 0..3 {
         let margin = 0.01 * (high[k] - low[k]);

@@ -224,7 +224,7 @@ rules! {
         fix: "Use the CAD tensor; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass and moves the inertial origin to the geometry's centroid, as Drake's `fix_inertia` does.",
     }
     INERTIA_OUTSIDE_GEOMETRY = "U209" "inertia-outside-geometry" Warn {
-        what: "A moving link's declared inertia cannot be that of any body of its mass inside its geometry's bounding box: a second moment along a link axis exceeds m·(c − lo)(hi − c) for the declared centre of mass c (the largest any mass distribution on [lo, hi] can have), or the centre of mass is outside the box.",
+        what: "A moving link's declared inertia cannot be that of any body of its mass inside the bounding box of its shapes (those its inertia would come from, and when the tensor does not fit there, all its collision and visual shapes, since collision shapes are often smaller than the part): a second moment along a link axis exceeds m·(c − lo)(hi − c) for the declared centre of mass c (the largest any mass distribution on [lo, hi] can have), or the centre of mass is outside the box.",
         why: "The tensor is not this link's: usually units (g·mm², kg·mm²), a mass/inertia mix-up or a tensor about the wrong point. Simulators accept it and the link moves as a much larger body would.",
         fix: "Use the CAD tensor in kg·m² about the centre of mass; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass, as Drake's `fix_inertia` does.",
     }
