@@ -313,3 +313,113 @@ fn the_reference_robots_fixes_give_valid_files() {
     assert!(diff.contains("+++ "), "{diff}");
     assert!(!text(&output.stderr).contains("would not be well-formed XML"));
 }
+
+/// Copy the folder `from` into `to`, recursively.
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), &target).unwrap();
+        }
+    }
+}
+
+/// The findings of `rule` about `link` in a JSON report.
+fn findings_about<'a>(report: &'a Value, rule: &str, link: &str) -> Vec<&'a Value> {
+    let quoted = format!("Link '{link}'");
+    report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["rule"] == rule && f["message"].as_str().unwrap().contains(&quoted))
+        .collect()
+}
+
+/// PR2's `sensor_mount_link` (example-robot-data) breaks A + B ≥ C (0.001 + 0.001 < 0.01): the unsafe fix
+/// writes the inertia of its 1 cm visual box at the declared 0.05 kg (m s²/6 = 8.33333e-7), the finding is
+/// gone and the file parses; the caster wheels' U209 (0.0124 kg·m² on a 0.44 kg, 16 cm wheel) is fixed too.
+#[test]
+fn pr2_sensor_mount_link_gets_its_geometrys_inertia() {
+    let Some(corpus) = common::corpus() else {
+        return;
+    };
+    let dir = scratch("pr2");
+    let file = dir.join("pr2.urdf");
+    std::fs::copy(corpus.join("pr2_description/urdf/pr2.urdf"), &file).unwrap();
+    let before = json_report(&file);
+    assert_eq!(
+        findings_about(&before, "U206", "sensor_mount_link").len(),
+        1
+    );
+    let fix = &findings_about(&before, "U206", "sensor_mount_link")[0]["fix"];
+    assert_eq!(fix["applicability"], "unsafe", "{fix}");
+    let output = run(&[file.to_str().unwrap(), "--fix", "--unsafe-fixes"]);
+    assert!(output.status.code().is_some(), "{}", text(&output.stderr));
+    let fixed = std::fs::read_to_string(&file).unwrap();
+    assert!(roxmltree::Document::parse(&fixed).is_ok());
+    assert!(
+        fixed.contains(r#"<inertia ixx="8.33333e-7" ixy="0" ixz="0" iyy="8.33333e-7" iyz="0" izz="8.33333e-7"/>"#),
+        "{fixed}"
+    );
+    let after = json_report(&file);
+    for rule in ["U204", "U205", "U206", "U208", "U209"] {
+        let left: Vec<&Value> = after["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| f["rule"] == rule)
+            .collect();
+        assert!(left.is_empty(), "{rule} left after the fix: {left:?}");
+    }
+}
+
+/// Spot (../shared/robots) has moving links without `<inertial>` (U201): the unsafe fix inserts one guessed
+/// from the link's collision meshes at 1000 kg/m³, the findings are gone and the file parses.
+#[test]
+fn spot_links_without_inertial_get_a_guessed_one() {
+    let Some(robots) = common::shared_robots() else {
+        return;
+    };
+    let dir = scratch("spot");
+    copy_tree(&robots.join("spot/spot_description"), &dir);
+    let file = dir.join("model.urdf");
+    let before = json_report(&file);
+    let missing: Vec<&Value> = before["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["rule"] == "U201")
+        .collect();
+    // Links without geometry have nothing to guess from: no fix.
+    let fixable: Vec<&&Value> = missing.iter().filter(|f| !f["fix"].is_null()).collect();
+    assert!(!fixable.is_empty(), "{missing:?}");
+    for finding in &fixable {
+        let description = finding["fix"]["description"].as_str().unwrap();
+        assert!(
+            description.contains("guessed") && description.contains("1000 kg/m³"),
+            "{description}"
+        );
+    }
+    run(&[file.to_str().unwrap(), "--fix", "--unsafe-fixes"]);
+    let fixed = std::fs::read_to_string(&file).unwrap();
+    assert!(roxmltree::Document::parse(&fixed).is_ok());
+    let after = json_report(&file);
+    let left = after["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["rule"] == "U201")
+        .count();
+    assert_eq!(left, missing.len() - fixable.len());
+    assert!(
+        rules_of(&after, true)
+            .iter()
+            .all(|r| !["U201", "U208", "U209"].contains(&r.as_str())),
+        "{:?}",
+        rules_of(&after, true)
+    );
+}

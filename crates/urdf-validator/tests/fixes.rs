@@ -1,6 +1,7 @@
 //! Fixes on real files: every fix of every URDF of the example-robot-data corpus and the reference robots,
 //! applied to the text in memory (safe and unsafe), gives a file that loads, differs only by the edits, and
-//! in which no finding of the kinds fixed has a fix left to apply (idempotent).
+//! in which no finding of the kinds fixed has a fix left to apply (idempotent; effort fixes computed in the
+//! same pass as an inertia fix that moved a centre of mass take a second pass, which must settle).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
 
@@ -73,10 +74,27 @@ fn fix_round_trip(path: &Path) -> usize {
     }
     rebuilt.push_str(&text[at..]);
     assert_eq!(rebuilt, fixed);
-    let again = validate_text(fixed, path, &options())
+    let again = validate_text(fixed.clone(), path, &options())
         .unwrap_or_else(|e| panic!("{}: the fixed text does not load: {e}", path.display()));
-    let (left, _) = fixes_of(&again.report, path);
+    let (left, left_edits) = fixes_of(&again.report, path);
     let still: Vec<&String> = left.intersection(&rules).collect();
+    // An inertia fix moves a link's centre of mass to its geometry's, so the gravity torques the effort
+    // fixes of the same pass were computed from change: those take a second pass, which must settle.
+    let inertia_fixed = rules.iter().any(|r| INERTIA_FIXES.contains(&r.as_str()));
+    let only_efforts = still.iter().all(|r| EFFORT_FIXES.contains(&r.as_str()));
+    if inertia_fixed && only_efforts && !still.is_empty() {
+        let (second, dropped) = apply(&fixed, &left_edits);
+        assert!(dropped.is_empty(), "{}: {dropped:?}", path.display());
+        let third = validate_text(second, path, &options()).unwrap();
+        let (left, _) = fixes_of(&third.report, path);
+        let still: Vec<&String> = left.intersection(&rules).collect();
+        assert!(
+            still.is_empty(),
+            "{}: after two passes, {still:?} still have fixes to apply",
+            path.display()
+        );
+        return edits.len();
+    }
     assert!(
         still.is_empty(),
         "{}: after the fixes, {still:?} still have fixes to apply",
@@ -84,6 +102,11 @@ fn fix_round_trip(path: &Path) -> usize {
     );
     edits.len()
 }
+
+/// Fixes that rewrite a link's inertia and centre of mass from its geometry.
+const INERTIA_FIXES: &[&str] = &["U201", "U204", "U205", "U206", "U208", "U209"];
+/// Fixes computed from the gravity torques.
+const EFFORT_FIXES: &[&str] = &["U701", "U702"];
 
 #[test]
 fn every_corpus_and_reference_urdf_fixes_cleanly_and_idempotently() {

@@ -252,6 +252,8 @@ const COVERED: &[&str] = &[
     u205_inertia_not_positive_definite::CODE,
     u206_inertia_triangle_inequality::CODE,
     u207_massless_geometry::CODE,
+    u208_inertia_far_from_geometry::CODE,
+    u209_inertia_outside_geometry::CODE,
     u301_missing_limit::CODE,
     u302_incomplete_limit::CODE,
     u303_missing_effort_velocity::CODE,
@@ -810,6 +812,48 @@ rule_case! {
   </joint>
 </robot>
 "#,
+}
+
+/// A 0.2 × 0.2 × 0.2 m, 8 kg cube (geometry's moments 0.0533 kg·m²) with the declared tensor `ixx iyy izz`.
+fn cube_link(ixx: &str, iyy: &str, izz: &str) -> String {
+    format!(
+        r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="8"/>
+      <inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>
+    </inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"#
+    )
+}
+
+rule_case! {
+    // A placeholder 1e-3 on an 8 kg cube: 53× below the geometry's.
+    u208_inertia_far_from_geometry, "U208",
+    fires: cube_link("0.001", "0.001", "0.001"),
+    at: (6, 7, "<inertia"),
+    // 2.5× off: within the factor 3.
+    clean: cube_link("0.13", "0.13", "0.13"),
+}
+
+rule_case! {
+    // 1 kg·m² on 8 kg in a 0.2 m box: the second moment along x would be 0.5 kg·m², and no body of 8 kg
+    // inside [-0.1, 0.1] centred at 0 has more than 8 × 0.1² = 0.08.
+    u209_inertia_outside_geometry, "U209",
+    fires: cube_link("1", "1", "1"),
+    at: (6, 7, "<inertia"),
+    // 0.15: more than 3× the cube's (U208), still possible inside the box (all mass on the faces).
+    clean: cube_link("0.15", "0.15", "0.15"),
 }
 
 rule_case! {
@@ -1668,7 +1712,7 @@ const CLEAN_ARM: &str = r#"<robot name="arm">
   <link name="base">
     <inertial>
       <mass value="5"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+      <inertia ixx="0.021" ixy="0" ixz="0" iyy="0.021" iyz="0" izz="0.033"/>
     </inertial>
     <collision>
       <geometry><box size="0.2 0.2 0.1"/></geometry>
@@ -1681,6 +1725,7 @@ const CLEAN_ARM: &str = r#"<robot name="arm">
       <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"/>
     </inertial>
     <collision>
+      <origin xyz="0 0 0.25"/>
       <geometry><cylinder radius="0.03" length="0.5"/></geometry>
     </collision>
   </link>
@@ -2160,7 +2205,7 @@ fn a_texture_without_filename_parses_without_a_finding() {
   <link name="base">
     <inertial>
       <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+      <inertia ixx="0.17" ixy="0" ixz="0" iyy="0.17" iyz="0" izz="0.17"/>
     </inertial>
     <visual>
       <geometry><box size="1 1 1"/></geometry>

@@ -10,9 +10,12 @@ use urdf_validator::analysis::Overrides;
 use urdf_validator::report::{Confidence, Report, Status};
 use urdf_validator::{validate_text, Options};
 
+/// An `<inertial>` of `mass` at `xyz`, with the tensor of a wheel (the only moving links here: their
+/// tensor fits their geometry, so U208/U209 stay quiet): axle along y, radius 0.1 m, width 0.04 m.
 fn inertial(mass: f64, xyz: [f64; 3]) -> String {
+    let (across, axle) = (0.0026 * mass, 0.005 * mass);
     format!(
-        r#"<inertial><origin xyz="{} {} {}"/><mass value="{mass}"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>"#,
+        r#"<inertial><origin xyz="{} {} {}"/><mass value="{mass}"/><inertia ixx="{across}" ixy="0" ixz="0" iyy="{axle}" iyz="0" izz="{across}"/></inertial>"#,
         xyz[0], xyz[1], xyz[2]
     )
 }

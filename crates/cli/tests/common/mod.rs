@@ -34,3 +34,29 @@ pub fn shared_robots() -> Option<PathBuf> {
         }
     }
 }
+
+/// example-robot-data's robots folder (`$URDF_VALIDATOR_CORPUS`, else inside the test venv); `None` (with
+/// a message) when absent outside CI.
+pub fn corpus() -> Option<PathBuf> {
+    const VAR: &str = "URDF_VALIDATOR_CORPUS";
+    let dir = std::env::var_os(VAR).map(PathBuf::from).or_else(|| {
+        std::fs::read_dir(repo_root().join(".venv/lib"))
+            .ok()?
+            .flatten()
+            .map(|e| {
+                e.path()
+                    .join("site-packages/cmeel.prefix/share/example-robot-data/robots")
+            })
+            .find(|p| p.is_dir())
+    });
+    match dir {
+        Some(dir) if dir.is_dir() => Some(dir),
+        _ if std::env::var_os("CI").is_some() => {
+            panic!("the example-robot-data corpus is absent under CI (set {VAR}, or run scripts/test.sh)")
+        }
+        _ => {
+            eprintln!("skipping: the example-robot-data corpus is absent (set {VAR}, or run scripts/test.sh)");
+            None
+        }
+    }
+}

@@ -7,6 +7,7 @@ pub mod arms;
 pub mod classify;
 pub mod collision;
 pub mod deep;
+pub mod geometry_inertia;
 pub(crate) mod mass;
 pub mod pose;
 pub mod profiles;

@@ -1,27 +1,44 @@
-//! Mass and inertia plausibility: missing inertials on moving links, signs, positive definiteness and the
-//! triangle inequality on the principal moments.
+//! Mass and inertia plausibility: missing inertials on moving links, signs, positive definiteness, the
+//! triangle inequality on the principal moments, and the declared tensor against the link's geometry.
+//! Findings the geometry can resolve carry the fix that writes its inertia ([`super::inertia_fix`]).
 
+use crate::analysis::geometry_inertia::{self, principal_moments, GeometryInertia};
+use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
+use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
-use crate::urdf::robot::{Inertia, Robot};
+use crate::urdf::robot::{Inertia, Inertial, Link, Robot};
+
+use super::inertia_fix;
 
 /// Relative slack on `A + B ≥ C`: values printed with ~6 significant digits round by ~1e-6, and thin plates
 /// sit exactly on the boundary.
 const TRIANGLE_TOLERANCE: f64 = 1e-4;
 
-pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
+/// Principal moments further apart than this factor from the geometry's are U208.
+const FAR_FACTOR: f64 = 3.0;
+
+pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
     for (i, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
         let moving = model.is_moving(robot, LinkId(i));
+        let geometry = || geometry_inertia::of_link(link, assets);
         let Some(inertial) = &link.inertial else {
             if moving {
-                findings.push(Finding::new(
-                    &rules::MISSING_INERTIAL,
-                    link.span,
-                    format!("{owner} has no inertial block (mass unknown) — will cause physics engine instability"),
-                ));
+                findings.push(
+                    Finding::new(
+                        &rules::MISSING_INERTIAL,
+                        link.span,
+                        format!("{owner} has no inertial block (mass unknown) — will cause physics engine instability"),
+                    )
+                    .with_fix_option(
+                        geometry()
+                            .ok()
+                            .map(|g| inertia_fix::insert_inertial(link, &g)),
+                    ),
+                );
             } else if !link.visuals.is_empty() || !link.collisions.is_empty() {
                 findings.push(Finding::new(
                     &rules::MASSLESS_GEOMETRY,
@@ -53,11 +70,131 @@ pub(super) fn check(robot: &Robot, model: &Model) -> Vec<Finding> {
             continue;
         };
         let massive = mass.is_none_or(|m| m.value > 0.0);
+        let positive_mass = mass.map(|m| m.value).filter(|&m| m > 0.0);
         if let Some(finding) = check_tensor(inertia, &owner, moving && massive) {
-            findings.push(finding);
+            let fix = positive_mass
+                .and_then(|m| inertia_fix::replace_tensor(inertial, inertia, &geometry().ok()?, m));
+            findings.push(finding.with_fix_option(fix));
+        } else if let (true, Some(m), Ok(g)) = (moving, positive_mass, geometry()) {
+            findings.extend(
+                against_geometry(link, assets, inertial, inertia, &g, m, &owner).map(|f| {
+                    f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, &g, m))
+                }),
+            );
         }
     }
     findings
+}
+
+/// U209 when the declared tensor cannot be that of a body of mass `mass` inside the geometry's bounding
+/// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's. Only for
+/// moving links, like the other inertia rules: a rigidly attached link's tensor only adds to its parent's
+/// (and markers, sensors and casters attached so often carry placeholders).
+#[allow(clippy::too_many_arguments)]
+fn against_geometry(
+    link: &Link,
+    assets: &Assets,
+    inertial: &Inertial,
+    inertia: &Inertia,
+    geometry: &GeometryInertia,
+    mass: f64,
+    owner: &str,
+) -> Option<Finding> {
+    let declared = principal_moments(&inertia.matrix())?;
+    let from_geometry = principal_moments(&geometry.inertia(mass))?;
+    let what = geometry_words(geometry);
+    // The box of the shapes the inertia comes from first; when the tensor does not fit it, the box of
+    // every shape (collision shapes are often smaller than the part, its visuals closer to it).
+    let outside = outside_bounds(inertial, inertia, geometry.bounds, mass).and_then(|problem| {
+        match geometry_inertia::bounds_of_all_shapes(link, assets) {
+            Some(all) if all != geometry.bounds => outside_bounds(inertial, inertia, all, mass)
+                .map(|p| (p, "all its collision and visual shapes".to_string())),
+            _ => Some((problem, what.clone())),
+        }
+    });
+    if let Some((problem, what)) = outside {
+        return Some(Finding::new(
+            &rules::INERTIA_OUTSIDE_GEOMETRY,
+            inertia.span,
+            format!("{owner}: the declared inertia cannot be that of a {} kg body inside the bounding box of {what}: {problem}", short_number(mass)),
+        ));
+    }
+    let factor = declared
+        .iter()
+        .zip(&from_geometry)
+        .filter(|(d, g)| **d > 0.0 && **g > 0.0)
+        .map(|(d, g)| (d / g).max(g / d))
+        .fold(1.0, f64::max);
+    (factor > FAR_FACTOR).then(|| {
+        let list = |m: [f64; 3]| m.map(short_number).join(", ");
+        Finding::new(
+            &rules::INERTIA_FAR_FROM_GEOMETRY,
+            inertia.span,
+            format!(
+                "{owner}: declared principal moments ({}) kg·m² are up to {factor:.1}× from those of {what} filled uniformly at the declared {} kg ({})",
+                list(declared),
+                short_number(mass),
+                list(from_geometry)
+            ),
+        )
+    })
+}
+
+/// `the collision geometry`, with the meshes integrated as their hull.
+fn geometry_words(geometry: &GeometryInertia) -> String {
+    let mut words = format!("its {} geometry", geometry.role.label());
+    if !geometry.hulls.is_empty() {
+        words.push_str(&format!(" ({})", geometry.hulls.join("; ")));
+    }
+    words
+}
+
+/// Why no body of `mass` inside `bounds` (widened by 1 % of its size on each side, for
+/// rounded numbers) has the declared tensor and centre of mass, if none can: by the Bhatia–Davis inequality a
+/// mass distribution on [lo, hi] with mean c has ∫(x − c)² dm ≤ m (c − lo)(hi − c).
+fn outside_bounds(
+    inertial: &Inertial,
+    inertia: &Inertia,
+    bounds: ([f64; 3], [f64; 3]),
+    mass: f64,
+) -> Option<String> {
+    let placement = pose_isometry(&inertial.origin);
+    let r = placement.rotation.to_rotation_matrix().into_inner();
+    let tensor = nalgebra::Matrix3::from_fn(|a, b| inertia.matrix()[a][b]);
+    let in_link = r * tensor * r.transpose();
+    // Second moments S = ½ tr(I) 1 − I, about the centre of mass, along the link axes.
+    let half_trace = 0.5 * in_link.trace();
+    let com = placement.translation.vector;
+    let (low, high) = bounds;
+    let axes = ["x", "y", "z"];
+    for k in 0..3 {
+        let margin = 0.01 * (high[k] - low[k]);
+        let (lo, hi) = (low[k] - margin, high[k] + margin);
+        if !(lo..=hi).contains(&com[k]) {
+            return Some(format!(
+                "its centre of mass is at {} = {} m, outside the box's [{}, {}] m",
+                axes[k],
+                short_number(com[k]),
+                short_number(low[k]),
+                short_number(high[k])
+            ));
+        }
+        let second = half_trace - in_link[(k, k)];
+        let bound = mass * (com[k] - lo) * (hi - com[k]);
+        if second > 1.01 * bound {
+            return Some(format!(
+                "its second moment along the link's {} axis is {} kg·m², more than the {} kg·m² any such body with its centre of mass at {} = {} m can have in the box's [{}, {}] m",
+                axes[k],
+                short_number(second),
+                short_number(bound),
+                axes[k],
+                short_number(com[k]),
+                short_number(low[k]),
+                short_number(high[k])
+            ));
+        }
+    }
+    None
 }
 
 /// One finding at most per tensor: the most basic problem wins (zero, then not positive definite, then the
@@ -122,6 +259,7 @@ mod tests {
     fn tensor(ixx: f64, iyy: f64, izz: f64, ixy: f64) -> Inertia {
         Inertia {
             span: Span::default(),
+            values: [Span::default(); 6],
             ixx,
             ixy,
             ixz: 0.0,

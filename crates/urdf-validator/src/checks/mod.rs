@@ -4,6 +4,7 @@
 
 mod geometry;
 mod inertia;
+mod inertia_fix;
 mod joints;
 mod references;
 
@@ -32,7 +33,7 @@ pub fn run(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
             ),
         ));
     }
-    findings.extend(inertia::check(robot, model));
+    findings.extend(inertia::check(robot, model, assets));
     findings.extend(joints::check(robot, model));
     findings.extend(references::check(robot, model));
     findings.extend(geometry::check(robot, model, assets));

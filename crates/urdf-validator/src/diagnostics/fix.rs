@@ -50,6 +50,15 @@ pub enum Edit {
         /// What to delete.
         span: Span,
     },
+    /// Insert `lines` as the first children of the element at `element` (right after its start tag),
+    /// one per line, indented like the element's other children (only in the file itself, like
+    /// [`Edit::Delete`]). Lines may carry their own further indentation, in steps of two spaces.
+    InsertChild {
+        /// The element's span (it must have an end tag).
+        element: Span,
+        /// The child's lines.
+        lines: Vec<String>,
+    },
 }
 
 /// A byte edit of one text: replace `start..end` with `replacement`.
@@ -82,13 +91,14 @@ impl Edit {
             | Edit::RemoveAttribute { value }
             | Edit::InsertAttributeAfter { value, .. } => *value,
             Edit::Delete { span } => *span,
+            Edit::InsertChild { element, .. } => *element,
         }
     }
 
     /// Whether the edit only makes sense in the text it was written against (not traced into a xacro
     /// source).
     pub fn is_textual(&self) -> bool {
-        matches!(self, Edit::Delete { .. })
+        matches!(self, Edit::Delete { .. } | Edit::InsertChild { .. })
     }
 
     /// The byte edit of `text` when the anchor's text is at `at` in it (`None` when the text around it is
@@ -128,7 +138,83 @@ impl Edit {
                 end,
                 replacement: String::new(),
             }),
+            Edit::InsertChild { lines, .. } => insert_child(text, start, end, lines),
         }
+    }
+}
+
+/// The insertion of `lines` right after the start tag of the element at `start..end` of `text`, indented
+/// like its first child (else two spaces deeper than the element's line); `None` for an element without an
+/// end tag.
+fn insert_child(text: &str, start: usize, end: usize, lines: &[String]) -> Option<TextEdit> {
+    let element = text.get(start..end)?;
+    if !element.starts_with('<') || element.ends_with("/>") {
+        return None;
+    }
+    // The start tag ends at the first '>' outside quotes.
+    let mut quote = None;
+    let close = element.char_indices().find_map(|(i, c)| match (quote, c) {
+        (None, '"' | '\'') => {
+            quote = Some(c);
+            None
+        }
+        (Some(q), c) if c == q => {
+            quote = None;
+            None
+        }
+        (None, '>') => Some(i),
+        _ => None,
+    })?;
+    let at = start + close + 1;
+    let line_start = text.get(..start)?.rfind('\n').map_or(0, |i| i + 1);
+    let own: String = text
+        .get(line_start..start)?
+        .chars()
+        .take_while(|c| c.is_whitespace())
+        .collect();
+    let after = text.get(at..)?;
+    let child = match after
+        .strip_prefix('\n')
+        .or_else(|| after.strip_prefix("\r\n"))
+    {
+        Some(rest) => {
+            let indent: String = rest
+                .chars()
+                .take_while(|c| *c == ' ' || *c == '\t')
+                .collect();
+            if indent.len() > own.len() {
+                indent
+            } else {
+                format!("{own}  ")
+            }
+        }
+        None => format!("{own}  "),
+    };
+    let replacement: String = lines.iter().map(|l| format!("\n{child}{l}")).collect();
+    Some(TextEdit {
+        start: at,
+        end: at,
+        replacement,
+    })
+}
+
+/// `value` rounded to `digits` significant digits, written briefly: plainly from 1e-4 to 1e6
+/// (`0.0123457`), else in exponent notation (`1.66667e-10`), which every URDF parser reads.
+pub fn significant(value: f64, digits: usize) -> String {
+    let exponent = format!("{value:.*e}", digits.saturating_sub(1));
+    let Ok(rounded) = exponent.parse::<f64>() else {
+        return number(value);
+    };
+    if rounded == 0.0 || (1e-4..1e6).contains(&rounded.abs()) {
+        return number(rounded);
+    }
+    // `1.50000e-7` → `1.5e-7`.
+    match exponent.split_once('e') {
+        Some((mantissa, power)) if mantissa.contains('.') => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{power}")
+        }
+        _ => exponent,
     }
 }
 
@@ -285,7 +371,42 @@ mod tests {
     }
 
     #[test]
+    fn a_child_goes_after_the_start_tag_indented_like_its_siblings() {
+        let text = "<robot>\n  <link name=\"a>b\">\n    <visual/>\n  </link>\n</robot>";
+        let element = span_of(text, "<link name=\"a>b\">\n    <visual/>\n  </link>");
+        let edit = Edit::InsertChild {
+            element,
+            lines: vec![
+                "<inertial>".into(),
+                "  <mass value=\"1\"/>".into(),
+                "</inertial>".into(),
+            ],
+        }
+        .resolve(text, element)
+        .expect("an element with an end tag");
+        assert_eq!(
+            apply(text, &[edit]).0,
+            "<robot>\n  <link name=\"a>b\">\n    <inertial>\n      <mass value=\"1\"/>\n    </inertial>\n    <visual/>\n  </link>\n</robot>"
+        );
+        let empty = span_of(text, "<visual/>");
+        assert_eq!(
+            Edit::InsertChild {
+                element: empty,
+                lines: vec![]
+            }
+            .resolve(text, empty),
+            None,
+            "no end tag"
+        );
+    }
+
+    #[test]
     fn numbers_are_written_briefly() {
+        assert_eq!(significant(0.012345678, 6), "0.0123457");
+        assert_eq!(significant(2.0, 6), "2");
+        assert_eq!(significant(1.0 / 6.0 * 1e-9, 6), "1.66667e-10");
+        assert_eq!(significant(-1.5e-7, 6), "-1.5e-7");
+        assert_eq!(significant(0.0, 6), "0");
         assert_eq!(number(1.0), "1");
         assert_eq!(number(-0.5), "-0.5");
         assert_eq!(number(1.0 / 2f64.sqrt()), "0.7071067811865475");

@@ -218,6 +218,16 @@ rules! {
         why: "Its weight is missing from the parent's mass, centre of mass and every torque above it.",
         fix: "Add an `<inertial>` if the part has a real mass; ignore this if it is a massless marker.",
     }
+    INERTIA_FAR_FROM_GEOMETRY = "U208" "inertia-far-from-geometry" Info {
+        what: "A moving link's declared principal moments are more than a factor 3 from those of its geometry (collision shapes, else visuals) filled uniformly at the declared mass.",
+        why: "A tensor copied from another part, left at a placeholder (`1 0 0 1 0 1` on a 60 kg base) or in the wrong units makes the simulated link swing and tip unlike the real one; MuJoCo Menagerie re-derived tidybot's from its mesh for this reason.",
+        fix: "Use the CAD tensor; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass and moves the inertial origin to the geometry's centroid, as Drake's `fix_inertia` does.",
+    }
+    INERTIA_OUTSIDE_GEOMETRY = "U209" "inertia-outside-geometry" Warn {
+        what: "A moving link's declared inertia cannot be that of any body of its mass inside the bounding box of its shapes (those its inertia would come from, and when the tensor does not fit there, all its collision and visual shapes, since collision shapes are often smaller than the part): a second moment along a link axis exceeds m·(c − lo)(hi − c) for the declared centre of mass c (the largest any mass distribution on [lo, hi] can have), or the centre of mass is outside the box.",
+        why: "The tensor is not this link's: usually units (g·mm², kg·mm²), a mass/inertia mix-up or a tensor about the wrong point. Simulators accept it and the link moves as a much larger body would.",
+        fix: "Use the CAD tensor in kg·m² about the centre of mass; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass, as Drake's `fix_inertia` does.",
+    }
     MISSING_LIMIT = "U301" "missing-limit" Critical {
         what: "A revolute or prismatic joint has no `<limit>`.",
         why: "urdfdom refuses the file (`joint is of type REVOLUTE but it does not specify limits`).",

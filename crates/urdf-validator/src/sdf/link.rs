@@ -102,6 +102,7 @@ fn inertial(sink: &mut Sink, el: El, origin: crate::urdf::robot::Pose) -> Inerti
     let inertia = match values {
         [Some(ixx), Some(ixy), Some(ixz), Some(iyy), Some(iyz), Some(izz)] => Some(Inertia {
             span: tensor.map_or(span, |t| sink.span(t)),
+            values: [tensor.map_or(span, |t| sink.span(t)); 6],
             ixx,
             ixy,
             ixz,

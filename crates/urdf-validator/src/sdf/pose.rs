@@ -113,6 +113,7 @@ pub fn to_pose(transform: &Transform, span: Option<Span>) -> Pose {
         rpy: [0.0; 3],
         quat_xyzw: Some([q.i, q.j, q.k, q.w]),
         span,
+        values: Default::default(),
     }
 }
 

@@ -459,11 +459,20 @@ impl Parser {
                 self.numbers::<4>(node, "quat_xyzw", owner).map(|s| s.value)
             }
         };
+        let value = |name: &str| {
+            node.attribute_node(name)
+                .map(|a| Span::from_range(a.range_value()))
+        };
         Pose {
             xyz,
             rpy: rpy.map_or([0.0; 3], |s| s.value),
             quat_xyzw,
             span: Some(span(node)),
+            values: PoseValues {
+                xyz: value("xyz"),
+                rpy: value("rpy"),
+                quat_xyzw: value("quat_xyzw"),
+            },
         }
     }
 
@@ -540,8 +549,13 @@ impl Parser {
                 None => complete = false,
             }
         }
+        let values = NAMES.map(|name| {
+            node.attribute_node(name)
+                .map_or_else(|| span(node), |a| Span::from_range(a.range_value()))
+        });
         complete.then_some(Inertia {
             span: span(node),
+            values,
             ixx: v[0],
             ixy: v[1],
             ixz: v[2],

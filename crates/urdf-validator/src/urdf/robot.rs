@@ -40,6 +40,19 @@ pub struct Pose {
     pub quat_xyzw: Option<[f64; 4]>,
     /// The `<origin>` element, when written.
     pub span: Option<Span>,
+    /// Where its attributes' values are, when written (for fixes that rewrite them).
+    pub values: PoseValues,
+}
+
+/// The spans of an `<origin>`'s attribute values (without quotes), each when written.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PoseValues {
+    /// `xyz`.
+    pub xyz: Option<Span>,
+    /// `rpy`.
+    pub rpy: Option<Span>,
+    /// `quat_xyzw`.
+    pub quat_xyzw: Option<Span>,
 }
 
 /// A `<link>`.
@@ -94,6 +107,9 @@ pub struct Inertia {
     pub iyz: f64,
     /// izz
     pub izz: f64,
+    /// The spans of the six attribute values (without quotes), in the order ixx, ixy, ixz, iyy, iyz, izz
+    /// (SDFormat: the `<inertia>` element for each).
+    pub values: [Span; 6],
 }
 
 impl Inertia {

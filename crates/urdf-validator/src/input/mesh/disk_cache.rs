@@ -13,14 +13,20 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::UNIX_EPOCH;
 
-use super::{MeshData, MeshOptions, MeshSummary, UpAxis, UpAxisPolicy};
+use super::{
+    MeshData, MeshOptions, MeshSolid, MeshSummary, SolidSource, UpAxis, UpAxisPolicy,
+    VolumeIntegrals,
+};
 
-/// First bytes of every entry.
-const MAGIC: &[u8; 8] = b"UVMESH03";
+/// First bytes of every entry (04: the mesh's solid, [`MeshData::solid`], joined the header).
+const MAGIC: &[u8; 8] = b"UVMESH04";
 
 /// Bytes of an entry before its points, besides the key: magic, key length, bounds, triangle count, up
-/// axis, hull flag.
-const HEADER_BYTES: usize = 8 + 8 + 6 * 8 + 8 + 1 + 1;
+/// axis, solid (source and 10 numbers), hull flag.
+const HEADER_BYTES: usize = 8 + 8 + 6 * 8 + 8 + 1 + 1 + SOLID_NUMBERS * 8 + 1;
+
+/// A solid's numbers in an entry: volume, 3 first moments, 6 second moments (xx, xy, xz, yy, yz, zz).
+const SOLID_NUMBERS: usize = 10;
 
 /// Largest entry read (a hull has at most a few hundred thousand vertices).
 const MAX_ENTRY_BYTES: u64 = 256 * 1024 * 1024;
@@ -141,7 +147,8 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
-/// The entry: magic, key, bounds, triangle count, declared up axis, whether the points are the hull,
+/// The entry: magic, key, bounds, triangle count, declared up axis, the solid (its source, 0 for none, and
+/// its numbers, zeros for none), whether the points are the hull,
 /// the points (the hull's vertices, or every vertex when the hull is degenerate), then the hull's
 /// triangulation.
 fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
@@ -165,6 +172,22 @@ fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
         Some(UpAxis::Y) => 2,
         Some(UpAxis::Z) => 3,
     });
+    out.push(match mesh.solid.map(|s| s.source) {
+        None => 0,
+        Some(SolidSource::ClosedSurface) => 1,
+        Some(SolidSource::HullOfOpenSurface) => 2,
+        Some(SolidSource::HullSurfaceNotRead) => 3,
+    });
+    let i = mesh
+        .solid
+        .map_or_else(VolumeIntegrals::default, |s| s.integrals);
+    let (f, m) = (i.first, i.second);
+    let numbers: [f64; SOLID_NUMBERS] = [
+        i.volume, f[0], f[1], f[2], m[0][0], m[0][1], m[0][2], m[1][1], m[1][2], m[2][2],
+    ];
+    for v in numbers {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
     out.push(u8::from(hull_known));
     out.extend_from_slice(&(points.len() as u64).to_le_bytes());
     for p in points {
@@ -206,6 +229,28 @@ fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> 
         3 => Some(UpAxis::Z),
         _ => return None,
     };
+    let source = match reader.take(1)?[0] {
+        0 => None,
+        1 => Some(SolidSource::ClosedSurface),
+        2 => Some(SolidSource::HullOfOpenSurface),
+        3 => Some(SolidSource::HullSurfaceNotRead),
+        _ => return None,
+    };
+    let mut n = [0.0; SOLID_NUMBERS];
+    for v in &mut n {
+        *v = reader.f64()?;
+    }
+    if !n.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let solid = source.map(|source| MeshSolid {
+        integrals: VolumeIntegrals {
+            volume: n[0],
+            first: [n[1], n[2], n[3]],
+            second: [[n[4], n[5], n[6]], [n[5], n[7], n[8]], [n[6], n[8], n[9]]],
+        },
+        source,
+    });
     let hull_known = match reader.take(1)?[0] {
         0 => false,
         1 => true,
@@ -219,6 +264,7 @@ fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> 
         aabb,
         triangles,
         declared_up_axis,
+        solid,
     };
     Some((summary, hull_known))
 }
@@ -264,6 +310,7 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         aabb: summary.aabb,
         triangles: summary.triangles,
         declared_up_axis: summary.declared_up_axis,
+        solid: summary.solid,
     })
 }
 
@@ -316,6 +363,18 @@ mod tests {
             aabb: ([0.0; 3], [1.0; 3]),
             triangles: 12,
             declared_up_axis: Some(UpAxis::Y),
+            solid: Some(MeshSolid {
+                integrals: VolumeIntegrals {
+                    volume: 1.0,
+                    first: [0.5; 3],
+                    second: [
+                        [1.0 / 3.0, 0.25, 0.25],
+                        [0.25, 1.0 / 3.0, 0.25],
+                        [0.25, 0.25, 1.0 / 3.0],
+                    ],
+                },
+                source: SolidSource::HullOfOpenSurface,
+            }),
         }
     }
 
@@ -329,6 +388,7 @@ mod tests {
         assert_eq!(back.aabb, mesh.aabb);
         assert_eq!(back.triangles, 12);
         assert_eq!(back.declared_up_axis, Some(UpAxis::Y));
+        assert_eq!(back.solid, mesh.solid);
         assert!(decode(&bytes, "other").is_none());
     }
 
@@ -395,7 +455,7 @@ mod tests {
             Some(cube().summary())
         );
         // A damaged header is a miss.
-        std::fs::write(&entry, b"UVMESH03").unwrap();
+        std::fs::write(&entry, b"UVMESH04").unwrap();
         assert_eq!(cache.read_summary(&mesh_file, &options), None);
         let _ = std::fs::remove_dir_all(&dir);
     }

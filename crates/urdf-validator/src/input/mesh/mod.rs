@@ -23,6 +23,7 @@
 //! parry3d-f64's quickhull after an affine normalisation (see [`MeshData::hull`]).
 
 mod disk_cache;
+pub mod solid;
 pub(crate) mod surface;
 
 use std::collections::{HashMap, HashSet};
@@ -34,6 +35,7 @@ use nalgebra::{Matrix4, Rotation3, SymmetricEigen, Unit, Vector3};
 use roxmltree::{Document, Node};
 
 pub use disk_cache::DiskCache;
+pub use solid::{MeshSolid, SolidSource, VolumeIntegrals};
 
 /// Largest mesh file read, in bytes (256 MiB).
 pub const MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
@@ -111,6 +113,9 @@ pub struct MeshData {
     /// The COLLADA `<asset><up_axis>` the file declares (`None` for STL/OBJ, or a COLLADA file
     /// without one), whether or not it was applied (see [`UpAxisPolicy`]).
     pub declared_up_axis: Option<UpAxis>,
+    /// The solid the mesh bounds, for mass properties: its own surface when that is closed (STL, OBJ),
+    /// else its convex hull; `None` when neither encloses a volume (a flat mesh).
+    pub solid: Option<MeshSolid>,
 }
 
 /// What the checks read of a mesh, without its points: cheap to get from the disk cache.
@@ -122,6 +127,8 @@ pub struct MeshSummary {
     pub triangles: usize,
     /// The declared COLLADA up axis ([`MeshData::declared_up_axis`]).
     pub declared_up_axis: Option<UpAxis>,
+    /// The solid it bounds ([`MeshData::solid`]).
+    pub solid: Option<MeshSolid>,
 }
 
 impl MeshData {
@@ -131,6 +138,7 @@ impl MeshData {
             aabb: self.aabb,
             triangles: self.triangles,
             declared_up_axis: self.declared_up_axis,
+            solid: self.solid,
         }
     }
 }
@@ -361,6 +369,9 @@ struct RawMesh {
     vertices: Vec<[f64; 3]>,
     triangles: usize,
     declared_up_axis: Option<UpAxis>,
+    /// The surface's triangles (indices into `vertices`), or `None` when the format's are not read
+    /// (COLLADA) or an OBJ face names no vertex read.
+    faces: Option<Vec<[u32; 3]>>,
 }
 
 fn load(path: &Path, options: &MeshOptions) -> Result<MeshData, String> {
@@ -407,6 +418,7 @@ fn finish(raw: RawMesh) -> MeshData {
     let aabb = bounds(&raw.vertices);
     let hull = convex_hull(&raw.vertices, aabb);
     let hull_triangles = triangulate(&hull);
+    let solid = solid_of(&raw, &hull, &hull_triangles);
     MeshData {
         vertices: raw.vertices,
         hull,
@@ -414,7 +426,37 @@ fn finish(raw: RawMesh) -> MeshData {
         aabb,
         triangles: raw.triangles,
         declared_up_axis: raw.declared_up_axis,
+        solid,
     }
+}
+
+/// The solid of a mesh: its surface's when that is closed and encloses a positive volume, else its
+/// convex hull's (wound outwards by construction), else none.
+fn solid_of(raw: &RawMesh, hull: &[[f64; 3]], hull_triangles: &[[u32; 3]]) -> Option<MeshSolid> {
+    let enclosed = |integrals: VolumeIntegrals| {
+        (integrals.is_finite() && integrals.volume > 0.0).then_some(integrals)
+    };
+    let fallback = match &raw.faces {
+        Some(faces) => {
+            let closed = solid::is_closed(faces)
+                .then(|| VolumeIntegrals::of_surface(&raw.vertices, faces))
+                .flatten()
+                .and_then(enclosed);
+            if let Some(integrals) = closed {
+                return Some(MeshSolid {
+                    integrals,
+                    source: SolidSource::ClosedSurface,
+                });
+            }
+            SolidSource::HullOfOpenSurface
+        }
+        None => SolidSource::HullSurfaceNotRead,
+    };
+    let integrals = VolumeIntegrals::of_surface(hull, hull_triangles).and_then(enclosed)?;
+    Some(MeshSolid {
+        integrals,
+        source: fallback,
+    })
 }
 
 fn bounds(vertices: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
@@ -433,7 +475,7 @@ fn bounds(vertices: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
 /// set lower).
 struct VertexSink {
     vertices: Vec<[f64; 3]>,
-    seen: HashSet<[u64; 3]>,
+    seen: HashMap<[u64; 3], u32>,
     read: usize,
     limit: usize,
 }
@@ -442,7 +484,7 @@ impl Default for VertexSink {
     fn default() -> Self {
         VertexSink {
             vertices: Vec::new(),
-            seen: HashSet::new(),
+            seen: HashMap::new(),
             read: 0,
             limit: MAX_VERTICES,
         }
@@ -450,8 +492,9 @@ impl Default for VertexSink {
 }
 
 impl VertexSink {
-    /// Add one vertex; `Err` with a message (without location) past the limit or on a non-finite value.
-    fn push(&mut self, v: [f64; 3]) -> Result<(), String> {
+    /// Add one vertex and return its index among the deduplicated vertices; `Err` with a message
+    /// (without location) past the limit or on a non-finite value.
+    fn push(&mut self, v: [f64; 3]) -> Result<u32, String> {
         self.read += 1;
         if self.read > self.limit {
             return Err(if self.limit == MAX_VERTICES {
@@ -469,10 +512,13 @@ impl VertexSink {
         }
         // `+ 0.0` folds -0.0 into 0.0 so that both hash alike.
         let v = [v[0] + 0.0, v[1] + 0.0, v[2] + 0.0];
-        if self.seen.insert(bits(v)) {
+        // Below MAX_VERTICES (checked above), so the index fits.
+        let next = self.vertices.len() as u32;
+        let index = *self.seen.entry(bits(v)).or_insert(next);
+        if index == next {
             self.vertices.push(v);
         }
-        Ok(())
+        Ok(index)
     }
 
     /// The vertices read, or an error if there are none.
@@ -587,9 +633,11 @@ fn parse_binary_stl(bytes: &[u8]) -> Result<RawMesh, String> {
         return Err("binary STL declares 0 triangles (byte offset 80)".to_string());
     }
     let mut sink = VertexSink::default();
+    let mut faces = Vec::with_capacity(count);
     for t in 0..count {
         let base = 84 + 50 * t;
-        for corner in 0..3 {
+        let mut face = [0u32; 3];
+        for (corner, index) in face.iter_mut().enumerate() {
             let at = base + 12 + 12 * corner;
             let mut v = [0.0; 3];
             for (k, value) in v.iter_mut().enumerate() {
@@ -597,30 +645,46 @@ fn parse_binary_stl(bytes: &[u8]) -> Result<RawMesh, String> {
                 let raw = [bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]];
                 *value = f64::from(f32::from_le_bytes(raw));
             }
-            sink.push(v)
+            *index = sink
+                .push(v)
                 .map_err(|e| format!("byte offset {at}: triangle {t}, vertex {corner}: {e}"))?;
         }
+        faces.push(face);
     }
     Ok(RawMesh {
         vertices: sink.finish("binary STL triangles")?,
         triangles: count,
         declared_up_axis: None,
+        faces: Some(faces),
     })
 }
 
 fn parse_ascii_stl(bytes: &[u8], declared: Option<u64>) -> Result<RawMesh, String> {
     let mut sink = VertexSink::default();
     let mut facets = 0usize;
+    // The vertices of the facet being read; a facet of other than three vertices leaves the surface
+    // unknown.
+    let mut corners: Vec<u32> = Vec::with_capacity(3);
+    let mut faces = Some(Vec::new());
     for (line, tokens) in lines(bytes) {
         let Some(first) = tokens.first() else {
             continue;
         };
         if first.eq_ignore_ascii_case(b"vertex") {
             let v = xyz(&tokens, line, "vertex")?;
-            sink.push(v).map_err(|e| format!("line {line}: {e}"))?;
+            corners.push(sink.push(v).map_err(|e| format!("line {line}: {e}"))?);
         } else if first.eq_ignore_ascii_case(b"facet") {
             facets += 1;
+        } else if first.eq_ignore_ascii_case(b"endfacet") {
+            match (corners.as_slice(), faces.as_mut()) {
+                (&[a, b, c], Some(faces)) => faces.push([a, b, c]),
+                _ => faces = None,
+            }
+            corners.clear();
         }
+    }
+    if !corners.is_empty() {
+        faces = None;
     }
     if sink.vertices.is_empty() {
         let hint = match declared {
@@ -638,6 +702,7 @@ fn parse_ascii_stl(bytes: &[u8], declared: Option<u64>) -> Result<RawMesh, Strin
         vertices: sink.vertices,
         triangles: facets,
         declared_up_axis: None,
+        faces,
     })
 }
 
@@ -650,13 +715,23 @@ fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
     }
     let mut sink = VertexSink::default();
     let mut triangles = 0usize;
+    // The deduplicated index of every `v` line, in order (faces number `v` lines from 1).
+    let mut indices: Vec<u32> = Vec::new();
+    let mut faces = Some(Vec::new());
     for (line, tokens) in lines(bytes) {
         match tokens.first().copied() {
             Some(b"v") => {
                 let v = xyz(&tokens, line, "v")?;
-                sink.push(v).map_err(|e| format!("line {line}: {e}"))?;
+                indices.push(sink.push(v).map_err(|e| format!("line {line}: {e}"))?);
             }
-            Some(b"f") => triangles = triangles.saturating_add(tokens.len().saturating_sub(3)),
+            Some(b"f") => {
+                triangles = triangles.saturating_add(tokens.len().saturating_sub(3));
+                if let Some(list) = faces.as_mut() {
+                    if !obj_face(&tokens[1..], &indices, &sink.vertices, list) {
+                        faces = None;
+                    }
+                }
+            }
             _ => {}
         }
     }
@@ -664,7 +739,59 @@ fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
         vertices: sink.finish("Wavefront OBJ 'v x y z' lines")?,
         triangles,
         declared_up_axis: None,
+        faces,
     })
+}
+
+/// Add an OBJ face's triangles to `faces` as Drake's OBJ reader (tinyobjloader) splits them: a quad along
+/// its shorter diagonal (which matters when it is not planar), a larger polygon as a fan from its first
+/// vertex (tinyobjloader clips ears; the two agree for a planar convex polygon). `false` when a corner
+/// names no vertex read so far (1-based, or negative: counted back from the last) or the face has fewer
+/// than three corners.
+fn obj_face(
+    corners: &[&[u8]],
+    indices: &[u32],
+    vertices: &[[f64; 3]],
+    faces: &mut Vec<[u32; 3]>,
+) -> bool {
+    let vertex = |token: &[u8]| -> Option<u32> {
+        let first = token.split(|&b| b == b'/').next()?;
+        let n: i64 = std::str::from_utf8(first).ok()?.parse().ok()?;
+        let at = if n > 0 {
+            usize::try_from(n - 1).ok()?
+        } else {
+            indices
+                .len()
+                .checked_sub(usize::try_from(n.checked_neg()?).ok()?)?
+        };
+        indices.get(at).copied()
+    };
+    let Some(corners) = corners
+        .iter()
+        .map(|t| vertex(t))
+        .collect::<Option<Vec<u32>>>()
+    else {
+        return false;
+    };
+    if corners.len() < 3 {
+        return false;
+    }
+    if let &[a, b, c, d] = corners.as_slice() {
+        let squared = |i: u32, j: u32| match (vertices.get(i as usize), vertices.get(j as usize)) {
+            (Some(p), Some(q)) => (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>(),
+            _ => f64::INFINITY,
+        };
+        if squared(a, c) <= squared(b, d) {
+            faces.extend([[a, b, c], [a, c, d]]);
+        } else {
+            faces.extend([[a, b, d], [b, c, d]]);
+        }
+        return true;
+    }
+    for k in 1..corners.len() - 1 {
+        faces.push([corners[0], corners[k], corners[k + 1]]);
+    }
+    true
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -762,6 +889,7 @@ fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, String> {
             .finish("COLLADA <mesh> positions instantiated by the visual scene")?,
         triangles,
         declared_up_axis,
+        faces: None,
     })
 }
 
