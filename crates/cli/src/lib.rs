@@ -532,6 +532,7 @@ fn options_for(
             .transpose()?,
         sdf_model: args.model.clone(),
         value_overrides: value_overrides(args)?,
+        structure_only: false,
     })
 }
 
