@@ -168,7 +168,7 @@ fn joint_lines(name: &str, pose: &str, joint: &JointStatics) -> Vec<String> {
                 .margin
                 .map_or("unknown".to_string(), |m| format!("{}×", number(m)))
         ),
-        format!("effort_needed: {}", optional(joint.effort_needed, "N·m")),
+        format!("`effort_needed`: {}", optional(joint.effort_needed, "N·m")),
     ];
     if let Some(leader) = &joint.mimics {
         lines.push(format!("mimics `{leader}` (its torque is folded there)"));
