@@ -325,3 +325,33 @@ async def test_a_xacro_library_alone_is_only_checked_to_be_xml(client, tmp_path)
     change(client, uri, 2, XACRO_PARTS.replace("</xacro:macro>", "</xacro:macr>"))
     await wait_for("the XML error", lambda: client.diagnostics.get(uri))
     assert "not well-formed" in client.diagnostics[uri][0].message
+
+
+async def test_a_10_mb_document_and_an_include_cycle_are_diagnostics(client, tmp_path):
+    # 10 MB: a small robot after a long comment; its findings come, and requests are answered meanwhile.
+    big_text = BROKEN_AXIS.replace("<robot", "<!--" + "x" * (10 << 20) + "-->\n<robot", 1)
+    big = tmp_path / "big.urdf"
+    big.write_text(big_text)
+    uri = open_file(client, big)
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
+    )
+    assert [s.name for s in symbols] == ["base"]
+    await wait_for("U310 in the 10 MB document", lambda: "U310" in codes(client, uri))
+    [axis] = [d for d in client.diagnostics[uri] if d.code == "U310"]
+    assert axis.range.start.line == big_text.split("\n").index('    <axis xyz="0 0 2"/>')
+
+    # A xacro include cycle: one error, on the file, naming the cycle.
+    (tmp_path / "a.urdf.xacro").write_text(
+        '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="b.xacro"/><link name="l"/></robot>'
+    )
+    (tmp_path / "b.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="a.urdf.xacro"/></robot>'
+    )
+    cycle = open_file(client, tmp_path / "a.urdf.xacro")
+    await wait_for("the cycle's error", lambda: [
+        p for p in client.published if p.uri in (cycle, (tmp_path / "b.xacro").as_uri()) and p.diagnostics
+    ])
+    shown = [d for p in client.published for d in p.diagnostics if p.uri != uri]
+    assert any(d.severity == types.DiagnosticSeverity.Error and "includ" in d.message for d in shown), shown
