@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the VS Code extension (editors/vscode: a client that starts `urdf_validate server`) into
-# editors/vscode/urdf-validate.vsix with the machine's Node.js and npm: npm ci (the lock file's versions),
+# editors/vscode/urdf-validator.vsix with the machine's Node.js and npm: npm ci (the lock file's versions),
 # tsc, its unit tests, vsce package; then checks the package holds the compiled client and its runtime
 # dependency, and that the client loads (with a stand-in for the `vscode` module, which only VS Code has).
 set -euo pipefail
@@ -16,14 +16,14 @@ node --version
 npm ci --no-audit --no-fund
 npm run compile
 npm test
-rm -f urdf-validate.vsix
+rm -f urdf-validator.vsix
 npm run package </dev/null
 
-listing="$(unzip -l urdf-validate.vsix)"
+listing="$(unzip -l urdf-validator.vsix)"
 for wanted in extension/package.json extension/out/extension.js \
     extension/node_modules/vscode-languageclient/package.json; do
     grep -q "$wanted" <<<"$listing" || {
-        echo "build-vscode: $wanted missing from urdf-validate.vsix" >&2
+        echo "build-vscode: $wanted missing from urdf-validator.vsix" >&2
         exit 1
     }
 done
@@ -43,8 +43,13 @@ const extension = require("./out/extension.js");
 for (const name of ["activate", "deactivate"]) {
   if (typeof extension[name] !== "function") throw new Error(`out/extension.js exports no ${name}()`);
 }
-const patterns = extension.DOCUMENT_SELECTOR.map((s) => s.pattern).filter(Boolean);
-if (!patterns.includes("**/*.{urdf,xacro,sdf,world}")) throw new Error(`selector: ${patterns}`);
-console.log("build-vscode: the client loads; it serves", patterns.join(", "));
+const languages = extension.DOCUMENT_SELECTOR.map((s) => s.language);
+if (!languages.includes("urdf")) throw new Error(`selector: ${JSON.stringify(extension.DOCUMENT_SELECTOR)}`);
+const manifest = require("./package.json");
+const declared = manifest.contributes.languages.find((l) => l.id === "urdf").extensions;
+for (const ext of [".urdf", ".xacro", ".sdf", ".world"]) {
+  if (!declared.includes(ext)) throw new Error(`the urdf language lacks ${ext}`);
+}
+console.log("build-vscode: the client loads; it serves the urdf language:", declared.join(" "));
 JS
-echo "build-vscode: $(du -h urdf-validate.vsix | cut -f1) editors/vscode/urdf-validate.vsix"
+echo "build-vscode: $(du -h urdf-validator.vsix | cut -f1) editors/vscode/urdf-validator.vsix"

@@ -57,6 +57,11 @@ impl Session {
         Ok(Session { options, timeout })
     }
 
+    /// How long one validation may take (`--timeout`; `None`: no limit).
+    pub fn timeout(&self) -> Option<Duration> {
+        self.timeout
+    }
+
     /// The library options.
     pub fn options(&self) -> &Options {
         &self.options

@@ -16,7 +16,8 @@ use clap::{Parser, ValueEnum};
     long_about,
     after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
                   see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
-                  `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`)."
+                  `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`). \
+                  Editors: `urdf_validate server` is the language server (LSP over stdio; `urdf_validate server --help`)."
 )]
 pub struct Args {
     /// URDF, xacro or SDFormat files, or directories (every *.urdf, *.sdf and *.world below them, and

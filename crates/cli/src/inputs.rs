@@ -105,10 +105,12 @@ fn is_robot_xacro(path: &Path) -> bool {
     if std::fs::metadata(path).map_or(true, |m| m.len() > MAX_XACRO_PEEK) {
         return false;
     }
-    let Ok(text) = std::fs::read_to_string(path) else {
-        return false;
-    };
-    let Ok(doc) = roxmltree::Document::parse(&text) else {
+    std::fs::read_to_string(path).is_ok_and(|text| is_robot_xacro_text(&text))
+}
+
+/// [`is_robot_xacro`] of a xacro file's `text` (false when it is not well-formed XML).
+pub(crate) fn is_robot_xacro_text(text: &str) -> bool {
+    let Ok(doc) = roxmltree::Document::parse(text) else {
         return false;
     };
     let root = doc.root_element();

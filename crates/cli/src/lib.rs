@@ -36,6 +36,7 @@ mod inputs;
 mod mcp;
 mod outputs;
 mod progress;
+mod server;
 
 use std::collections::HashMap;
 use std::ffi::OsString;
@@ -63,7 +64,8 @@ use outputs::Outcome;
 
 /// Run the command with `argv` (the program name first), as `urdf_validate` does; returns the exit status.
 /// `--help`, `--version` and a usage error print and exit the process, as every command line does.
-/// `urdf_validate mcp` serves the Model Context Protocol on stdin/stdout instead (see `docs/mcp.md`).
+/// `urdf_validate mcp` serves the Model Context Protocol on stdin/stdout instead (see `docs/mcp.md`), and
+/// `urdf_validate server` the Language Server Protocol (README, section Editors).
 pub fn main_from<I, T>(argv: I) -> u8
 where
     I: IntoIterator<Item = T>,
@@ -72,6 +74,9 @@ where
     let argv: Vec<OsString> = argv.into_iter().map(Into::into).collect();
     if argv.get(1).is_some_and(|word| word == "mcp") {
         return mcp::main(&argv[2..]);
+    }
+    if argv.get(1).is_some_and(|word| word == "server") {
+        return server::main(&argv[2..]);
     }
     if argv.get(1).is_some_and(|word| word == "diff") {
         return diff::main(&argv[2..]);
@@ -549,6 +554,7 @@ fn options_for(
             .transpose()?,
         sdf_model: args.model.clone(),
         value_overrides: value_overrides(args)?,
+        structure_only: false,
     })
 }
 

@@ -96,6 +96,9 @@ pub struct Options {
     pub sdf_model: Option<String>,
     /// `--override KEY=VALUE`: declared values to evaluate the robot with instead (the file untouched).
     pub value_overrides: Vec<value_overrides::ValueOverride>,
+    /// Stop after the structural checks (parse, tree, meshes, schema rules): no statics, stability,
+    /// workspace or deep section. The language server's first, fast pass after an edit.
+    pub structure_only: bool,
 }
 
 /// The result of validating one file: the report plus what renderers need to show source snippets.
@@ -149,6 +152,22 @@ pub fn validate_text(
         &resolver,
         clock,
     )
+}
+
+/// Validate `text`, the unsaved content of the file at `path` (an editor's buffer): expanded first when
+/// `path` is a xacro file (its includes read from disk), else URDF or SDFormat as [`validate`] tells them.
+/// The file's sandbox applies, as for [`validate`]; positions are in `path` and the files it includes.
+pub fn validate_unsaved(
+    text: String,
+    path: &Path,
+    options: &Options,
+) -> Result<Validation, LoadError> {
+    let clock = Stopwatch::reporting_to(options.progress.clone());
+    let resolver = options
+        .resolver
+        .with_sandbox(options.sandbox.for_input(path));
+    let loaded = Loaded::from_unsaved(text, path, &options.xacro_args, &resolver)?;
+    run(loaded, options, &resolver, clock)
 }
 
 /// The pipeline: parse → model → assets → checks → analyses → report.
@@ -215,53 +234,57 @@ fn run(
             &options.simulators,
         ));
         clock.lap("checks");
-        give_up_if_cancelled(options, &loaded.path)?;
-        // The workspace sampler stops early when a watchdog cancels the run.
-        let workspace = WorkspaceOptions {
-            progress: options.progress.clone(),
-            ..options.workspace.clone()
-        };
-        let inputs = analysis_inputs(&assets, options, &workspace);
-        let mut physics =
-            analysis::analyse(&robot, &model, &inputs, &mut clock).map_err(|message| {
-                LoadError::Usage {
-                    path: loaded.path.clone(),
-                    message,
-                }
-            })?;
-        findings.extend(physics.findings.iter().cloned());
-        give_up_if_cancelled(options, &loaded.path)?;
-        // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
-        let turned = model.up != model::UpAxis::default();
-        if turned && options.deep.requested {
-            return Err(LoadError::Usage {
+        if options.structure_only {
+            None
+        } else {
+            give_up_if_cancelled(options, &loaded.path)?;
+            // The workspace sampler stops early when a watchdog cancels the run.
+            let workspace = WorkspaceOptions {
+                progress: options.progress.clone(),
+                ..options.workspace.clone()
+            };
+            let inputs = analysis_inputs(&assets, options, &workspace);
+            let mut physics =
+                analysis::analyse(&robot, &model, &inputs, &mut clock).map_err(|message| {
+                    LoadError::Usage {
+                        path: loaded.path.clone(),
+                        message,
+                    }
+                })?;
+            findings.extend(physics.findings.iter().cloned());
+            give_up_if_cancelled(options, &loaded.path)?;
+            // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
+            let turned = model.up != model::UpAxis::default();
+            if turned && options.deep.requested {
+                return Err(LoadError::Usage {
                 path: loaded.path.clone(),
                 message: format!(
                     "--deep with --up-axis {}: the MuJoCo pass loads the file z-up and cannot turn it yet",
                     model.up.as_str()
                 ),
             });
+            }
+            let deep = (!turned).then(|| {
+                analysis::deep::run(&analysis::deep::DeepInput {
+                    urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
+                    robot: &robot,
+                    model: &model,
+                    assets: &assets,
+                    physics: &physics,
+                    payload: payload(&model, options),
+                    contact_links: options.overrides.contact_links.as_deref(),
+                    options: &options.deep,
+                    progress: options.progress.as_ref(),
+                })
+            });
+            if let Some((section, deep_findings)) = deep.flatten() {
+                analysis::deep::mark_simulated(&mut physics, &section);
+                physics.deep = Some(section);
+                findings.extend(deep_findings);
+                clock.lap("deep");
+            }
+            Some(physics)
         }
-        let deep = (!turned).then(|| {
-            analysis::deep::run(&analysis::deep::DeepInput {
-                urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
-                robot: &robot,
-                model: &model,
-                assets: &assets,
-                physics: &physics,
-                payload: payload(&model, options),
-                contact_links: options.overrides.contact_links.as_deref(),
-                options: &options.deep,
-                progress: options.progress.as_ref(),
-            })
-        });
-        if let Some((section, deep_findings)) = deep.flatten() {
-            analysis::deep::mark_simulated(&mut physics, &section);
-            physics.deep = Some(section);
-            findings.extend(deep_findings);
-            clock.lap("deep");
-        }
-        Some(physics)
     } else {
         None
     };

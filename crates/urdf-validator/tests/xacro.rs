@@ -389,3 +389,77 @@ fn pathdiff(path: &Path, base: &Path) -> PathBuf {
     }
     out
 }
+
+#[test]
+fn unsaved_xacro_text_is_validated_in_place_of_the_file() {
+    let dir = scratch("unsaved_xacro");
+    let robot = write_robot(&dir);
+    // The editor's buffer gives the right leg a bad inertia the file on disk does not have.
+    let unsaved = ROBOT.replace(
+        r#"<xacro:leg name="right" ixx="$(arg bad_ixx)"/>"#,
+        r#"<xacro:leg name="right" ixx="-1"/>"#,
+    );
+    let on_disk = validate(&robot, &options(&[])).expect("validates");
+    let in_editor = urdf_validator::validate_unsaved(unsaved.clone(), &robot, &options(&[]))
+        .expect("validates");
+    let negative = |v: &urdf_validator::Validation| {
+        v.report
+            .findings
+            .iter()
+            .filter(|f| f.message.contains("right_link"))
+            .map(|f| (f.rule.clone(), f.file.clone()))
+            .collect::<Vec<_>>()
+    };
+    assert!(negative(&on_disk).is_empty(), "{:?}", negative(&on_disk));
+    let found = negative(&in_editor);
+    assert!(
+        !found.is_empty(),
+        "the unsaved text was not the one validated"
+    );
+    // Located in the macro's file (read from disk), as for a saved file.
+    let leg = dir.join("leg.xacro").display().to_string();
+    assert!(
+        found
+            .iter()
+            .all(|(_, file)| file.as_deref() == Some(leg.as_str())),
+        "{found:?}"
+    );
+    // The entry file's source is the unsaved text.
+    let entry = in_editor
+        .sources
+        .iter()
+        .find(|s| s.path() == robot)
+        .expect("entry source");
+    assert_eq!(entry.text(), unsaved);
+}
+
+#[test]
+fn structure_only_stops_before_the_physics() {
+    let dir = scratch("structure_only");
+    let robot = write_robot(&dir);
+    let full = validate(&robot, &options(&[])).expect("validates");
+    let structure = validate(
+        &robot,
+        &Options {
+            structure_only: true,
+            ..options(&[])
+        },
+    )
+    .expect("validates");
+    assert!(full.report.statics.is_some());
+    assert!(structure.report.statics.is_none() && structure.report.workspace.is_none());
+    let schema = |v: &urdf_validator::Validation| {
+        v.report
+            .findings
+            .iter()
+            .filter(|f| f.section == urdf_validator::diagnostics::Section::Schema)
+            .map(|f| f.rule.clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(schema(&structure), schema(&full));
+    assert!(structure
+        .report
+        .findings
+        .iter()
+        .all(|f| f.section == urdf_validator::diagnostics::Section::Schema));
+}

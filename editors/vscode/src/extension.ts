@@ -1,56 +1,39 @@
-// The VS Code client of `urdf_validate server`: starts the installed language server over stdio for URDF,
-// xacro and SDFormat files; diagnostics, hover, navigation, completion and code actions come from it.
+// Starts the installed `urdf_validate server` (the language server) for URDF, xacro and SDFormat files.
 import * as vscode from "vscode";
-import {
-  LanguageClient,
-  LanguageClientOptions,
-  ServerOptions,
-  TransportKind,
-} from "vscode-languageclient/node";
+import { LanguageClient, LanguageClientOptions, ServerOptions } from "vscode-languageclient/node";
 
 import { serverCommand } from "./command";
 
 let client: LanguageClient | undefined;
 
-/** The files the server handles, whatever language mode they are opened in. */
-export const DOCUMENT_SELECTOR = [
-  { scheme: "file", pattern: "**/*.{urdf,xacro,sdf,world}" },
-  { scheme: "untitled", language: "xml" },
-];
-
-function start(): Promise<void> {
-  const config = vscode.workspace.getConfiguration("urdfValidate");
-  const { command, args } = serverCommand(
-    config.get<string>("path", "urdf_validate"),
-    config.get<string[]>("extraArgs", []),
-  );
-  const serverOptions: ServerOptions = {
-    run: { command, args, transport: TransportKind.stdio },
-    debug: { command, args, transport: TransportKind.stdio },
-  };
-  const clientOptions: LanguageClientOptions = {
-    documentSelector: DOCUMENT_SELECTOR,
-    outputChannelName: "urdf-validate",
-  };
-  client = new LanguageClient("urdfValidate", "urdf-validate", serverOptions, clientOptions);
-  return client.start().catch((error: unknown) => {
-    void vscode.window.showErrorMessage(
-      `urdf-validate: could not start '${command} server' (${String(error)}). ` +
-        "Install it (cargo install urdf-validate-cli, or pip install urdf-validator) or set urdfValidate.path.",
-    );
-  });
-}
+/** The documents the server is started for: the `urdf` language (.urdf, .xacro, .sdf, .world). */
+export const DOCUMENT_SELECTOR = [{ scheme: "file", language: "urdf" }];
 
 export async function activate(context: vscode.ExtensionContext): Promise<void> {
+  const settings = vscode.workspace.getConfiguration("urdfValidator");
+  const { command, args } = serverCommand(
+    settings.get<string>("path", "urdf_validate"),
+    settings.get<string[]>("args", []),
+  );
+  const serverOptions: ServerOptions = { run: { command, args }, debug: { command, args } };
+  const clientOptions: LanguageClientOptions = { documentSelector: DOCUMENT_SELECTOR };
+  client = new LanguageClient("urdfValidator", "urdf-validator", serverOptions, clientOptions);
   context.subscriptions.push(
-    vscode.commands.registerCommand("urdfValidate.restart", async () => {
-      await client?.stop();
-      await start();
+    vscode.workspace.onDidChangeConfiguration(async (event) => {
+      if (event.affectsConfiguration("urdfValidator") && client) {
+        await client.restart();
+      }
     }),
   );
-  await start();
+  try {
+    await client.start();
+  } catch (error) {
+    void vscode.window.showErrorMessage(
+      `urdf-validator: cannot start \`${command} server\` (${error}); set urdfValidator.path to the urdf_validate command.`,
+    );
+  }
 }
 
-export function deactivate(): Thenable<void> | undefined {
-  return client?.stop();
+export async function deactivate(): Promise<void> {
+  await client?.stop();
 }

@@ -174,6 +174,23 @@ impl Loaded {
         Loaded::from_document(read_text(path)?, path, resolver)
     }
 
+    /// `text` standing for the file at `path` (an editor's unsaved buffer): expanded with `xacro_args` when
+    /// `path` is a xacro file, else a URDF or SDFormat document as [`Loaded::from_document`] reads it.
+    pub fn from_unsaved(
+        text: String,
+        path: &Path,
+        xacro_args: &[(String, String)],
+        resolver: &resolve::PackageResolver,
+    ) -> Result<Loaded, LoadError> {
+        if xacro::is_xacro(path) {
+            return Ok(Loaded {
+                path: path.to_path_buf(),
+                origin: Origin::Xacro(xacro::expand_text(&text, path, xacro_args, resolver)?),
+            });
+        }
+        Loaded::from_document(text, path, resolver)
+    }
+
     /// A URDF or SDFormat document `text` read from `path` (SDFormat by its `<sdf>` root: its includes are
     /// read from `path`'s folder and through `resolver`).
     pub fn from_document(

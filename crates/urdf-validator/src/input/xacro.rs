@@ -115,6 +115,28 @@ pub fn expand(
     resolver: &PackageResolver,
     banner: bool,
 ) -> Result<Expanded, LoadError> {
+    expand_from(path, None, args, resolver, banner)
+}
+
+/// [`expand`] xacro `text` standing for the file at `path` (an editor's unsaved buffer): includes, `$(find)`
+/// and `$(dirname)` resolve from `path`'s folder, findings are located in `path`.
+pub fn expand_text(
+    text: &str,
+    path: &Path,
+    args: &[(String, String)],
+    resolver: &PackageResolver,
+) -> Result<Expanded, LoadError> {
+    expand_from(path, Some(text), args, resolver, false)
+}
+
+/// [`expand`] the file at `path`, or `text` standing for it.
+fn expand_from(
+    path: &Path,
+    text: Option<&str>,
+    args: &[(String, String)],
+    resolver: &PackageResolver,
+    banner: bool,
+) -> Result<Expanded, LoadError> {
     let start_dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -149,7 +171,11 @@ pub fn expand(
         banner,
         ..xacro::Options::default()
     };
-    let expansion = xacro::expand_file(path, &options).map_err(|error| LoadError::Xacro {
+    let expansion = match text {
+        Some(text) => xacro::expand_str(text, path, &options),
+        None => xacro::expand_file(path, &options),
+    }
+    .map_err(|error| LoadError::Xacro {
         path: path.to_path_buf(),
         message: error.to_string(),
         location: error.location.clone(),

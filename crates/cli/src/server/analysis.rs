@@ -1,0 +1,195 @@
+//! Running validations off the main loop: one thread per run, two passes (structure at once, then
+//! physics once typing has paused), a newer run of the same document cancelling the older, and a
+//! watchdog time limit. The main loop never waits for a run: outcomes come back on a channel it selects
+//! on.
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Sender;
+use lsp_types::Url;
+use urdf_validator::input::LoadError;
+use urdf_validator::timings::Progress;
+use urdf_validator::{Options, Validation};
+
+/// Which pass of a run an outcome is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// Parse, tree, meshes and the structural rules: fast, published first.
+    Structure,
+    /// Everything: statics, stability, workspace.
+    Physics,
+}
+
+/// What a pass of a run gave.
+pub struct Outcome {
+    /// The document analysed (the root of a xacro tree).
+    pub root: Url,
+    /// The run (to drop outcomes of runs cancelled since).
+    pub run: u64,
+    /// The document version analysed (`None`: the file as saved on disk).
+    pub version: Option<i32>,
+    /// The text analysed (for positions of an error).
+    pub text: Arc<String>,
+    /// The pass.
+    pub pass: Pass,
+    /// The validation, or why there is none.
+    pub result: Result<Validation, LoadError>,
+    /// How long the pass took.
+    pub elapsed: Duration,
+}
+
+/// One validation to run.
+pub struct Job {
+    /// The document.
+    pub root: Url,
+    /// Its path.
+    pub path: PathBuf,
+    /// Its text (saved or not).
+    pub text: Arc<String>,
+    /// Its version (`None`: read from disk).
+    pub version: Option<i32>,
+    /// The options its configuration gives.
+    pub options: Options,
+    /// How long typing must pause before the physics pass starts (a newer edit cancels the run first).
+    pub pause: Duration,
+}
+
+/// A run under way.
+struct Running {
+    id: u64,
+    progress: Progress,
+    started: Instant,
+}
+
+/// The runs under way, one at most per document.
+pub struct Analyses {
+    running: HashMap<Url, Running>,
+    outcomes: Sender<Outcome>,
+    next_id: u64,
+    time_limit: Duration,
+}
+
+impl Analyses {
+    /// Runs that send their outcomes to `outcomes`, each given `time_limit`.
+    pub fn new(outcomes: Sender<Outcome>, time_limit: Duration) -> Analyses {
+        Analyses {
+            running: HashMap::new(),
+            outcomes,
+            next_id: 0,
+            time_limit,
+        }
+    }
+
+    /// Start `job`, cancelling the run of the same document still under way.
+    pub fn start(&mut self, job: Job) {
+        self.cancel(&job.root);
+        self.next_id += 1;
+        let id = self.next_id;
+        let progress = Progress::with_time_limit(self.time_limit.as_secs_f64());
+        self.running.insert(
+            job.root.clone(),
+            Running {
+                id,
+                progress: progress.clone(),
+                started: Instant::now(),
+            },
+        );
+        let outcomes = self.outcomes.clone();
+        let spawned = std::thread::Builder::new()
+            .name(format!("analyse {}", job.path.display()))
+            .spawn(move || run(job, id, &progress, &outcomes));
+        if let Err(error) = spawned {
+            errln!("urdf_validate server: cannot start an analysis thread: {error}");
+        }
+    }
+
+    /// Cancel the run of `root`, if one is under way.
+    pub fn cancel(&mut self, root: &Url) {
+        if let Some(running) = self.running.remove(root) {
+            running.progress.cancel();
+        }
+    }
+
+    /// Whether `outcome` is of the run under way for its document (not of one cancelled since); a
+    /// physics outcome ends the run.
+    pub fn is_current(&mut self, outcome: &Outcome) -> bool {
+        let current = self
+            .running
+            .get(&outcome.root)
+            .is_some_and(|r| r.id == outcome.run);
+        if current && (outcome.pass == Pass::Physics || outcome.result.is_err()) {
+            self.running.remove(&outcome.root);
+        }
+        current
+    }
+
+    /// Cancel the runs over their time limit; the documents they were for.
+    pub fn over_time(&mut self) -> Vec<Url> {
+        let late: Vec<Url> = self
+            .running
+            .iter()
+            .filter(|(_, r)| r.started.elapsed() > self.time_limit)
+            .map(|(root, _)| root.clone())
+            .collect();
+        for root in &late {
+            self.cancel(root);
+        }
+        late
+    }
+
+    /// The time limit of a run.
+    pub fn time_limit(&self) -> Duration {
+        self.time_limit
+    }
+}
+
+/// Run `job`'s two passes, sending each outcome unless the run was cancelled meanwhile (a cancelled
+/// pass's report may be partial).
+fn run(job: Job, id: u64, progress: &Progress, outcomes: &Sender<Outcome>) {
+    let start = Instant::now();
+    for pass in [Pass::Structure, Pass::Physics] {
+        if pass == Pass::Physics && !paused(start + job.pause, progress) {
+            return;
+        }
+        let options = Options {
+            structure_only: pass == Pass::Structure,
+            progress: Some(progress.clone()),
+            ..job.options.clone()
+        };
+        let started = Instant::now();
+        let result = urdf_validator::validate_unsaved(job.text.to_string(), &job.path, &options);
+        if progress.is_cancelled() {
+            return;
+        }
+        let failed = result.is_err();
+        let outcome = Outcome {
+            root: job.root.clone(),
+            run: id,
+            version: job.version,
+            text: Arc::clone(&job.text),
+            pass,
+            result,
+            elapsed: started.elapsed(),
+        };
+        if outcomes.send(outcome).is_err() || failed {
+            return;
+        }
+    }
+}
+
+/// Wait until `until` unless the run is cancelled first; whether it was not.
+fn paused(until: Instant, progress: &Progress) -> bool {
+    const STEP: Duration = Duration::from_millis(5);
+    while !progress.is_cancelled() {
+        let left = until.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return true;
+        }
+        std::thread::sleep(left.min(STEP));
+    }
+    false
+}

@@ -1,0 +1,222 @@
+//! Findings → LSP diagnostics, each published on the file it is in (an included xacro file gets its own),
+//! with the rule code linked to its entry in docs/rules.md, the severity, the exact range and the xacro
+//! macro calls that produced it as related information. A file that cannot be read as a robot (XML not
+//! well-formed, a xacro error) gets one diagnostic at the place the reader stopped.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use lsp_types::{
+    CodeDescription, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location,
+    NumberOrString, Position, Range, Url,
+};
+use urdf_validator::diagnostics::rules;
+use urdf_validator::diagnostics::Severity;
+use urdf_validator::input::LoadError;
+use urdf_validator::report::FindingReport;
+use urdf_validator::Validation;
+
+use super::positions::LineIndex;
+
+/// The `source` of every diagnostic.
+pub const SOURCE: &str = "urdf_validate";
+
+/// The texts findings point into, with their line indexes, by file name as findings name them.
+pub struct Texts<'v> {
+    files: HashMap<String, (&'v str, LineIndex)>,
+}
+
+impl<'v> Texts<'v> {
+    /// The source texts of `validation`.
+    pub fn of(validation: &'v Validation) -> Texts<'v> {
+        let files = validation
+            .sources
+            .iter()
+            .map(|s| {
+                let text = s.text();
+                (s.path().display().to_string(), (text, LineIndex::new(text)))
+            })
+            .collect();
+        Texts { files }
+    }
+
+    /// The text and index of `file`.
+    pub fn get(&self, file: &str) -> Option<(&'v str, &LineIndex)> {
+        self.files.get(file).map(|(text, index)| (*text, index))
+    }
+
+    /// Every file, by name.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.files.keys().map(String::as_str)
+    }
+
+    /// The LSP position of the validator's 1-based `line`:`column` in `file`.
+    fn position(&self, file: &str, line: u32, column: u32) -> Position {
+        match self.get(file) {
+            Some((text, index)) => index.position_of_line_column(text, line, column),
+            None => Position::new(line.saturating_sub(1), column.saturating_sub(1)),
+        }
+    }
+}
+
+/// The range of `finding` in its file (the start of the file when it has no place).
+pub fn finding_range(finding: &FindingReport, texts: &Texts) -> Range {
+    let (Some(file), Some(line), Some(column)) = (&finding.file, finding.line, finding.column)
+    else {
+        return Range::default();
+    };
+    let start = texts.position(file, line, column);
+    let end = match (finding.end_line, finding.end_column) {
+        (Some(line), Some(column)) => texts.position(file, line, column),
+        _ => start,
+    };
+    Range::new(start, end.max(start))
+}
+
+/// The diagnostics of the findings of a validation of `root` that `wanted` keeps, by file: an entry for
+/// every file the validation read (empty when it has none, so that the editor clears what it showed).
+pub fn of_validation(
+    root: &Url,
+    validation: &Validation,
+    wanted: impl Fn(&FindingReport) -> bool,
+) -> HashMap<Url, Vec<Diagnostic>> {
+    let texts = Texts::of(validation);
+    let mut by_file: HashMap<Url, Vec<Diagnostic>> = texts
+        .names()
+        .filter_map(|name| Url::from_file_path(name).ok())
+        .map(|uri| (uri, Vec::new()))
+        .collect();
+    by_file.entry(root.clone()).or_default();
+    for finding in validation.report.findings.iter().filter(|f| wanted(f)) {
+        let uri = finding
+            .file
+            .as_deref()
+            .and_then(|f| Url::from_file_path(f).ok())
+            .unwrap_or_else(|| root.clone());
+        let diagnostic = Diagnostic {
+            range: finding_range(finding, &texts),
+            severity: Some(severity(finding.severity)),
+            code: Some(NumberOrString::String(finding.rule.clone())),
+            code_description: rule_link(&finding.rule),
+            source: Some(SOURCE.to_string()),
+            message: message(finding),
+            related_information: related(finding, &texts),
+            tags: None,
+            data: None,
+        };
+        by_file.entry(uri).or_default().push(diagnostic);
+    }
+    by_file
+}
+
+/// The diagnostic of a file that could not be validated: at the place the reader stopped (in the file it
+/// names), else at the start of `root`.
+pub fn of_error(root: &Url, error: &LoadError, text: &str) -> (Url, Diagnostic) {
+    let (uri, range) = match error {
+        LoadError::Xml { line, column, .. } => {
+            let index = LineIndex::new(text);
+            let at = index.position_of_line_column(text, *line, *column);
+            (root.clone(), Range::new(at, at))
+        }
+        LoadError::Xacro {
+            location: Some(location),
+            ..
+        } => {
+            let uri = Url::from_file_path(&location.path).unwrap_or_else(|_| root.clone());
+            let at = if uri == *root {
+                let index = LineIndex::new(text);
+                index.position(text, location.byte)
+            } else {
+                // Another file's text is not at hand: its column in characters stands for UTF-16 units.
+                Position::new(
+                    u32::try_from(location.line.saturating_sub(1)).unwrap_or(u32::MAX),
+                    u32::try_from(location.col.saturating_sub(1)).unwrap_or(u32::MAX),
+                )
+            };
+            (uri, Range::new(at, at))
+        }
+        _ => (root.clone(), Range::default()),
+    };
+    let diagnostic = Diagnostic {
+        range,
+        severity: Some(DiagnosticSeverity::ERROR),
+        source: Some(SOURCE.to_string()),
+        message: error.to_string(),
+        ..Diagnostic::default()
+    };
+    (uri, diagnostic)
+}
+
+fn severity(severity: Severity) -> DiagnosticSeverity {
+    match severity {
+        Severity::Critical | Severity::Fail => DiagnosticSeverity::ERROR,
+        Severity::Warn => DiagnosticSeverity::WARNING,
+        Severity::Info => DiagnosticSeverity::INFORMATION,
+    }
+}
+
+/// The message, with the finding's own hint when it has one.
+fn message(finding: &FindingReport) -> String {
+    match &finding.help {
+        Some(help) => format!("{} ({})", finding.message, help),
+        None => finding.message.clone(),
+    }
+}
+
+/// The rule's entry in docs/rules.md: on the repository's web site when Cargo.toml names one, else in the
+/// docs/rules.md this program was built from, when it is still there (none otherwise).
+pub fn rule_link(code: &str) -> Option<CodeDescription> {
+    let rule = rules::find(code)?;
+    let anchor = urdf_validator::render::sarif::rule_anchor(rule);
+    let page = match crate::rules_url() {
+        Some(url) => Url::parse(&url).ok()?,
+        None => {
+            let local = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/rules.md");
+            Url::from_file_path(local.canonicalize().ok()?).ok()?
+        }
+    };
+    let mut href = page;
+    href.set_fragment(Some(&anchor));
+    Some(CodeDescription { href })
+}
+
+/// The xacro macro calls and includes that produced the flagged text (`in macro 'wheel' called at
+/// FILE:LINE:COL`), each at its place.
+fn related(finding: &FindingReport, texts: &Texts) -> Option<Vec<DiagnosticRelatedInformation>> {
+    let related: Vec<_> = finding
+        .expanded_from
+        .iter()
+        .filter_map(|entry| {
+            let (file, line, column) = trailing_location(entry)?;
+            let at = texts.position(file, line, column);
+            Some(DiagnosticRelatedInformation {
+                location: Location::new(Url::from_file_path(file).ok()?, Range::new(at, at)),
+                message: entry.clone(),
+            })
+        })
+        .collect();
+    (!related.is_empty()).then_some(related)
+}
+
+/// The `FILE:LINE:COL` that ends a stack entry (`... called at FILE:LINE:COL`).
+fn trailing_location(entry: &str) -> Option<(&str, u32, u32)> {
+    let (_, place) = entry.rsplit_once(" at ")?;
+    let mut parts = place.rsplitn(3, ':');
+    let column = parts.next()?.trim().parse().ok()?;
+    let line = parts.next()?.parse().ok()?;
+    Some((parts.next()?, line, column))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stack_entries_end_with_their_place() {
+        assert_eq!(
+            trailing_location("in macro 'wheel' called at /r/robot.urdf.xacro:40:3"),
+            Some(("/r/robot.urdf.xacro", 40, 3))
+        );
+        assert_eq!(trailing_location("in macro 'wheel'"), None);
+    }
+}

@@ -1,0 +1,236 @@
+//! What the cursor is on: a link or joint name (where defined or where used), a mesh or include path, or
+//! a rule code in a suppression comment, read from the text as the editor has it now.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use urdf_validator::input::resolve::{PackageResolver, Resolution};
+
+use super::xml::{Attribute, Element, Scan};
+
+/// A named thing of the robot, and how a name refers to it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `<link name>`, `<parent link>`, `<child link>`, `reference=`.
+    Link,
+    /// `<joint name>`, `<mimic joint>`, `<transmission><joint name>`.
+    Joint,
+}
+
+/// What is under the cursor.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A link or joint name, where it is defined (`definition`) or used.
+    Name {
+        /// Link or joint.
+        kind: Kind,
+        /// The name.
+        name: String,
+        /// The bytes of the name.
+        span: Range<usize>,
+    },
+    /// A file path: a mesh `filename`, a xacro include.
+    Path {
+        /// The value as written.
+        value: String,
+        /// Its bytes.
+        span: Range<usize>,
+    },
+    /// A rule code in a `<!-- urdf-validate: ignore ... -->` comment.
+    Rule {
+        /// The code or name as written.
+        code: String,
+        /// Its bytes.
+        span: Range<usize>,
+    },
+}
+
+/// What the cursor at byte `offset` of `text` is on.
+pub fn target(text: &str, scan: &Scan, offset: usize) -> Option<Target> {
+    if let Some(rule) = rule_at(text, offset) {
+        return Some(rule);
+    }
+    let (index, attribute) = scan.at(offset)?;
+    let attribute = attribute?;
+    let element = &scan.elements[index];
+    if let Some(kind) = reference_kind(element, &attribute.name) {
+        return Some(Target::Name {
+            kind,
+            name: attribute.value.clone(),
+            span: attribute.value_span.clone(),
+        });
+    }
+    let path_attribute = match element.local_name() {
+        "mesh" | "texture" => attribute.name == "filename",
+        "include" => attribute.name == "filename" && element.name.starts_with("xacro:"),
+        _ => false,
+    };
+    path_attribute.then(|| Target::Path {
+        value: attribute.value.clone(),
+        span: attribute.value_span.clone(),
+    })
+}
+
+/// What an attribute `attribute` of `element` names, if a link or joint.
+pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
+    match (element.name.as_str(), attribute) {
+        ("link", "name") | ("parent" | "child", "link") | ("gazebo", "reference") => {
+            Some(Kind::Link)
+        }
+        ("joint", "name") | ("mimic", "joint") => Some(Kind::Joint),
+        _ => None,
+    }
+}
+
+/// Whether `element`'s `attribute` defines the name (rather than refers to it).
+pub fn is_definition(scan: &Scan, element: &Element, attribute: &Attribute) -> bool {
+    let parent = element.parent.map(|p| scan.elements[p].name.as_str());
+    attribute.name == "name"
+        && (element.name == "link" || element.name == "joint" && parent != Some("transmission"))
+}
+
+/// Every place of the scanned text naming the `kind` thing `name`: (span of the name, whether it defines it).
+pub fn occurrences(scan: &Scan, kind: Kind, name: &str) -> Vec<(Range<usize>, bool)> {
+    scan.elements
+        .iter()
+        .flat_map(|element| {
+            element
+                .attributes
+                .iter()
+                .filter(move |attribute| {
+                    attribute.value == name
+                        && reference_kind(element, &attribute.name) == Some(kind)
+                })
+                .map(move |attribute| {
+                    (
+                        attribute.value_span.clone(),
+                        is_definition(scan, element, attribute),
+                    )
+                })
+        })
+        .collect()
+}
+
+/// The file a path attribute names: `package://`, `file://`, `$(find pkg)/...` or relative to `dir`.
+pub fn resolve_path(
+    value: &str,
+    dir: &Path,
+    resolver: &PackageResolver,
+) -> Result<PathBuf, String> {
+    if let Some(rest) = value.strip_prefix("$(find ") {
+        let (package, tail) = rest
+            .split_once(')')
+            .ok_or_else(|| format!("{value}: expected $(find PACKAGE)/path"))?;
+        let root = resolver.find_package(package.trim(), dir).ok_or_else(|| {
+            format!(
+                "package '{}' not found from {}",
+                package.trim(),
+                dir.display()
+            )
+        })?;
+        let path = root.join(tail.trim_start_matches('/'));
+        return if path.exists() {
+            Ok(path)
+        } else {
+            Err(format!("{} does not exist", path.display()))
+        };
+    }
+    if value.contains("${") || value.contains("$(") {
+        return Err(format!(
+            "{value}: computed by xacro; hover the expanded value's source"
+        ));
+    }
+    match resolver.resolve(value, dir) {
+        Resolution::Found(path) => Ok(path),
+        Resolution::NotFound { searched } if searched.is_empty() => {
+            Err(format!("{value}: package not found"))
+        }
+        Resolution::NotFound { searched } => Err(format!(
+            "{value}: not found; looked in {}",
+            searched
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        Resolution::Unsupported(why) => Err(format!("{value}: {why}")),
+        Resolution::Refused(refusal) => Err(format!("{value}: {}", refusal.0)),
+    }
+}
+
+/// The rule code under `offset` in a suppression comment.
+fn rule_at(text: &str, offset: usize) -> Option<Target> {
+    let (body, body_start) = suppression_comment_at(text, offset)?;
+    let directive = body.find("urdf-validate:")? + "urdf-validate:".len();
+    let mut at = body_start + directive;
+    for word in body[directive..].split(|c: char| c.is_whitespace() || c == ',') {
+        let span = at..at + word.len();
+        at += word.len() + 1;
+        if word.starts_with(';') {
+            break;
+        }
+        if span.contains(&offset) || span.end == offset && !word.is_empty() {
+            let is_code = word != "ignore" && word != "ignore-file" && !word.is_empty();
+            return is_code.then(|| Target::Rule {
+                code: word.to_string(),
+                span,
+            });
+        }
+    }
+    None
+}
+
+/// The body of the `<!-- urdf-validate: ... -->` comment holding `offset` (to the cursor when it is not
+/// closed yet), and the byte it starts at.
+pub fn suppression_comment_at(text: &str, offset: usize) -> Option<(&str, usize)> {
+    let offset = offset.min(text.len());
+    let open = text.get(..offset)?.rfind("<!--")?;
+    let start = open + 4;
+    let end = text[start..].find("-->").map_or(text.len(), |i| start + i);
+    if end < offset {
+        return None;
+    }
+    let body = &text[start..end];
+    body.trim_start()
+        .starts_with("urdf-validate:")
+        .then_some((body, start))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_paths_and_rule_codes_under_the_cursor() {
+        let text = "<robot>\n<link name=\"base\"/>\n<joint name=\"j\" type=\"fixed\">\
+                    <parent link=\"base\"/><child link=\"arm\"/><mimic joint=\"k\"/></joint>\n\
+                    <link name=\"arm\"><visual><geometry><mesh filename=\"package://p/m.stl\"/>\
+                    </geometry></visual></link>\n<!-- urdf-validate: ignore U201, U203 -->\n</robot>";
+        let scan = Scan::new(text);
+        let at = |needle: &str| text.find(needle).expect("needle") + 1;
+        let name = |target: Option<Target>| match target {
+            Some(Target::Name { kind, name, .. }) => Some((kind, name)),
+            _ => None,
+        };
+        assert_eq!(
+            name(target(text, &scan, at("base\"/><child"))),
+            Some((Kind::Link, "base".into()))
+        );
+        assert_eq!(
+            name(target(text, &scan, at("k\"/>"))),
+            Some((Kind::Joint, "k".into()))
+        );
+        assert!(matches!(
+            target(text, &scan, at("package://")),
+            Some(Target::Path { value, .. }) if value == "package://p/m.stl"
+        ));
+        assert!(matches!(
+            target(text, &scan, at("U203")),
+            Some(Target::Rule { code, .. }) if code == "U203"
+        ));
+        assert_eq!(target(text, &scan, at("ignore U")), None);
+        let uses = occurrences(&scan, Kind::Link, "base");
+        assert_eq!(uses.iter().filter(|(_, d)| *d).count(), 1);
+        assert_eq!(uses.len(), 2);
+    }
+}

@@ -1,0 +1,108 @@
+//! Positions: byte offsets of a text ↔ LSP positions (0-based line, UTF-16 code units), and the
+//! validator's 1-based (line, column in characters) → LSP positions.
+
+use lsp_types::{Position, Range};
+
+/// The line starts of one text, to turn byte offsets and character columns into LSP positions.
+#[derive(Clone, Debug)]
+pub struct LineIndex {
+    /// Byte offset of the start of each line (the first is 0).
+    starts: Vec<usize>,
+}
+
+impl LineIndex {
+    /// The index of `text`. A line ends at `\n` (a `\r` before it stays part of the line, as editors
+    /// count `\r\n` as one break: it is never inside a position's column).
+    pub fn new(text: &str) -> LineIndex {
+        let starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        LineIndex { starts }
+    }
+
+    /// The LSP position of byte `offset` of `text` (clamped to the text, and back to a character
+    /// boundary).
+    pub fn position(&self, text: &str, offset: usize) -> Position {
+        let mut offset = offset.min(text.len());
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let line = self.starts.partition_point(|&s| s <= offset) - 1;
+        let start = self.starts[line];
+        let column = text[start..offset].encode_utf16().count();
+        Position::new(to_u32(line), to_u32(column))
+    }
+
+    /// The LSP range of bytes `start..end` of `text`.
+    pub fn range(&self, text: &str, start: usize, end: usize) -> Range {
+        Range::new(self.position(text, start), self.position(text, end))
+    }
+
+    /// The byte offset of LSP `position` in `text` (a position past the end of its line is the line's
+    /// end; past the last line, the end of the text).
+    pub fn offset(&self, text: &str, position: Position) -> usize {
+        let Some(&start) = self.starts.get(position.line as usize) else {
+            return text.len();
+        };
+        let line = line_text(text, start);
+        let mut units = 0;
+        for (i, c) in line.char_indices() {
+            if units >= position.character as usize {
+                return start + i;
+            }
+            units += c.len_utf16();
+        }
+        start + line.len()
+    }
+
+    /// The LSP position of the validator's 1-based `line` and 1-based `column` counted in characters.
+    pub fn position_of_line_column(&self, text: &str, line: u32, column: u32) -> Position {
+        let Some(&start) = self.starts.get(line.saturating_sub(1) as usize) else {
+            return self.position(text, text.len());
+        };
+        let characters = column.saturating_sub(1) as usize;
+        let offset = line_text(text, start)
+            .char_indices()
+            .nth(characters)
+            .map_or(start + line_text(text, start).len(), |(i, _)| start + i);
+        self.position(text, offset)
+    }
+}
+
+/// The text of the line starting at byte `start`, without its line break.
+fn line_text(text: &str, start: usize) -> &str {
+    let rest = &text[start..];
+    let line = rest.split('\n').next().unwrap_or(rest);
+    line.strip_suffix('\r').unwrap_or(line)
+}
+
+fn to_u32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_count_utf16_code_units() {
+        // "é" is 2 bytes and 1 UTF-16 unit; "𝄞" is 4 bytes and 2 units.
+        let text = "a\n<é𝄞 x=\"1\"/>\r\nend";
+        let index = LineIndex::new(text);
+        let x = text.find('x').expect("x");
+        assert_eq!(index.position(text, x), Position::new(1, 5));
+        assert_eq!(index.offset(text, Position::new(1, 5)), x);
+        assert_eq!(
+            index.position_of_line_column(text, 2, 5),
+            Position::new(1, 5)
+        );
+        // Past the end of a line: its end, before the \r\n.
+        let line_end = text.find('\r').expect("cr");
+        assert_eq!(index.offset(text, Position::new(1, 99)), line_end);
+        assert_eq!(index.offset(text, Position::new(9, 0)), text.len());
+        assert_eq!(index.position(text, text.len()), Position::new(2, 3));
+        // Inside a character: back to its start.
+        let clef = text.find('𝄞').expect("clef");
+        assert_eq!(index.position(text, clef + 1), Position::new(1, 2));
+    }
+}

@@ -1,0 +1,357 @@
+"""`urdf_validate server` end to end, through pytest-lsp's client: diagnostics (ranges, files, related
+information, code links), hover, definition, references, symbols, completion, code actions applied and
+re-validated, a newer edit cancelling the analysis under way, half-typed XML, shutdown."""
+
+import asyncio
+
+from lsprotocol import types
+
+from conftest import (
+    change,
+    codes,
+    copy_pr2,
+    open_file,
+    position_of,
+    wait_for,
+)
+
+BROKEN_AXIS = """<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base">
+    <inertial><mass value="5"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/>
+    <child link="upper"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="-1" upper="1" effort="100" velocity="1"/>
+  </joint>
+  <link name="upper">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+</robot>
+"""
+
+
+def apply_edits(text: str, edits: list[types.TextEdit]) -> str:
+    """`edits` applied to ASCII `text` (from the last to the first)."""
+    lines = text.split("\n")
+    starts = [0]
+    for line in lines[:-1]:
+        starts.append(starts[-1] + len(line) + 1)
+    offset = lambda p: starts[p.line] + p.character  # noqa: E731
+    for edit in sorted(edits, key=lambda e: offset(e.range.start), reverse=True):
+        text = text[: offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end) :]
+    return text
+
+
+async def test_pr2_diagnostics_hover_and_navigation(client, tmp_path):
+    pr2 = copy_pr2(tmp_path)
+    text = pr2.read_text()
+    uri = open_file(client, pr2)
+    # Structural findings first, then the physics ones (U701: joints too weak) once statics has run.
+    await wait_for("PR2's structural diagnostics", lambda: "U402" in codes(client, uri))
+    await wait_for("PR2's physics diagnostics", lambda: "U701" in codes(client, uri), timeout=120)
+    first = client.published[0]
+    assert first.uri == uri and "U701" not in [d.code for d in first.diagnostics], (
+        "the structural pass is published before physics"
+    )
+    undersized = [d for d in client.diagnostics[uri] if d.code == "U701"]
+    for diagnostic in undersized:
+        assert diagnostic.severity == types.DiagnosticSeverity.Error
+        assert diagnostic.source == "urdf_validate"
+        assert diagnostic.code_description.href.endswith("rules.md#u701-joint-undersized")
+        line = text.split("\n")[diagnostic.range.start.line]
+        flagged = line[diagnostic.range.start.character : diagnostic.range.end.character]
+        assert flagged, f"an empty range on {line!r}"
+        assert "effort" in line or "<joint" in line or "<limit" in line, line
+
+    # Hover on a joint: its statics at the analysed pose.
+    weak = undersized[0].message.split("'")[1]
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(text, f'<joint name="{weak}"', len('<joint name="') + 1),
+        )
+    )
+    assert hover is not None, "no hover on the weak joint"
+    assert "gravity torque" in hover.contents.value and "effort_needed" in hover.contents.value
+    assert "margin" in hover.contents.value
+
+    # Hover on a link: mass properties.
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(text, '<link name="base_link"', len('<link name="') + 2),
+        )
+    )
+    assert "mass:" in hover.contents.value and "principal moments" in hover.contents.value
+    assert "mass carried" in hover.contents.value
+
+    # Hover on a mesh path: the file it resolves to.
+    mesh = text.index('<mesh filename="package://') + len('<mesh filename="') + 3
+    line = text.count("\n", 0, mesh)
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=line, character=mesh - text.rfind("\n", 0, mesh) - 1),
+        )
+    )
+    assert "→" in hover.contents.value and "pr2_description" in hover.contents.value
+
+    # Definition of the parent link of a joint, and every reference to it.
+    use = position_of(text, '<parent link="base_link"', len('<parent link="') + 1)
+    definition = await client.text_document_definition_async(
+        types.DefinitionParams(text_document=types.TextDocumentIdentifier(uri=uri), position=use)
+    )
+    assert len(definition) == 1
+    assert definition[0].range.start == position_of(text, '<link name="base_link"', len('<link name="'))
+    references = await client.text_document_references_async(
+        types.ReferenceParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=use,
+            context=types.ReferenceContext(include_declaration=True),
+        )
+    )
+    expected = text.count('link="base_link"') + text.count('<link name="base_link"') + text.count(
+        'reference="base_link"'
+    )
+    assert len(references) == expected
+
+    # Symbols: the kinematic tree, base_footprint at the root.
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
+    )
+    assert symbols[0].name == "base_footprint" and symbols[0].children
+
+
+async def test_fix_is_applied_and_revalidated(client, tmp_path):
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(BROKEN_AXIS)
+    uri = open_file(client, robot)
+    await wait_for("U310", lambda: "U310" in codes(client, uri))
+    [axis] = [d for d in client.diagnostics[uri] if d.code == "U310"]
+    flagged = BROKEN_AXIS.split("\n")[axis.range.start.line][
+        axis.range.start.character : axis.range.end.character
+    ]
+    assert flagged == "0 0 2"
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            range=axis.range,
+            context=types.CodeActionContext(diagnostics=[axis]),
+        )
+    )
+    titles = [a.title for a in actions]
+    fix = next(a for a in actions if a.title.startswith("Fix U310"))
+    assert fix.kind == types.CodeActionKind.QuickFix and fix.is_preferred
+    assert any(t.startswith("Suppress U310") for t in titles), titles
+    assert any(a.kind == types.CodeActionKind.SourceFixAll for a in actions), titles
+    fixed = apply_edits(BROKEN_AXIS, fix.edit.changes[uri])
+    assert '<axis xyz="0 0 1"/>' in fixed
+    change(client, uri, 2, fixed)
+    await wait_for("U310 gone after the fix", lambda: "U310" not in codes(client, uri) and any(
+        p.version == 2 for p in client.published if p.uri == uri
+    ))
+
+    # "Suppress this finding" inserts a comment that silences it.
+    suppress = next(a for a in actions if a.title.startswith("Suppress U310"))
+    suppressed = apply_edits(BROKEN_AXIS, suppress.edit.changes[uri])
+    assert "<!-- urdf-validate: ignore U310 -->" in suppressed
+    change(client, uri, 3, suppressed)
+    await wait_for("U310 suppressed", lambda: any(
+        p.version == 3 for p in client.published if p.uri == uri
+    ))
+    assert "U310" not in codes(client, uri)
+
+
+async def test_unsafe_fixes_are_marked_and_left_out_of_fix_all(client, tmp_path):
+    robot = tmp_path / "arm.urdf"
+    # The upper link's mass 0.5 m out along x on a y axis: about 4.9 N·m to hold, 0.01 declared.
+    text = BROKEN_AXIS.replace('effort="100"', 'effort="0.01"').replace(
+        'xyz="0 0 2"', 'xyz="0 2 0"'
+    ).replace('<inertial><mass value="1"/>', '<inertial><origin xyz="0.5 0 0"/><mass value="1"/>')
+    robot.write_text(text)
+    uri = open_file(client, robot)
+    await wait_for("U701", lambda: "U701" in codes(client, uri), timeout=120)
+    [weak] = [d for d in client.diagnostics[uri] if d.code == "U701"]
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            range=types.Range(start=types.Position(line=0, character=0), end=types.Position(line=99, character=0)),
+            context=types.CodeActionContext(diagnostics=[weak]),
+        )
+    )
+    unsafe = [a for a in actions if a.title.startswith("Fix U701")]
+    assert unsafe and "unsafe" in unsafe[0].title and not unsafe[0].is_preferred
+    [fix_all] = [a for a in actions if a.kind == types.CodeActionKind.SourceFixAll]
+    after = apply_edits(text, fix_all.edit.changes[uri])
+    assert 'effort="0.01"' in after, "fix all left the unsafe effort fix out"
+    assert '<axis xyz="0 1 0"/>' in after
+
+
+XACRO_ROOT = """<?xml version="1.0"?>
+<robot name="tree" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="base">
+    <inertial><mass value="5"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <xacro:arm prefix="left" parent="base"/>
+</robot>
+"""
+
+XACRO_PARTS = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="prefix parent">
+    <joint name="${prefix}_joint" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${prefix}_link"/>
+      <axis xyz="0 0 2"/>
+      <limit lower="-1" upper="1" effort="100" velocity="1"/>
+    </joint>
+    <link name="${prefix}_link">
+      <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    </link>
+  </xacro:macro>
+</robot>
+"""
+
+
+async def test_xacro_findings_are_published_on_the_included_file(client, tmp_path):
+    (tmp_path / "parts.xacro").write_text(XACRO_PARTS)
+    root = tmp_path / "robot.urdf.xacro"
+    root.write_text(XACRO_ROOT)
+    parts_uri = (tmp_path / "parts.xacro").as_uri()
+    uri = open_file(client, root)
+    await wait_for("U310 on parts.xacro", lambda: "U310" in codes(client, parts_uri))
+    [axis] = [d for d in client.diagnostics[parts_uri] if d.code == "U310"]
+    line = XACRO_PARTS.split("\n")[axis.range.start.line]
+    assert line[axis.range.start.character : axis.range.end.character] == "0 0 2"
+    [call] = axis.related_information
+    assert call.location.uri == uri and "in macro 'arm'" in call.message
+    assert call.location.range.start == position_of(XACRO_ROOT, "<xacro:arm", 0)
+    assert "U310" not in codes(client, uri)
+
+    # The fix edits the included file (its literal), from either document.
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=parts_uri),
+            range=axis.range,
+            context=types.CodeActionContext(diagnostics=[axis]),
+        )
+    )
+    fix = next(a for a in actions if a.title.startswith("Fix U310"))
+    assert apply_edits(XACRO_PARTS, fix.edit.changes[parts_uri]).count('xyz="0 0 1"') == 1
+
+    # Saving the include re-validates the robot that reads it.
+    (tmp_path / "parts.xacro").write_text(apply_edits(XACRO_PARTS, fix.edit.changes[parts_uri]))
+    open_file(client, tmp_path / "parts.xacro")
+    client.text_document_did_save(
+        types.DidSaveTextDocumentParams(text_document=types.TextDocumentIdentifier(uri=parts_uri))
+    )
+    await wait_for("U310 gone after saving the include", lambda: "U310" not in codes(client, parts_uri))
+
+
+async def test_a_newer_edit_cancels_the_analysis_under_way(client, tmp_path):
+    pr2 = copy_pr2(tmp_path)
+    text = pr2.read_text()
+    uri = open_file(client, pr2)
+    await wait_for("PR2 analysed", lambda: "U701" in codes(client, uri), timeout=120)
+    # Version 2 makes a joint far too weak; as soon as its structural pass is out (physics running),
+    # version 3 takes it back. Version 2's physics (U701 on that joint) must never be published.
+    joint = "r_elbow_flex_joint"
+    at = text.index('effort="30"', text.index(f'<joint name="{joint}"'))
+    assert not [d for d in client.diagnostics[uri] if d.code == "U701" and f"'{joint}'" in d.message]
+    weak = text[:at] + 'effort="0.001"' + text[at + len('effort="30"') :]
+    change(client, uri, 2, weak)
+    await wait_for("version 2's structural pass", lambda: any(
+        p.uri == uri and p.version == 2 for p in client.published
+    ))
+    change(client, uri, 3, text)
+    # Each version is published twice: structure, then physics.
+    await wait_for("version 3's physics", lambda: len([
+        p for p in client.published if p.uri == uri and p.version == 3
+    ]) >= 2, timeout=120)
+    # Time for a stray physics pass of version 2 to arrive, were it not cancelled.
+    await asyncio.sleep(1.0)
+    version_2 = [p for p in client.published if p.uri == uri and p.version == 2]
+    assert not any(
+        d.code == "U701" and f"'{joint}'" in d.message for p in version_2 for d in p.diagnostics
+    ), "the physics pass of version 2 was published after version 3 arrived"
+    # Meanwhile the physics findings of version 1 stayed shown (no flicker while typing).
+    assert all(any(d.code == "U701" for d in p.diagnostics) for p in version_2)
+
+
+async def test_half_typed_xml_is_a_diagnostic_and_the_last_analysis_stays(client, tmp_path):
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(BROKEN_AXIS)
+    uri = open_file(client, robot)
+    await wait_for("U310", lambda: "U310" in codes(client, uri))
+    half = BROKEN_AXIS.replace('<child link="upper"/>', '<child link="up')
+    change(client, uri, 2, half)
+    await wait_for("the XML error", lambda: any(
+        "not well-formed" in d.message for d in client.diagnostics.get(uri, [])
+    ))
+    [error] = client.diagnostics[uri]
+    assert error.severity == types.DiagnosticSeverity.Error
+    # roxmltree stops where the attribute value breaks: on the child line or just after it.
+    child_line = BROKEN_AXIS.split("\n").index('    <child link="upper"/>')
+    assert child_line <= error.range.start.line <= child_line + 1, error
+    # Hover still answers from the last good analysis, and the server goes on answering.
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(half, '<link name="base"', len('<link name="') + 1),
+        )
+    )
+    assert "mass: 5 kg" in hover.contents.value
+    completion = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(half, '<parent link="', len('<parent link="')),
+        )
+    )
+    assert {item.label for item in completion} >= {"base", "upper"}
+    change(client, uri, 3, BROKEN_AXIS)
+    await wait_for("U310 back", lambda: "U310" in codes(client, uri))
+
+
+async def test_a_xacro_library_alone_is_only_checked_to_be_xml(client, tmp_path):
+    parts = tmp_path / "parts.xacro"
+    parts.write_text(XACRO_PARTS)
+    uri = open_file(client, parts)
+    await wait_for("parts.xacro published", lambda: any(p.uri == uri for p in client.published))
+    assert not client.diagnostics[uri]
+    change(client, uri, 2, XACRO_PARTS.replace("</xacro:macro>", "</xacro:macr>"))
+    await wait_for("the XML error", lambda: client.diagnostics.get(uri))
+    assert "not well-formed" in client.diagnostics[uri][0].message
+
+
+async def test_a_10_mb_document_and_an_include_cycle_are_diagnostics(client, tmp_path):
+    # 10 MB: a small robot after a long comment; its findings come, and requests are answered meanwhile.
+    big_text = BROKEN_AXIS.replace("<robot", "<!--" + "x" * (10 << 20) + "-->\n<robot", 1)
+    big = tmp_path / "big.urdf"
+    big.write_text(big_text)
+    uri = open_file(client, big)
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
+    )
+    assert [s.name for s in symbols] == ["base"]
+    await wait_for("U310 in the 10 MB document", lambda: "U310" in codes(client, uri))
+    [axis] = [d for d in client.diagnostics[uri] if d.code == "U310"]
+    assert axis.range.start.line == big_text.split("\n").index('    <axis xyz="0 0 2"/>')
+
+    # A xacro include cycle: one error, on the file, naming the cycle.
+    (tmp_path / "a.urdf.xacro").write_text(
+        '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="b.xacro"/><link name="l"/></robot>'
+    )
+    (tmp_path / "b.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="a.urdf.xacro"/></robot>'
+    )
+    cycle = open_file(client, tmp_path / "a.urdf.xacro")
+    await wait_for("the cycle's error", lambda: [
+        p for p in client.published if p.uri in (cycle, (tmp_path / "b.xacro").as_uri()) and p.diagnostics
+    ])
+    shown = [d for p in client.published for d in p.diagnostics if p.uri != uri]
+    assert any(d.severity == types.DiagnosticSeverity.Error and "includ" in d.message for d in shown), shown

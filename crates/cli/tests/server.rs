@@ -1,0 +1,179 @@
+//! `urdf_validate server`: the binary spoken to over LSP's framing (Content-Length headers) as an editor
+//! does: initialize, open a broken URDF, its diagnostics, a request answered while the physics pass runs,
+//! shutdown and exit. The client-library and Neovim tests are in tests/lsp (scripts/test-lsp.sh).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{self, Receiver};
+use std::time::Duration;
+
+use serde_json::{json, Value};
+
+/// A running server and the messages it writes.
+struct Server {
+    child: Child,
+    stdin: ChildStdin,
+    messages: Receiver<Value>,
+    /// Messages read while waiting for another, in order.
+    skipped: Vec<Value>,
+}
+
+impl Server {
+    fn start() -> Server {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+            .arg("server")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start the server");
+        let stdin = child.stdin.take().expect("stdin");
+        let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
+        let (sender, messages) = mpsc::channel();
+        std::thread::spawn(move || loop {
+            let mut length = 0;
+            loop {
+                let mut line = String::new();
+                if stdout.read_line(&mut line).unwrap_or(0) == 0 {
+                    return;
+                }
+                if let Some(n) = line.strip_prefix("Content-Length: ") {
+                    length = n.trim().parse().expect("length");
+                }
+                if line == "\r\n" {
+                    break;
+                }
+            }
+            let mut body = vec![0; length];
+            stdout.read_exact(&mut body).expect("body");
+            if sender
+                .send(serde_json::from_slice(&body).expect("JSON"))
+                .is_err()
+            {
+                return;
+            }
+        });
+        Server {
+            child,
+            stdin,
+            messages,
+            skipped: Vec::new(),
+        }
+    }
+
+    fn send(&mut self, message: Value) {
+        let body = message.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("write");
+        self.stdin.flush().expect("flush");
+    }
+
+    /// The first message satisfying `wanted` (others are kept for later waits).
+    fn wait(&mut self, wanted: impl Fn(&Value) -> bool) -> Value {
+        if let Some(i) = self.skipped.iter().position(&wanted) {
+            return self.skipped.remove(i);
+        }
+        loop {
+            let message = self
+                .messages
+                .recv_timeout(Duration::from_secs(60))
+                .expect("a message within 60 s");
+            if wanted(&message) {
+                return message;
+            }
+            self.skipped.push(message);
+        }
+    }
+}
+
+const BROKEN: &str = r#"<?xml version="1.0"?>
+<robot name="broken">
+  <link name="base"/>
+  <joint name="j" type="fixed">
+    <parent link="base"/>
+    <child link="missing"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+fn diagnostics_answers_and_a_clean_exit() {
+    let dir = tempfile_dir();
+    let path = dir.join("broken.urdf");
+    std::fs::write(&path, BROKEN).expect("write");
+    let uri = format!("file://{}", path.display());
+    let mut server = Server::start();
+    server.send(json!({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+        "params": {"processId": null, "capabilities": {}, "rootUri": null}}));
+    let init = server.wait(|m| m["id"] == 1);
+    assert!(
+        server.skipped.is_empty(),
+        "nothing before the answer to initialize"
+    );
+    let capabilities = &init["result"]["capabilities"];
+    assert_eq!(capabilities["hoverProvider"], true, "{init}");
+    assert_eq!(capabilities["textDocumentSync"]["change"], 2, "incremental");
+    server.send(json!({"jsonrpc": "2.0", "method": "initialized", "params": {}}));
+    server.send(
+        json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {
+        "textDocument": {"uri": uri, "languageId": "xml", "version": 1, "text": BROKEN}}}),
+    );
+    // A request right after the open is answered from the text, whatever the analysis is doing.
+    server.send(
+        json!({"jsonrpc": "2.0", "id": 2, "method": "textDocument/documentSymbol",
+        "params": {"textDocument": {"uri": uri}}}),
+    );
+    let symbols = server.wait(|m| m["id"] == 2);
+    assert_eq!(symbols["result"][0]["name"], "base", "{symbols}");
+    let published = server.wait(|m| m["method"] == "textDocument/publishDiagnostics");
+    assert_eq!(published["params"]["uri"], uri.as_str());
+    let diagnostics = published["params"]["diagnostics"]
+        .as_array()
+        .expect("diagnostics");
+    let undefined = diagnostics
+        .iter()
+        .find(|d| d["code"] == "U102")
+        .unwrap_or_else(|| panic!("no U102 in {published}"));
+    assert_eq!(
+        undefined["range"],
+        json!({"start": {"line": 5, "character": 17}, "end": {"line": 5, "character": 24}})
+    );
+    assert_eq!(undefined["severity"], 1);
+    server.send(json!({"jsonrpc": "2.0", "id": 3, "method": "shutdown", "params": null}));
+    server.wait(|m| m["id"] == 3);
+    server.send(json!({"jsonrpc": "2.0", "method": "exit", "params": null}));
+    let status = server.child.wait().expect("exit");
+    assert!(status.success(), "{status}");
+}
+
+#[test]
+fn help_names_the_editors_section() {
+    let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["server", "--help"])
+        .output()
+        .expect("run");
+    let help = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success());
+    assert!(help.contains("Language Server Protocol"), "{help}");
+    assert!(help.contains("section Editors"), "{help}");
+}
+
+#[test]
+fn a_bad_flag_stops_the_server_with_a_message() {
+    let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["server", "--samples", "0"])
+        .stdin(Stdio::null())
+        .output()
+        .expect("run");
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("--samples"), "{stderr}");
+}
+
+/// A fresh folder under the target directory's temporary space.
+fn tempfile_dir() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("urdf-lsp-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
