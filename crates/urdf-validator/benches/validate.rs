@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use urdf_validator::analysis::workspace::chain::{ArmChain, BATCH};
+use urdf_validator::analysis::workspace::chain::{ArmChain, Samples, BATCH};
 use urdf_validator::analysis::workspace::{CollisionSetup, Scene, WorkspaceOptions};
 use urdf_validator::model::kinematics::{forward_kinematics, Data};
 use urdf_validator::model::Model;
@@ -154,7 +154,7 @@ fn tip_kinematics_7dof(bencher: divan::Bencher, with_approach: bool) {
             .map(|batch| {
                 let lanes: [&[f64]; BATCH] =
                     std::array::from_fn(|k| divan::black_box(batch[k % batch.len()].as_slice()));
-                let poses = chain.tips(&lanes, with_approach.then_some(&approach));
+                let poses = chain.tips(&Samples::Rows(&lanes), with_approach.then_some(&approach));
                 poses
                     .iter()
                     .map(|p| p.position.x + p.approach.x)

@@ -15,10 +15,22 @@ use super::sincos::sincos;
 use crate::analysis::arms::Arm;
 use crate::model::kinematics::Data;
 use crate::model::{JointId, Model};
+use crate::rng::SplitMix64;
 use crate::urdf::robot::JointKind;
 
 /// Samples [`ArmChain::tips`] evaluates together.
-pub const BATCH: usize = 8;
+pub const BATCH: usize = 64;
+
+/// The sampled values of a batch of [`BATCH`] samples.
+#[derive(Clone, Copy)]
+pub enum Samples<'a> {
+    /// `q[k]` holds sample `k`'s values, one per [`ArmChain::sampled`] joint.
+    Rows(&'a [&'a [f64]; BATCH]),
+    /// Drawn from the generator, sample by sample and joint by joint, each uniform within its joint's
+    /// interval: what filling the rows in turn would give, computed where needed (the generator is left
+    /// as it is).
+    Drawn(&'a SplitMix64),
+}
 
 /// One value per sample of a batch.
 type Lanes = [f64; BATCH];
@@ -228,20 +240,35 @@ impl ArmChain {
     /// [`ArmChain::sampled`] joint). `approach` is the tool's approach axis in the tip frame: with it, each
     /// pose carries its approach direction; without it, the tip position alone (what reach needs) and a
     /// zero approach.
-    pub fn tips(&self, q: &[&[f64]; BATCH], approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+    pub fn tips(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: `tips_avx2` needs AVX2, and this CPU has it (checked just above).
-            return unsafe { self.tips_avx2(q, approach) };
+        {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+                // SAFETY: `tips_avx512` needs these three, and this CPU has them (checked just above).
+                return unsafe { self.tips_avx512(samples, approach) };
+            }
+            if has!("avx2") {
+                // SAFETY: `tips_avx2` needs AVX2, and this CPU has it (checked just above).
+                return unsafe { self.tips_avx2(samples, approach) };
+            }
         }
-        self.tips_with::<false>(q, approach)
+        self.tips_with::<false>(samples, approach)
     }
 
     /// [`ArmChain::tips`] compiled for AVX2: four samples per vector register, sines and cosines included.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn tips_avx2(&self, q: &[&[f64]; BATCH], approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
-        self.tips_with::<true>(q, approach)
+    fn tips_avx2(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+        self.tips_with::<true>(samples, approach)
+    }
+
+    /// [`ArmChain::tips`] compiled for AVX-512 (which also multiplies 64-bit integers and converts them to
+    /// floats in vector registers: the drawn values too are computed several at once).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl")]
+    fn tips_avx512(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+        self.tips_with::<true>(samples, approach)
     }
 
     /// [`ArmChain::tips`], with the lanes' sines and cosines from [`sincos`] when `VECTOR` (for a caller
@@ -249,12 +276,12 @@ impl ArmChain {
     #[inline(always)]
     fn tips_with<const VECTOR: bool>(
         &self,
-        q: &[&[f64]; BATCH],
+        samples: &Samples,
         approach: Option<&Vector3<f64>>,
     ) -> [TipPose; BATCH] {
         match approach {
-            Some(approach) => self.evaluate::<true, VECTOR>(q, approach),
-            None => self.evaluate::<false, VECTOR>(q, &Vector3::zeros()),
+            Some(approach) => self.evaluate::<true, VECTOR>(samples, approach),
+            None => self.evaluate::<false, VECTOR>(samples, &Vector3::zeros()),
         }
     }
 
@@ -262,7 +289,7 @@ impl ArmChain {
     #[inline(always)]
     fn evaluate<const APPROACH: bool, const VECTOR: bool>(
         &self,
-        q: &[&[f64]; BATCH],
+        samples: &Samples,
         approach: &Vector3<f64>,
     ) -> [TipPose; BATCH] {
         let mut point = Vectors::splat(&self.tip.translation.vector);
@@ -272,7 +299,7 @@ impl ArmChain {
             Vector3::zeros()
         });
         for joint in self.joints.iter().rev() {
-            let value = joint.values(q);
+            let value = joint.values(samples, &self.sampled);
             if joint.prismatic {
                 point.add_scaled(&joint.axis, &value);
             } else {
@@ -332,24 +359,35 @@ impl ChainJoint {
 
     /// This joint's value in each sample of a batch.
     #[inline(always)]
-    fn values(&self, q: &[&[f64]; BATCH]) -> Lanes {
-        let mut values = [0.0; BATCH];
-        match self.source {
-            Source::Sampled(i) => {
-                for k in 0..BATCH {
-                    values[k] = q[k][i];
-                }
-            }
+    fn values(&self, samples: &Samples, sampled: &[(JointId, f64, f64)]) -> Lanes {
+        let (index, multiplier, offset) = match self.source {
+            Source::Sampled(i) => (i, 1.0, 0.0),
             Source::Mimic {
                 index,
                 multiplier,
                 offset,
-            } => {
-                for k in 0..BATCH {
-                    values[k] = multiplier * q[k][index] + offset;
+            } => (index, multiplier, offset),
+            Source::Constant(v) => return [v; BATCH],
+        };
+        let mut values = [0.0; BATCH];
+        match samples {
+            Samples::Rows(q) => {
+                for (value, q) in values.iter_mut().zip(q.iter()) {
+                    *value = q[index];
                 }
             }
-            Source::Constant(v) => values = [v; BATCH],
+            Samples::Drawn(rng) => {
+                let (_, lo, hi) = sampled[index];
+                let (index, dof) = (index as u64, sampled.len() as u64);
+                for (k, value) in (0u64..).zip(values.iter_mut()) {
+                    *value = rng.uniform_ahead(k * dof + index, lo, hi);
+                }
+            }
+        }
+        if let Source::Mimic { .. } = self.source {
+            for value in &mut values {
+                *value = multiplier * *value + offset;
+            }
         }
         values
     }
@@ -407,7 +445,7 @@ mod tests {
         let mut point = chain.tip.translation.vector;
         let mut direction = chain.tip.rotation * approach;
         for joint in chain.joints.iter().rev() {
-            let value = joint.values(&[q; BATCH])[0];
+            let value = joint.values(&Samples::Rows(&[q; BATCH]), &chain.sampled)[0];
             if joint.prismatic {
                 point += joint.axis * value;
             } else {
@@ -459,6 +497,7 @@ mod tests {
         let approach = Vector3::new(0.0, 0.6, 0.8);
         let mut rng = SplitMix64::new(3);
         for _ in 0..25 {
+            let before = rng.clone();
             let samples: Vec<Vec<f64>> = (0..BATCH)
                 .map(|_| {
                     chain
@@ -468,12 +507,15 @@ mod tests {
                         .collect()
                 })
                 .collect();
-            let batch: [&[f64]; BATCH] = std::array::from_fn(|k| samples[k].as_slice());
+            let rows: [&[f64]; BATCH] = std::array::from_fn(|k| samples[k].as_slice());
+            let batch = Samples::Rows(&rows);
             let poses = chain.tips(&batch, Some(&approach));
             let positions = chain.tips(&batch, None);
-            // Both ways of computing the sines and cosines, whichever this CPU runs.
+            // Both ways of computing the sines and cosines, whichever this CPU runs, and the values
+            // drawn where needed rather than read.
             let vector = chain.tips_with::<true>(&batch, Some(&approach));
             let scalar = chain.tips_with::<false>(&batch, Some(&approach));
+            let drawn = chain.tips(&Samples::Drawn(&before), Some(&approach));
             for (k, sample) in samples.iter().enumerate() {
                 let mut q = q0.clone();
                 for (value, (joint, _, _)) in sample.iter().zip(&chain.sampled) {
@@ -490,7 +532,7 @@ mod tests {
                 assert_eq!(bits(&pose.position), bits(&single.position));
                 assert_eq!(bits(&pose.approach), bits(&single.approach));
                 assert_eq!(bits(&positions[k].position), bits(&single.position));
-                for pose in [vector[k], scalar[k]] {
+                for pose in [vector[k], scalar[k], drawn[k]] {
                     assert_eq!(bits(&pose.position), bits(&single.position));
                     assert_eq!(bits(&pose.approach), bits(&single.approach));
                 }

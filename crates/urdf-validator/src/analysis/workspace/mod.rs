@@ -36,7 +36,7 @@ use crate::rng::SplitMix64;
 use crate::timings::Progress;
 use crate::urdf::robot::Robot;
 
-use chain::{ArmChain, BATCH};
+use chain::{ArmChain, Samples, BATCH};
 use target::{Orientation, OrientationMatcher, Task};
 
 /// Samples per parallel work unit (and per generator seed).
@@ -312,16 +312,27 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         .map(|t| scene.ground + t.height(scene.ground));
     let shoulder = job.chain.shoulder;
     let stride = tip_stride(ctx.options.samples);
+    // The samples' values are needed one by one only for self-collision and the task band; otherwise the
+    // tips are computed from values drawn where the chain needs them, never stored.
+    let keep_rows = collision_state.is_some() || target_height.is_some();
+    let approach = ctx.matcher.map(|_| &job.approach);
     for first in (0..count).step_by(BATCH) {
         let batch = BATCH.min(count - first);
-        for row in &mut rows[..batch] {
-            for (value, (_, lo, hi)) in row.iter_mut().zip(&job.chain.sampled) {
-                *value = rng.uniform(*lo, *hi);
+        let poses = if keep_rows {
+            for row in &mut rows[..batch] {
+                for (value, (_, lo, hi)) in row.iter_mut().zip(&job.chain.sampled) {
+                    *value = rng.uniform(*lo, *hi);
+                }
             }
-        }
-        // Rows past the batch's end hold earlier (or zero) values: evaluated, then ignored.
-        let lanes: [&[f64]; BATCH] = std::array::from_fn(|k| rows[k].as_slice());
-        let poses = job.chain.tips(&lanes, ctx.matcher.map(|_| &job.approach));
+            // Rows past the batch's end hold earlier (or zero) values: evaluated, then ignored.
+            let lanes: [&[f64]; BATCH] = std::array::from_fn(|k| rows[k].as_slice());
+            job.chain.tips(&Samples::Rows(&lanes), approach)
+        } else {
+            let poses = job.chain.tips(&Samples::Drawn(&rng), approach);
+            rng.skip((batch * job.chain.dof()) as u64);
+            poses
+        };
+        // `q` is the sample's values when `keep_rows` (and only read then).
         for (k, (q, pose)) in rows.iter().zip(&poses).take(batch).enumerate() {
             let i = first + k;
             let p = pose.position;
