@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use urdf_validator::analysis::workspace::chain::ArmChain;
+use urdf_validator::analysis::workspace::chain::{ArmChain, Samples, BATCH};
 use urdf_validator::analysis::workspace::{CollisionSetup, Scene, WorkspaceOptions};
 use urdf_validator::model::kinematics::{forward_kinematics, Data};
 use urdf_validator::model::Model;
@@ -150,14 +150,15 @@ fn tip_kinematics_7dof(bencher: divan::Bencher, with_approach: bool) {
     let approach = nalgebra::Vector3::z();
     bencher.bench_local(|| {
         samples
-            .iter()
-            .map(|q| {
-                let q = divan::black_box(q);
-                if with_approach {
-                    chain.tip(q, &approach).approach.x
-                } else {
-                    chain.tip_position(q).x
-                }
+            .chunks(BATCH)
+            .map(|batch| {
+                let lanes: [&[f64]; BATCH] =
+                    std::array::from_fn(|k| divan::black_box(batch[k % batch.len()].as_slice()));
+                let poses = chain.tips(&Samples::Rows(&lanes), with_approach.then_some(&approach));
+                poses
+                    .iter()
+                    .map(|p| p.position.x + p.approach.x)
+                    .sum::<f64>()
             })
             .sum::<f64>()
     });

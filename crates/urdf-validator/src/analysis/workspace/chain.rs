@@ -1,16 +1,94 @@
-//! Fast forward kinematics of one arm: the tip position (and an approach direction) for a vector of the
+//! Fast forward kinematics of one arm: the tip position (and an approach direction) for vectors of the
 //! arm's sampled joint values, with everything else at the reference pose.
 //!
-//! The chain is evaluated from the tip back to the base on vectors only (Rodrigues' rotation of a point,
-//! then the joint's fixed placement), which is what makes millions of samples per second possible: no
-//! rotation matrices are composed. Fixed joints are folded into the next moving joint's placement.
+//! The chain is evaluated from the tip back to the base on vectors only (a plane rotation or Rodrigues'
+//! rotation of a point, then the joint's fixed placement), which is what makes millions of samples per
+//! second possible: no rotation matrices are composed. Fixed joints are folded into the next moving
+//! joint's placement. [`BATCH`] samples are evaluated together, one joint at a time for all of them
+//! (structure of arrays): the chain is read once per batch instead of once per sample, and the compiler
+//! evaluates the samples' sines, cosines and rotations in vector registers. Every result is the same bits
+//! as evaluating one sample at a time with `libm::sincos` and nalgebra's products.
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 
+use super::sincos::sincos;
 use crate::analysis::arms::Arm;
 use crate::model::kinematics::Data;
 use crate::model::{JointId, Model};
+use crate::rng::SplitMix64;
 use crate::urdf::robot::JointKind;
+
+/// Samples [`ArmChain::tips`] evaluates together.
+pub const BATCH: usize = 64;
+
+/// The sampled values of a batch of [`BATCH`] samples.
+#[derive(Clone, Copy)]
+pub enum Samples<'a> {
+    /// `q[k]` holds sample `k`'s values, one per [`ArmChain::sampled`] joint.
+    Rows(&'a [&'a [f64]; BATCH]),
+    /// Drawn from the generator, sample by sample and joint by joint, each uniform within its joint's
+    /// interval: what filling the rows in turn would give, computed where needed (the generator is left
+    /// as it is).
+    Drawn(&'a SplitMix64),
+}
+
+/// One value per sample of a batch.
+type Lanes = [f64; BATCH];
+
+/// One vector per sample of a batch, by component.
+#[derive(Clone, Copy)]
+struct Vectors {
+    x: Lanes,
+    y: Lanes,
+    z: Lanes,
+}
+
+impl Vectors {
+    /// `v` in every lane.
+    fn splat(v: &Vector3<f64>) -> Self {
+        Vectors {
+            x: [v.x; BATCH],
+            y: [v.y; BATCH],
+            z: [v.z; BATCH],
+        }
+    }
+
+    fn lane(&self, k: usize) -> Vector3<f64> {
+        Vector3::new(self.x[k], self.y[k], self.z[k])
+    }
+
+    /// `v · by` added in every lane (`v · 1` is `v`, to the bit).
+    #[inline(always)]
+    fn add_scaled(&mut self, v: &Vector3<f64>, by: &Lanes) {
+        for (k, by) in by.iter().enumerate() {
+            self.x[k] += v.x * by;
+            self.y[k] += v.y * by;
+            self.z[k] += v.z * by;
+        }
+    }
+
+    /// `m · v` in every lane, summed in nalgebra's order (column by column).
+    #[inline(always)]
+    fn rotate_by(&mut self, m: &Matrix3<f64>) {
+        for k in 0..BATCH {
+            let (x, y, z) = (self.x[k], self.y[k], self.z[k]);
+            self.x[k] = m[(0, 0)] * x + m[(0, 1)] * y + m[(0, 2)] * z;
+            self.y[k] = m[(1, 0)] * x + m[(1, 1)] * y + m[(1, 2)] * z;
+            self.z[k] = m[(2, 0)] * x + m[(2, 1)] * y + m[(2, 2)] * z;
+        }
+    }
+}
+
+/// `(a, b)` turned by the angle with sines `s` and cosines `c`, lane by lane.
+#[inline(always)]
+fn plane_rotate(s: &Lanes, c: &Lanes, sign: f64, a: &mut Lanes, b: &mut Lanes) {
+    for k in 0..BATCH {
+        let s = s[k] * sign;
+        let (x, y) = (a[k], b[k]);
+        a[k] = c[k] * x - s * y;
+        b[k] = s * x + c[k] * y;
+    }
+}
 
 /// Where a chain joint's value comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,6 +111,9 @@ struct ChainJoint {
     /// Placement of the joint frame in the previous moving joint's frame (fixed joints folded in).
     rotation: Matrix3<f64>,
     translation: Vector3<f64>,
+    /// The placement's rotation is the identity and no translation component is −0, so points skip the
+    /// product: `1·x + 0·y + 0·z + t` is `x + t` to the bit (a zero's sign included).
+    translation_only: bool,
     /// Unit axis in the joint frame.
     axis: Vector3<f64>,
     /// When the axis is ±x, ±y or ±z: its index and sign (a plane rotation is cheaper than Rodrigues).
@@ -125,10 +206,16 @@ impl ArmChain {
             let principal = (0..3)
                 .find(|&k| axis[k].abs() == 1.0)
                 .map(|k| (k, axis[k].signum()));
+            let rotation = *placement.rotation.to_rotation_matrix().matrix();
+            let translation = placement.translation.vector;
+            let negative_zero = |v: f64| v.to_bits() == (-0.0f64).to_bits();
+            let identity =
+                (0..3).all(|r| (0..3).all(|c| rotation[(r, c)] == if r == c { 1.0 } else { 0.0 }));
             joints.push(ChainJoint {
                 principal,
-                rotation: *placement.rotation.to_rotation_matrix().matrix(),
-                translation: placement.translation.vector,
+                rotation,
+                translation,
+                translation_only: identity && !translation.iter().any(|&v| negative_zero(v)),
                 axis,
                 prismatic: data.kind == JointKind::Prismatic,
                 source,
@@ -149,86 +236,160 @@ impl ArmChain {
         self.sampled.len()
     }
 
-    /// The tip pose for sampled values `q` (one per [`ArmChain::sampled`] joint). `approach` is the
-    /// tool's approach axis in the tip frame.
-    pub fn tip(&self, q: &[f64], approach: &Vector3<f64>) -> TipPose {
-        self.evaluate::<true>(q, approach)
+    /// The tip poses of a batch of samples: `q[k]` holds sample `k`'s values (one per
+    /// [`ArmChain::sampled`] joint). `approach` is the tool's approach axis in the tip frame: with it, each
+    /// pose carries its approach direction; without it, the tip position alone (what reach needs) and a
+    /// zero approach.
+    pub fn tips(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+                // SAFETY: `tips_avx512` needs these three, and this CPU has them (checked just above).
+                return unsafe { self.tips_avx512(samples, approach) };
+            }
+            if has!("avx2") {
+                // SAFETY: `tips_avx2` needs AVX2, and this CPU has it (checked just above).
+                return unsafe { self.tips_avx2(samples, approach) };
+            }
+        }
+        self.tips_with::<false>(samples, approach)
     }
 
-    /// The tip position alone for sampled values `q` (what reach needs).
-    pub fn tip_position(&self, q: &[f64]) -> Vector3<f64> {
-        self.evaluate::<false>(q, &Vector3::zeros()).position
+    /// [`ArmChain::tips`] compiled for AVX2: four samples per vector register, sines and cosines included.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn tips_avx2(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+        self.tips_with::<true>(samples, approach)
+    }
+
+    /// [`ArmChain::tips`] compiled for AVX-512 (which also multiplies 64-bit integers and converts them to
+    /// floats in vector registers: the drawn values too are computed several at once).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl")]
+    fn tips_avx512(&self, samples: &Samples, approach: Option<&Vector3<f64>>) -> [TipPose; BATCH] {
+        self.tips_with::<true>(samples, approach)
+    }
+
+    /// [`ArmChain::tips`], with the lanes' sines and cosines from [`sincos`] when `VECTOR` (for a caller
+    /// compiled for wide vectors), else from `libm::sincos` one by one: the same bits either way.
+    #[inline(always)]
+    fn tips_with<const VECTOR: bool>(
+        &self,
+        samples: &Samples,
+        approach: Option<&Vector3<f64>>,
+    ) -> [TipPose; BATCH] {
+        match approach {
+            Some(approach) => self.evaluate::<true, VECTOR>(samples, approach),
+            None => self.evaluate::<false, VECTOR>(samples, &Vector3::zeros()),
+        }
     }
 
     /// Walk from the tip back to the base; the approach direction is carried only when `APPROACH`.
-    #[inline]
-    fn evaluate<const APPROACH: bool>(&self, q: &[f64], approach: &Vector3<f64>) -> TipPose {
-        let mut point = self.tip.translation.vector;
-        let mut direction = if APPROACH {
+    #[inline(always)]
+    fn evaluate<const APPROACH: bool, const VECTOR: bool>(
+        &self,
+        samples: &Samples,
+        approach: &Vector3<f64>,
+    ) -> [TipPose; BATCH] {
+        let mut point = Vectors::splat(&self.tip.translation.vector);
+        let mut direction = Vectors::splat(&if APPROACH {
             self.tip.rotation * approach
         } else {
             Vector3::zeros()
-        };
+        });
         for joint in self.joints.iter().rev() {
-            let value = joint.value(q);
+            let value = joint.values(samples, &self.sampled);
             if joint.prismatic {
-                point += joint.axis * value;
+                point.add_scaled(&joint.axis, &value);
             } else {
-                let (s, c) = libm::sincos(value);
-                point = joint.rotate(s, c, &point);
+                let (s, c) = if VECTOR {
+                    sincos(&value)
+                } else {
+                    let mut sin = [0.0; BATCH];
+                    let mut cos = [0.0; BATCH];
+                    for ((s, c), v) in sin.iter_mut().zip(&mut cos).zip(&value) {
+                        (*s, *c) = libm::sincos(*v);
+                    }
+                    (sin, cos)
+                };
+                joint.rotate(&s, &c, &mut point);
                 if APPROACH {
-                    direction = joint.rotate(s, c, &direction);
+                    joint.rotate(&s, &c, &mut direction);
                 }
             }
-            point = joint.rotation * point + joint.translation;
+            if !joint.translation_only {
+                point.rotate_by(&joint.rotation);
+            }
+            point.add_scaled(&joint.translation, &[1.0; BATCH]);
             if APPROACH {
-                direction = joint.rotation * direction;
+                direction.rotate_by(&joint.rotation);
             }
         }
-        TipPose {
-            position: self.base.transform_point(&Point3::from(point)).coords,
+        std::array::from_fn(|k| TipPose {
+            position: self
+                .base
+                .transform_point(&Point3::from(point.lane(k)))
+                .coords,
             approach: if APPROACH {
-                self.base.rotation * direction
+                self.base.rotation * direction.lane(k)
             } else {
                 Vector3::zeros()
             },
-        }
+        })
     }
 }
 
 impl ChainJoint {
-    /// `v` rotated about the joint axis by the angle with sine `s` and cosine `c`.
-    #[inline]
-    fn rotate(&self, s: f64, c: f64, v: &Vector3<f64>) -> Vector3<f64> {
+    /// `v` rotated about the joint axis by the angles with sines `s` and cosines `c`, lane by lane.
+    #[inline(always)]
+    fn rotate(&self, s: &Lanes, c: &Lanes, v: &mut Vectors) {
         match self.principal {
-            Some((0, sign)) => {
-                let s = s * sign;
-                Vector3::new(v.x, c * v.y - s * v.z, s * v.y + c * v.z)
+            Some((0, sign)) => plane_rotate(s, c, sign, &mut v.y, &mut v.z),
+            Some((1, sign)) => plane_rotate(s, c, sign, &mut v.z, &mut v.x),
+            Some((_, sign)) => plane_rotate(s, c, sign, &mut v.x, &mut v.y),
+            None => {
+                for k in 0..BATCH {
+                    let turned = rotate(&self.axis, s[k], c[k], &v.lane(k));
+                    (v.x[k], v.y[k], v.z[k]) = (turned.x, turned.y, turned.z);
+                }
             }
-            Some((1, sign)) => {
-                let s = s * sign;
-                Vector3::new(c * v.x + s * v.z, v.y, c * v.z - s * v.x)
-            }
-            Some((_, sign)) => {
-                let s = s * sign;
-                Vector3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
-            }
-            None => rotate(&self.axis, s, c, v),
         }
     }
 
-    /// This joint's value for sampled values `q`.
-    #[inline]
-    fn value(&self, q: &[f64]) -> f64 {
-        match self.source {
-            Source::Sampled(i) => q[i],
+    /// This joint's value in each sample of a batch.
+    #[inline(always)]
+    fn values(&self, samples: &Samples, sampled: &[(JointId, f64, f64)]) -> Lanes {
+        let (index, multiplier, offset) = match self.source {
+            Source::Sampled(i) => (i, 1.0, 0.0),
             Source::Mimic {
                 index,
                 multiplier,
                 offset,
-            } => multiplier * q[index] + offset,
-            Source::Constant(v) => v,
+            } => (index, multiplier, offset),
+            Source::Constant(v) => return [v; BATCH],
+        };
+        let mut values = [0.0; BATCH];
+        match samples {
+            Samples::Rows(q) => {
+                for (value, q) in values.iter_mut().zip(q.iter()) {
+                    *value = q[index];
+                }
+            }
+            Samples::Drawn(rng) => {
+                let (_, lo, hi) = sampled[index];
+                let (index, dof) = (index as u64, sampled.len() as u64);
+                for (k, value) in (0u64..).zip(values.iter_mut()) {
+                    *value = rng.uniform_ahead(k * dof + index, lo, hi);
+                }
+            }
         }
+        if let Source::Mimic { .. } = self.source {
+            for value in &mut values {
+                *value = multiplier * *value + offset;
+            }
+        }
+        values
     }
 }
 
@@ -278,6 +439,45 @@ mod tests {
       <joint name="t" type="fixed"><parent link="l10"/><child link="tip"/><origin xyz="0.03 0 0.12" rpy="0 1 0"/></joint>
     </robot>"#;
 
+    /// The chain's tip, one sample at a time with nalgebra's products and `libm::sincos`: what a batch
+    /// must equal to the bit.
+    fn one_at_a_time(chain: &ArmChain, q: &[f64], approach: &Vector3<f64>) -> TipPose {
+        let mut point = chain.tip.translation.vector;
+        let mut direction = chain.tip.rotation * approach;
+        for joint in chain.joints.iter().rev() {
+            let value = joint.values(&Samples::Rows(&[q; BATCH]), &chain.sampled)[0];
+            if joint.prismatic {
+                point += joint.axis * value;
+            } else {
+                let (s, c) = libm::sincos(value);
+                let turn = |v: &Vector3<f64>| match joint.principal {
+                    Some((0, sign)) => {
+                        Vector3::new(v.x, c * v.y - s * sign * v.z, s * sign * v.y + c * v.z)
+                    }
+                    Some((1, sign)) => {
+                        Vector3::new(c * v.x + s * sign * v.z, v.y, c * v.z - s * sign * v.x)
+                    }
+                    Some((_, sign)) => {
+                        Vector3::new(c * v.x - s * sign * v.y, s * sign * v.x + c * v.y, v.z)
+                    }
+                    None => rotate(&joint.axis, s, c, v),
+                };
+                point = turn(&point);
+                direction = turn(&direction);
+            }
+            point = joint.rotation * point + joint.translation;
+            direction = joint.rotation * direction;
+        }
+        TipPose {
+            position: chain.base.transform_point(&Point3::from(point)).coords,
+            approach: chain.base.rotation * direction,
+        }
+    }
+
+    fn bits(v: &Vector3<f64>) -> [u64; 3] {
+        [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
+    }
+
     #[test]
     fn tip_equals_full_forward_kinematics() {
         let (robot, _) =
@@ -291,25 +491,52 @@ mod tests {
         let chain = ArmChain::new(&model, &arm, &data, &q0);
         // j6 and j7 follow j5, j9 has no range; j8 (zero axis) is sampled but moves nothing.
         assert_eq!(chain.dof(), 6);
+        // Joints with and without a rotation in their placement.
+        assert!(chain.joints.iter().any(|j| j.translation_only));
+        assert!(chain.joints.iter().any(|j| !j.translation_only));
         let approach = Vector3::new(0.0, 0.6, 0.8);
         let mut rng = SplitMix64::new(3);
-        for _ in 0..200 {
-            let sample: Vec<f64> = chain
-                .sampled
-                .iter()
-                .map(|(_, lo, hi)| rng.uniform(*lo, *hi))
+        for _ in 0..25 {
+            let before = rng.clone();
+            let samples: Vec<Vec<f64>> = (0..BATCH)
+                .map(|_| {
+                    chain
+                        .sampled
+                        .iter()
+                        .map(|(_, lo, hi)| rng.uniform(*lo, *hi))
+                        .collect()
+                })
                 .collect();
-            let mut q = q0.clone();
-            for (value, (joint, _, _)) in sample.iter().zip(&chain.sampled) {
-                q[joint.0] = *value;
+            let rows: [&[f64]; BATCH] = std::array::from_fn(|k| samples[k].as_slice());
+            let batch = Samples::Rows(&rows);
+            let poses = chain.tips(&batch, Some(&approach));
+            let positions = chain.tips(&batch, None);
+            // Both ways of computing the sines and cosines, whichever this CPU runs, and the values
+            // drawn where needed rather than read.
+            let vector = chain.tips_with::<true>(&batch, Some(&approach));
+            let scalar = chain.tips_with::<false>(&batch, Some(&approach));
+            let drawn = chain.tips(&Samples::Drawn(&before), Some(&approach));
+            for (k, sample) in samples.iter().enumerate() {
+                let mut q = q0.clone();
+                for (value, (joint, _, _)) in sample.iter().zip(&chain.sampled) {
+                    q[joint.0] = *value;
+                }
+                model.apply_mimic(&mut q);
+                forward_kinematics(&model, &q, &mut data);
+                let expected = data.link_placement[tip.0];
+                let pose = poses[k];
+                assert!((pose.position - expected.translation.vector).norm() < 1e-12);
+                assert!((pose.approach - expected.rotation * approach).norm() < 1e-12);
+                // Bit for bit what one sample at a time gives, with and without the approach.
+                let single = one_at_a_time(&chain, sample, &approach);
+                assert_eq!(bits(&pose.position), bits(&single.position));
+                assert_eq!(bits(&pose.approach), bits(&single.approach));
+                assert_eq!(bits(&positions[k].position), bits(&single.position));
+                for pose in [vector[k], scalar[k], drawn[k]] {
+                    assert_eq!(bits(&pose.position), bits(&single.position));
+                    assert_eq!(bits(&pose.approach), bits(&single.approach));
+                }
             }
-            model.apply_mimic(&mut q);
-            forward_kinematics(&model, &q, &mut data);
-            let expected = data.link_placement[tip.0];
-            let pose = chain.tip(&sample, &approach);
-            assert!((pose.position - expected.translation.vector).norm() < 1e-12);
-            assert!((chain.tip_position(&sample) - pose.position).norm() < 1e-15);
-            assert!((pose.approach - expected.rotation * approach).norm() < 1e-12);
         }
         // The shoulder is j1's origin.
         assert!((chain.shoulder - Vector3::new(0.0, 0.0, 0.3)).norm() < 1e-15);

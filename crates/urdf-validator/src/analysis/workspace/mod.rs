@@ -11,6 +11,7 @@ mod section;
 pub use section::{body_joints_held, ArmWorkspace, WorkspaceSection};
 
 pub mod chain;
+mod sincos;
 pub mod target;
 mod verdict;
 
@@ -35,7 +36,7 @@ use crate::rng::SplitMix64;
 use crate::timings::Progress;
 use crate::urdf::robot::Robot;
 
-use chain::ArmChain;
+use chain::{ArmChain, Samples, BATCH};
 use target::{Orientation, OrientationMatcher, Task};
 
 /// Samples per parallel work unit (and per generator seed).
@@ -291,7 +292,8 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     };
     let mut stats = ArmStats::new();
     let mut rng = SplitMix64::new(chunk_seed(ctx.options.seed, arm_index, chunk));
-    let mut q = vec![0.0; job.chain.dof()];
+    // One batch of samples' values, a row per sample.
+    let mut rows = vec![vec![0.0; job.chain.dof()]; BATCH];
     // Collision scratch: a full configuration and placements, updated on the moving links only.
     let mut collision_state = match (ctx.collision, &job.pairs) {
         (Some(model), Some(pairs)) if !pairs.is_empty() => Some((
@@ -310,71 +312,85 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
         .map(|t| scene.ground + t.height(scene.ground));
     let shoulder = job.chain.shoulder;
     let stride = tip_stride(ctx.options.samples);
-    for i in 0..count {
-        for (value, (_, lo, hi)) in q.iter_mut().zip(&job.chain.sampled) {
-            *value = rng.uniform(*lo, *hi);
-        }
-        let tip = ctx
-            .matcher
-            .map(|matcher| (matcher, job.chain.tip(&q, &job.approach)));
-        let p = match &tip {
-            Some((_, pose)) => pose.position,
-            None => job.chain.tip_position(&q),
-        };
-        let offset = p - shoulder;
-        let horizontal = offset.x.hypot(offset.y);
-        stats.samples += 1;
-        if (start + i) % stride == 0 {
-            stats.tips.push((start + i, round_mm(&p)));
-        }
-        stats.max_reach = stats.max_reach.max(offset.norm());
-        stats.max_height = stats.max_height.max(p.z - scene.ground);
-        stats.min_height = stats.min_height.min(p.z - scene.ground);
-        stats.max_horizontal = stats.max_horizontal.max(horizontal);
-        stats.max_from_base = stats.max_from_base.max(p.norm());
-        // Self-collision first: task heights, the band and orientations count feasible poses only.
-        let mut free = true;
-        if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
-            for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
-                q_full[joint.0] = *value;
-            }
-            scene.model.apply_mimic(q_full);
-            forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
-            let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
-            let check = model.check(pairs, &data.link_placement, cutoff, scratch);
-            free = check.is_free();
-            if free {
-                stats.collision_free += 1;
-                if let Some(clearance) = check.min_clearance {
-                    stats.min_clearance = Some(clearance);
+    // The samples' values are needed one by one only for self-collision and the task band; otherwise the
+    // tips are computed from values drawn where the chain needs them, never stored.
+    let keep_rows = collision_state.is_some() || target_height.is_some();
+    let approach = ctx.matcher.map(|_| &job.approach);
+    for first in (0..count).step_by(BATCH) {
+        let batch = BATCH.min(count - first);
+        let poses = if keep_rows {
+            for row in &mut rows[..batch] {
+                for (value, (_, lo, hi)) in row.iter_mut().zip(&job.chain.sampled) {
+                    *value = rng.uniform(*lo, *hi);
                 }
             }
-            if let Some(pair) = check.contact {
-                *stats.colliding.entry(pair).or_default() += 1;
+            // Rows past the batch's end hold earlier (or zero) values: evaluated, then ignored.
+            let lanes: [&[f64]; BATCH] = std::array::from_fn(|k| rows[k].as_slice());
+            job.chain.tips(&Samples::Rows(&lanes), approach)
+        } else {
+            let poses = job.chain.tips(&Samples::Drawn(&rng), approach);
+            rng.skip((batch * job.chain.dof()) as u64);
+            poses
+        };
+        // `q` is the sample's values when `keep_rows` (and only read then).
+        for (k, (q, pose)) in rows.iter().zip(&poses).take(batch).enumerate() {
+            let i = first + k;
+            let p = pose.position;
+            let offset = p - shoulder;
+            let horizontal = offset.x.hypot(offset.y);
+            stats.samples += 1;
+            if (start + i) % stride == 0 {
+                stats.tips.push((start + i, round_mm(&p)));
             }
-        }
-        let height = p.z - scene.ground;
-        if !free || height < 0.0 {
-            continue;
-        }
-        stats.feasible_heights = Some(match stats.feasible_heights {
-            Some((lo, hi)) => (lo.min(height), hi.max(height)),
-            None => (height, height),
-        });
-        let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
-        if in_band == Some(true) {
-            stats.band_samples += 1;
-            if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
-                stats.band_best = Some((horizontal, start + i, q.clone()));
+            stats.max_reach = stats.max_reach.max(offset.norm());
+            stats.max_height = stats.max_height.max(p.z - scene.ground);
+            stats.min_height = stats.min_height.min(p.z - scene.ground);
+            stats.max_horizontal = stats.max_horizontal.max(horizontal);
+            stats.max_from_base = stats.max_from_base.max(p.norm());
+            // Self-collision first: task heights, the band and orientations count feasible poses only.
+            let mut free = true;
+            if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
+                for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
+                    q_full[joint.0] = *value;
+                }
+                scene.model.apply_mimic(q_full);
+                forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
+                let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
+                let check = model.check(pairs, &data.link_placement, cutoff, scratch);
+                free = check.is_free();
+                if free {
+                    stats.collision_free += 1;
+                    if let Some(clearance) = check.min_clearance {
+                        stats.min_clearance = Some(clearance);
+                    }
+                }
+                if let Some(pair) = check.contact {
+                    *stats.colliding.entry(pair).or_default() += 1;
+                }
             }
-            if stats.band_poses.len() < MAX_BAND_POSES {
-                stats.band_poses.push((start + i, q.clone()));
+            let height = p.z - scene.ground;
+            if !free || height < 0.0 {
+                continue;
             }
-        }
-        if let Some((matcher, pose)) = &tip {
-            if in_band != Some(false) {
-                stats.orientation_considered += 1;
-                stats.orientation_ok += usize::from(matcher.accepts(&pose.approach));
+            stats.feasible_heights = Some(match stats.feasible_heights {
+                Some((lo, hi)) => (lo.min(height), hi.max(height)),
+                None => (height, height),
+            });
+            let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
+            if in_band == Some(true) {
+                stats.band_samples += 1;
+                if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
+                    stats.band_best = Some((horizontal, start + i, q.clone()));
+                }
+                if stats.band_poses.len() < MAX_BAND_POSES {
+                    stats.band_poses.push((start + i, q.clone()));
+                }
+            }
+            if let Some(matcher) = &ctx.matcher {
+                if in_band != Some(false) {
+                    stats.orientation_considered += 1;
+                    stats.orientation_ok += usize::from(matcher.accepts(&pose.approach));
+                }
             }
         }
     }
