@@ -90,6 +90,10 @@ pub fn plan(validations: &[&Validation], policy: &Policy) -> Plan {
     }
     for (path, (before, edits, fixes)) in per_file {
         let (after, _) = apply(&before, &edits);
+        if after == before {
+            // Edits that write what is there already (an override's value once written).
+            continue;
+        }
         if let Err(error) = roxmltree::Document::parse(&after) {
             plan.skipped.push(format!(
                 "{}: the fixed text would not be well-formed XML ({error}); nothing applied to it",

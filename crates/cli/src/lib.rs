@@ -247,47 +247,9 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     let mut outcomes = run();
     progress.finish();
     if args.fix || args.diff {
-        let policy = fixes::Policy {
-            unsafe_fixes: args.unsafe_fixes,
-            from_overrides: args.from_overrides,
-            package_paths: args.package_path.clone(),
-        };
-        let validations: Vec<&urdf_validator::Validation> = outcomes
-            .iter()
-            .filter_map(|o| o.validation.as_ref().ok())
-            .collect();
-        let fix_plan = fixes::plan(&validations, &policy);
-        for line in &fix_plan.skipped {
-            errln!("note: fix not applied: {line}");
-        }
-        let unsafe_left = match fix_plan.unsafe_left {
-            0 => String::new(),
-            n => format!(" ({n} more with --unsafe-fixes)"),
-        };
-        if args.diff {
-            out!("{}", fixes::diff(&fix_plan));
-            let fixes: usize = fix_plan.files.iter().map(|f| f.fixes).sum();
-            errln!(
-                "{fixes} fix(es) in {} file(s){unsafe_left}",
-                fix_plan.files.len()
-            );
-            return u8::from(!fix_plan.files.is_empty());
-        }
-        let errors = fixes::write(&fix_plan);
-        for error in &errors {
-            errln!("error: {error}");
-        }
-        let fixed: usize = fix_plan.files.iter().map(|f| f.fixes).sum();
-        errln!(
-            "fixed {fixed} finding(s) in {} file(s){unsafe_left}",
-            fix_plan.files.len() - errors.len()
-        );
-        if !fix_plan.files.is_empty() {
-            // Report what is left, from the files as written.
-            outcomes = run();
-        }
-        if !errors.is_empty() {
-            return 2;
+        match fix_or_diff(&args, outcomes, &run) {
+            Ok(left) => outcomes = left,
+            Err(code) => return code,
         }
     }
     let single_file = paths.len() == 1 && !paths[0].is_dir();
@@ -308,6 +270,79 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     } else {
         2
     }
+}
+
+/// Most passes of `--fix`: applying a fix can call for another (an inertia from geometry moves the centre of
+/// mass, so a joint needs another effort), so the files are validated again and fixed again, as ruff does,
+/// until nothing is left to fix or this many passes ran.
+const MAX_FIX_PASSES: usize = 4;
+
+/// `--diff`: print the fixes, `Err` with the exit code. `--fix`: apply them (pass after pass, see
+/// [`MAX_FIX_PASSES`]) and return the outcomes of the files as written; `Err(2)` when a file could not be
+/// written.
+fn fix_or_diff(
+    args: &Args,
+    mut outcomes: Vec<Outcome>,
+    run: &dyn Fn() -> Vec<Outcome>,
+) -> Result<Vec<Outcome>, u8> {
+    let policy = fixes::Policy {
+        unsafe_fixes: args.unsafe_fixes,
+        from_overrides: args.from_overrides,
+        package_paths: args.package_path.clone(),
+    };
+    let (mut fixed, mut written, mut passes) = (0, std::collections::BTreeSet::new(), 0);
+    for pass in 1..=MAX_FIX_PASSES {
+        let validations: Vec<&urdf_validator::Validation> = outcomes
+            .iter()
+            .filter_map(|o| o.validation.as_ref().ok())
+            .collect();
+        let fix_plan = fixes::plan(&validations, &policy);
+        let last = fix_plan.files.is_empty() || pass == MAX_FIX_PASSES || args.diff;
+        if last {
+            for line in &fix_plan.skipped {
+                errln!("note: fix not applied: {line}");
+            }
+        }
+        let unsafe_left = match fix_plan.unsafe_left {
+            0 => String::new(),
+            n => format!(" ({n} more with --unsafe-fixes)"),
+        };
+        if args.diff {
+            out!("{}", fixes::diff(&fix_plan));
+            let fixes: usize = fix_plan.files.iter().map(|f| f.fixes).sum();
+            errln!(
+                "{fixes} fix(es) in {} file(s){unsafe_left}",
+                fix_plan.files.len()
+            );
+            return Err(u8::from(!fix_plan.files.is_empty()));
+        }
+        let errors = fixes::write(&fix_plan);
+        for error in &errors {
+            errln!("error: {error}");
+        }
+        fixed += fix_plan.files.iter().map(|f| f.fixes).sum::<usize>();
+        passes += usize::from(!fix_plan.files.is_empty());
+        written.extend(fix_plan.files.iter().map(|f| f.path.clone()));
+        if !fix_plan.files.is_empty() {
+            // What is left, from the files as written.
+            outcomes = run();
+        }
+        if !errors.is_empty() {
+            return Err(2);
+        }
+        if fix_plan.files.is_empty() || pass == MAX_FIX_PASSES {
+            let passes = match passes {
+                0 | 1 => String::new(),
+                n => format!(" in {n} passes"),
+            };
+            errln!(
+                "fixed {fixed} finding(s) in {} file(s){passes}{unsafe_left}",
+                written.len()
+            );
+            break;
+        }
+    }
+    Ok(outcomes)
 }
 
 /// `--write-baseline`: every finding that counts, of every robot read, to `path`; 0 when written and

@@ -423,3 +423,36 @@ fn spot_links_without_inertial_get_a_guessed_one() {
         rules_of(&after, true)
     );
 }
+
+/// A moving 1 m × 0.1 m × 0.1 m box link without `<inertial>` (U201: guessed at 1000 kg/m³, 10 kg) on a
+/// joint declaring 1 N·m: only once the inertial is written does the joint need more effort (U701).
+const CHAINED: &str = r#"<?xml version="1.0"?>
+<robot name="r">
+  <link name="base"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.5"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <link name="arm">
+    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry></collision>
+  </link>
+</robot>
+"#;
+
+#[test]
+fn fix_passes_again_when_a_fix_calls_for_another() {
+    let dir = scratch("chained");
+    let path = dir.join("arm.urdf");
+    std::fs::write(&path, CHAINED).unwrap();
+    let file = path.to_str().unwrap();
+    assert_eq!(rules_of(&json_report(&path), true), vec!["U201"]);
+    let fixed = run(&[file, "--fix", "--unsafe-fixes"]);
+    let stderr = text(&fixed.stderr);
+    assert!(
+        stderr.contains("fixed 2 finding(s) in 1 file(s) in 2 passes"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("<mass value=\"10\"/>"), "{text}");
+    // 10 kg, 0.5 m out: 49.05 N·m, declared 1.5× that.
+    assert!(text.contains("effort=\"73.58\""), "{text}");
+    assert!(rules_of(&json_report(&path), true).is_empty());
+}
