@@ -83,13 +83,15 @@ box_stl() {
 }
 box_stl 0.1 > meshes/base.stl
 box_stl 0.05 > meshes/arm.stl
-inertial='<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
+# 1 kg cubes of 0.2 m and 0.1 m: the inertia (m·(2·side²)/12) and centre of their geometry, so U208/U209 stay quiet.
+base_inertial='<inertial><mass value="1"/><inertia ixx="0.00667" ixy="0" ixz="0" iyy="0.00667" iyz="0" izz="0.00667"/></inertial>'
+arm_inertial='<inertial><origin xyz="0 0 0.3"/><mass value="1"/><inertia ixx="0.00167" ixy="0" ixz="0" iyy="0.00167" iyz="0" izz="0.00167"/></inertial>'
 mesh_robots=()
 for n in $(seq 1 12); do
     cat > "arm_$n.urdf" <<URDF
 <robot name="arm_$n">
-  <link name="base">$inertial<collision><geometry><mesh filename="meshes/base.stl"/></geometry></collision></link>
-  <link name="arm">$inertial<collision><origin xyz="0 0 0.3"/><geometry><mesh filename="meshes/arm.stl"/></geometry></collision></link>
+  <link name="base">$base_inertial<collision><geometry><mesh filename="meshes/base.stl"/></geometry></collision></link>
+  <link name="arm">$arm_inertial<collision><origin xyz="0 0 0.3"/><geometry><mesh filename="meshes/arm.stl"/></geometry></collision></link>
   <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.2"/>
     <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="50" velocity="1"/></joint>
 </robot>
