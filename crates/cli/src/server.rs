@@ -574,6 +574,19 @@ impl Server<'_> {
         Some(document.index.offset(&document.text, position))
     }
 
+    /// The files of the document at `at` (the document first, then what it includes) and what its cursor is
+    /// on.
+    fn cursor(
+        &self,
+        at: &lsp_types::TextDocumentPositionParams,
+    ) -> Option<(Vec<File>, here::Target)> {
+        let offset = self.offset(&at.text_document.uri, at.position)?;
+        let files = self.files_of(&at.text_document.uri);
+        let file = files.first()?;
+        let target = here::target(&file.text, &file.scan, offset)?;
+        Some((files, target))
+    }
+
     fn folder_and_resolver(
         &self,
         uri: &Url,
@@ -588,10 +601,8 @@ impl Server<'_> {
     fn hover(&self, params: lsp_types::HoverParams) -> Option<Hover> {
         let at = params.text_document_position_params;
         let uri = &at.text_document.uri;
-        let offset = self.offset(uri, at.position)?;
-        let files = self.files_of(uri);
+        let (files, target) = self.cursor(&at)?;
         let file = files.first()?;
-        let target = here::target(&file.text, &file.scan, offset)?;
         let (dir, resolver) = self.folder_and_resolver(uri)?;
         let analysis = self.analysis_of(uri);
         let report = analysis.map(|a| &a.physics.as_ref().unwrap_or(&a.validation).report);
@@ -624,23 +635,14 @@ impl Server<'_> {
         params: lsp_types::GotoDefinitionParams,
     ) -> Option<GotoDefinitionResponse> {
         let at = params.text_document_position_params;
-        let uri = &at.text_document.uri;
-        let offset = self.offset(uri, at.position)?;
-        let files = self.files_of(uri);
-        let file = files.first()?;
-        let target = here::target(&file.text, &file.scan, offset)?;
-        let (dir, resolver) = self.folder_and_resolver(uri)?;
+        let (files, target) = self.cursor(&at)?;
+        let (dir, resolver) = self.folder_and_resolver(&at.text_document.uri)?;
         let locations = navigation::definition(&target, &files, &dir, &resolver);
         (!locations.is_empty()).then_some(GotoDefinitionResponse::Array(locations))
     }
 
     fn references(&self, params: lsp_types::ReferenceParams) -> Option<Vec<lsp_types::Location>> {
-        let at = params.text_document_position;
-        let uri = &at.text_document.uri;
-        let offset = self.offset(uri, at.position)?;
-        let files = self.files_of(uri);
-        let file = files.first()?;
-        let target = here::target(&file.text, &file.scan, offset)?;
+        let (files, target) = self.cursor(&params.text_document_position)?;
         Some(navigation::references(
             &target,
             &files,
