@@ -136,7 +136,7 @@ pub struct ArmChain {
     pub shoulder: Vector3<f64>,
 }
 
-/// A tip pose from [`ArmChain::tip`]: position and, when asked for, the approach direction, both world.
+/// A tip pose from [`ArmChain::tips`]: position and, when asked for, the approach direction, both world.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TipPose {
     /// Tip position.
