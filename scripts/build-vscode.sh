@@ -8,10 +8,17 @@ set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root/editors/vscode"
 
-command -v npm >/dev/null 2>&1 || {
-    echo "build-vscode: npm not found (install Node.js 20 or later)" >&2
-    exit 1
-}
+if ! command -v npm >/dev/null 2>&1; then
+    if [[ "$(id -u)" == 0 ]] && command -v apt-get >/dev/null 2>&1; then
+        echo "build-vscode: installing Debian's nodejs and npm" >&2
+        export DEBIAN_FRONTEND=noninteractive
+        apt-get update -qq >/dev/null
+        apt-get install -y -qq nodejs npm >/dev/null
+    else
+        echo "build-vscode: npm not found (install Node.js 20 or later)" >&2
+        exit 1
+    fi
+fi
 node --version
 npm ci --no-audit --no-fund
 npm run compile
@@ -19,7 +26,7 @@ npm test
 rm -f urdf-validator.vsix
 npm run package </dev/null
 
-listing="$(unzip -l urdf-validator.vsix)"
+listing="$(python3 -c 'import sys, zipfile; print("\n".join(zipfile.ZipFile(sys.argv[1]).namelist()))' urdf-validator.vsix)"
 for wanted in extension/package.json extension/out/extension.js \
     extension/node_modules/vscode-languageclient/package.json; do
     grep -q "$wanted" <<<"$listing" || {
