@@ -16,6 +16,7 @@ mod here;
 mod hover;
 mod navigation;
 mod positions;
+mod xacro_names;
 mod xml;
 
 use std::collections::HashMap;
@@ -606,8 +607,7 @@ impl Server<'_> {
         let (dir, resolver) = self.folder_and_resolver(uri)?;
         let analysis = self.analysis_of(uri);
         let report = analysis.map(|a| &a.physics.as_ref().unwrap_or(&a.validation).report);
-        let scans: Vec<xml::Scan> = files.iter().map(|f| f.scan.clone()).collect();
-        let mut text = hover::text(&target, report, &scans, &dir, &resolver)?;
+        let mut text = hover::text(&target, report, &files, &dir, &resolver)?;
         let physics_behind = analysis
             .and_then(|a| a.physics.as_ref().map(|p| !Arc::ptr_eq(p, &a.validation)))
             .unwrap_or(false);
@@ -618,6 +618,7 @@ impl Server<'_> {
         }
         let span = match &target {
             here::Target::Name { span, .. }
+            | here::Target::Xacro { span, .. }
             | here::Target::Path { span, .. }
             | here::Target::Rule { span, .. } => span.clone(),
         };

@@ -1,5 +1,6 @@
-//! Completion: link names in `parent`/`child`/`reference`, joint names in `mimic`, joint types, and rule
-//! codes in suppression comments, from the robot's files as the editor has them.
+//! Completion: link names in `parent`/`child`/`reference`, joint names in `mimic`, joint types, xacro
+//! property and argument names in `${…}`/`$(arg …)`, macro names after `<xacro:`, and rule codes in
+//! suppression comments, from the robot's files as the editor has them.
 
 use std::collections::BTreeSet;
 
@@ -8,6 +9,7 @@ use urdf_validator::diagnostics::rules;
 
 use super::here::{self, Kind};
 use super::navigation::File;
+use super::xacro_names::{self, XacroKind};
 
 /// The joint types URDF knows.
 const JOINT_TYPES: [&str; 6] = [
@@ -28,6 +30,16 @@ pub fn items(file: &File, offset: usize, files: &[File]) -> Vec<CompletionItem> 
         } else {
             Vec::new()
         };
+    }
+    if let Some(kind) = xacro_names::completion_kind(file, offset) {
+        let item_kind = match kind {
+            XacroKind::Macro => CompletionItemKind::FUNCTION,
+            XacroKind::Property | XacroKind::Arg => CompletionItemKind::VARIABLE,
+        };
+        return xacro_names::defined_names(files, kind)
+            .iter()
+            .map(|name| item(name, item_kind, xacro_names::describe(files, kind, name)))
+            .collect();
     }
     let Some((index, Some(attribute))) = file.scan.at(offset) else {
         return Vec::new();

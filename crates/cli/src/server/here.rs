@@ -1,11 +1,13 @@
-//! What the cursor is on: a link or joint name (where defined or where used), a mesh or include path, or
-//! a rule code in a suppression comment, read from the text as the editor has it now.
+//! What the cursor is on: a link or joint name (where defined or where used), a xacro property, argument or
+//! macro name, a mesh or include path, or a rule code in a suppression comment, read from the text as the
+//! editor has it now.
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use urdf_validator::input::resolve::{PackageResolver, Resolution};
 
+use super::xacro_names::{self, XacroKind};
 use super::xml::{Attribute, Element, Scan};
 
 /// A named thing of the robot, and how a name refers to it.
@@ -36,6 +38,15 @@ pub enum Target {
         /// Its bytes.
         span: Range<usize>,
     },
+    /// A xacro property (or macro parameter), argument or macro name, where defined or used.
+    Xacro {
+        /// Which kind.
+        kind: XacroKind,
+        /// The name.
+        name: String,
+        /// Its bytes.
+        span: Range<usize>,
+    },
     /// A rule code in a `<!-- urdf-validate: ignore ... -->` comment.
     Rule {
         /// The code or name as written.
@@ -49,6 +60,9 @@ pub enum Target {
 pub fn target(text: &str, scan: &Scan, offset: usize) -> Option<Target> {
     if let Some(rule) = rule_at(text, offset) {
         return Some(rule);
+    }
+    if let Some((kind, name, span)) = xacro_names::at(text, scan, offset) {
+        return Some(Target::Xacro { kind, name, span });
     }
     let (index, attribute) = scan.at(offset)?;
     let attribute = attribute?;

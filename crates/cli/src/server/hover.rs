@@ -1,7 +1,8 @@
 //! Hover: on a link, its mass, centre of mass, principal moments, whether its mass and inertia drew a
 //! finding, and the mass it carries; on a joint, the gravity torque at the analysed pose, the declared
 //! effort, the margin and the effort needed; on a mesh or include path, the file it resolves to (or where
-//! it was looked for); on a rule code in a suppression comment, the rule. Values come from the last
+//! it was looked for); on a xacro property, argument or macro, its value, default or parameters and where it
+//! is defined; on a rule code in a suppression comment, the rule. Values come from the last
 //! analysis that finished (the physics pass, when it has).
 
 use std::collections::{HashMap, HashSet};
@@ -14,16 +15,20 @@ use urdf_validator::report::Report;
 use urdf_validator::urdf::robot::Inertia;
 
 use super::here::{self, Kind, Target};
+use super::navigation::File;
+use super::xacro_names;
 use super::xml::Scan;
 
 /// The hover text (Markdown) of `target`, from `report` (the last analysis) when it has one.
 pub fn text(
     target: &Target,
     report: Option<&Report>,
-    scans: &[Scan],
+    files: &[File],
     dir: &Path,
     resolver: &PackageResolver,
 ) -> Option<String> {
+    let scans: Vec<Scan> = files.iter().map(|f| f.scan.clone()).collect();
+    let scans = scans.as_slice();
     match target {
         Target::Name {
             kind: Kind::Link,
@@ -35,6 +40,7 @@ pub fn text(
             name,
             ..
         } => report.and_then(|r| joint(r, name)),
+        Target::Xacro { kind, name, .. } => xacro_names::describe(files, *kind, name),
         Target::Path { value, .. } => Some(match here::resolve_path(value, dir, resolver) {
             Ok(path) => format!("`{value}`\n\n→ `{}`", path.display()),
             Err(why) => format!("`{value}`\n\nnot resolved: {why}"),

@@ -1,5 +1,6 @@
-//! Navigation: go to the definition of a link or joint name (and to the file a mesh or include path
-//! names), find every reference to a name across the files of the robot (a xacro tree's includes too),
+//! Navigation: go to the definition of a link or joint name or of a xacro property, argument or macro (and
+//! to the file a mesh or include path names), find every reference to a name across the files of the robot
+//! (a xacro tree's includes too),
 //! and the document's symbols as the kinematic tree (links holding the joints below them).
 
 use std::collections::HashSet;
@@ -10,6 +11,7 @@ use urdf_validator::input::resolve::PackageResolver;
 
 use super::here::{self, Target};
 use super::positions::LineIndex;
+use super::xacro_names;
 use super::xml::Scan;
 
 /// One file of the robot as the editor has it: its URI, text, line index and scan.
@@ -63,6 +65,15 @@ pub fn definition(
                     .map(|(span, _)| file.location(&span))
             })
             .collect(),
+        Target::Xacro { kind, name, .. } => files
+            .iter()
+            .flat_map(|file| {
+                xacro_names::occurrences(file, *kind, name)
+                    .into_iter()
+                    .filter(|(_, definition)| *definition)
+                    .map(|(span, _)| file.location(&span))
+            })
+            .collect(),
         Target::Path { value, .. } => here::resolve_path(value, dir, resolver)
             .ok()
             .and_then(|path| Url::from_file_path(path).ok())
@@ -75,13 +86,15 @@ pub fn definition(
 /// Every place in `files` naming the thing `target` names (its definition too when
 /// `include_declaration`).
 pub fn references(target: &Target, files: &[File], include_declaration: bool) -> Vec<Location> {
-    let Target::Name { kind, name, .. } = target else {
-        return Vec::new();
+    let occurrences = |file: &File| match target {
+        Target::Name { kind, name, .. } => here::occurrences(&file.scan, *kind, name),
+        Target::Xacro { kind, name, .. } => xacro_names::occurrences(file, *kind, name),
+        Target::Path { .. } | Target::Rule { .. } => Vec::new(),
     };
     files
         .iter()
         .flat_map(|file| {
-            here::occurrences(&file.scan, *kind, name)
+            occurrences(file)
                 .into_iter()
                 .filter(|(_, definition)| include_declaration || !definition)
                 .map(|(span, _)| file.location(&span))

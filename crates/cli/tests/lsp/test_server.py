@@ -252,6 +252,56 @@ async def test_xacro_findings_are_published_on_the_included_file(client, tmp_pat
     await wait_for("U310 gone after saving the include", lambda: "U310" not in codes(client, parts_uri))
 
 
+async def test_xacro_macros_and_properties_navigate_across_includes(client, tmp_path):
+    (tmp_path / "parts.xacro").write_text(XACRO_PARTS)
+    root = tmp_path / "robot.urdf.xacro"
+    root.write_text(XACRO_ROOT)
+    parts_uri = (tmp_path / "parts.xacro").as_uri()
+    uri = open_file(client, root)
+    # The robot's files (its includes) are known once its analysis has read them.
+    await wait_for("the tree's diagnostics", lambda: "U310" in codes(client, parts_uri))
+    call = position_of(XACRO_ROOT, "<xacro:arm", len("<xacro:") + 1)
+    root_document = types.TextDocumentIdentifier(uri=uri)
+
+    # A macro call: its definition in the included file, its signature on hover.
+    definition = await client.text_document_definition_async(
+        types.DefinitionParams(text_document=root_document, position=call)
+    )
+    assert [(d.uri, d.range.start) for d in definition] == [
+        (parts_uri, position_of(XACRO_PARTS, 'name="arm"', len('name="')))
+    ]
+    hover = await client.text_document_hover_async(types.HoverParams(text_document=root_document, position=call))
+    assert "**xacro macro `arm`**(prefix parent)" in hover.contents.value
+    assert "defined at parts.xacro:3" in hover.contents.value
+
+    # A macro parameter: defined by the params, used as ${prefix} three times.
+    open_file(client, tmp_path / "parts.xacro")
+    parts_document = types.TextDocumentIdentifier(uri=parts_uri)
+    use = position_of(XACRO_PARTS, "${prefix}_joint", 3)
+    references = await client.text_document_references_async(
+        types.ReferenceParams(
+            text_document=parts_document,
+            position=use,
+            context=types.ReferenceContext(include_declaration=True),
+        )
+    )
+    assert len(references) == 1 + XACRO_PARTS.count("${prefix}")
+    hover = await client.text_document_hover_async(types.HoverParams(text_document=parts_document, position=use))
+    assert "**parameter `prefix`** of xacro macro `arm`" in hover.contents.value
+
+    # Completion of a macro name after <xacro: and of a property in ${.
+    completion = await client.text_document_completion_async(
+        types.CompletionParams(text_document=root_document, position=position_of(XACRO_ROOT, "<xacro:arm", len("<xacro:a")))
+    )
+    items = completion.items if hasattr(completion, "items") else completion
+    assert "arm" in [i.label for i in items]
+    completion = await client.text_document_completion_async(
+        types.CompletionParams(text_document=parts_document, position=position_of(XACRO_PARTS, "${parent}", 3))
+    )
+    items = completion.items if hasattr(completion, "items") else completion
+    assert {"parent", "prefix"} <= {i.label for i in items}
+
+
 async def test_a_newer_edit_cancels_the_analysis_under_way(client, tmp_path):
     pr2 = copy_pr2(tmp_path)
     text = pr2.read_text()
