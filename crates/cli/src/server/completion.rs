@@ -70,6 +70,7 @@ pub fn items(file: &File, offset: usize, files: &[File]) -> Vec<CompletionItem> 
     let item_kind = match kind {
         Kind::Link => CompletionItemKind::CLASS,
         Kind::Joint => CompletionItemKind::FIELD,
+        Kind::Material => CompletionItemKind::COLOR,
     };
     names
         .into_iter()

@@ -181,9 +181,10 @@ pub fn rule_link(code: &str) -> Option<CodeDescription> {
 }
 
 /// The xacro macro calls and includes that produced the flagged text (`in macro 'wheel' called at
-/// FILE:LINE:COL`), each at its place.
+/// FILE:LINE:COL`), each at its place; and, for a finding about a pair of links (`Links 'a' and 'b' …`),
+/// the other link's definition.
 fn related(finding: &FindingReport, texts: &Texts) -> Option<Vec<DiagnosticRelatedInformation>> {
-    let related: Vec<_> = finding
+    let mut related: Vec<_> = finding
         .expanded_from
         .iter()
         .filter_map(|entry| {
@@ -195,7 +196,54 @@ fn related(finding: &FindingReport, texts: &Texts) -> Option<Vec<DiagnosticRelat
             })
         })
         .collect();
+    let own = finding_range(finding, texts).start;
+    for (file, start, end, name) in other_links(&finding.message, texts) {
+        let Some((text, index)) = texts.get(file) else {
+            continue;
+        };
+        let range = index.range(text, start, end);
+        let Ok(uri) = Url::from_file_path(file) else {
+            continue;
+        };
+        let same_place = finding.file.as_deref() == Some(file) && range.start.line == own.line;
+        if !same_place {
+            related.push(DiagnosticRelatedInformation {
+                location: Location::new(uri, range),
+                message: format!("link '{name}'"),
+            });
+        }
+    }
     (!related.is_empty()).then_some(related)
+}
+
+/// When `message` names two or more links (`'name'`) defined in `texts` (`<link name="name"`), each
+/// definition: (file, first and end byte of the name, name).
+fn other_links<'t>(message: &str, texts: &'t Texts) -> Vec<(&'t str, usize, usize, String)> {
+    let quoted: Vec<&str> = message
+        .split('\'')
+        .skip(1)
+        .step_by(2)
+        .filter(|name| !name.is_empty())
+        .collect();
+    let mut found = Vec::new();
+    for name in quoted {
+        for file in texts.names() {
+            let Some((text, _)) = texts.get(file) else {
+                continue;
+            };
+            for quote in ['"', '\''] {
+                let needle = format!("<link name={quote}{name}{quote}");
+                if let Some(at) = text.find(&needle) {
+                    let start = at + "<link name=".len() + 1;
+                    found.push((file, start, start + name.len(), name.to_string()));
+                }
+            }
+        }
+    }
+    if found.len() < 2 {
+        found.clear();
+    }
+    found
 }
 
 /// The `FILE:LINE:COL` that ends a stack entry (`... called at FILE:LINE:COL`).
@@ -210,6 +258,25 @@ fn trailing_location(entry: &str) -> Option<(&str, u32, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_pair_of_links_names_both_definitions() {
+        let text = "<robot>\n<link name=\"a\"/>\n<link name='b'/>\n</robot>";
+        let texts = Texts {
+            files: HashMap::from([("/r.urdf".to_string(), (text, LineIndex::new(text)))]),
+        };
+        let found = other_links(
+            "Links 'a' and 'b' have collision geometry in contact",
+            &texts,
+        );
+        let names: Vec<(&str, &str)> = found
+            .iter()
+            .map(|(_, start, end, name)| (&text[*start..*end], name.as_str()))
+            .collect();
+        assert_eq!(names, [("a", "a"), ("b", "b")]);
+        assert!(other_links("Link 'a' has no inertial", &texts).is_empty());
+        assert!(other_links("Links 'a' and 'zz'", &texts).is_empty());
+    }
 
     #[test]
     fn stack_entries_end_with_their_place() {

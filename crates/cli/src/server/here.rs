@@ -17,6 +17,8 @@ pub enum Kind {
     Link,
     /// `<joint name>`, `<mimic joint>`, `<transmission><joint name>`.
     Joint,
+    /// `<robot><material name>` (defined), `<visual><material name>` (used).
+    Material,
 }
 
 /// What is under the cursor.
@@ -92,6 +94,7 @@ pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
             Some(Kind::Link)
         }
         ("joint", "name") | ("mimic", "joint") => Some(Kind::Joint),
+        ("material", "name") => Some(Kind::Material),
         _ => None,
     }
 }
@@ -100,7 +103,9 @@ pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
 pub fn is_definition(scan: &Scan, element: &Element, attribute: &Attribute) -> bool {
     let parent = element.parent.map(|p| scan.elements[p].name.as_str());
     attribute.name == "name"
-        && (element.name == "link" || element.name == "joint" && parent != Some("transmission"))
+        && (element.name == "link"
+            || element.name == "joint" && parent != Some("transmission")
+            || element.name == "material" && parent == Some("robot"))
 }
 
 /// Every place of the scanned text naming the `kind` thing `name`: (span of the name, whether it defines it).
@@ -246,5 +251,17 @@ mod tests {
         let uses = occurrences(&scan, Kind::Link, "base");
         assert_eq!(uses.iter().filter(|(_, d)| *d).count(), 1);
         assert_eq!(uses.len(), 2);
+        let text = "<robot><material name=\"blue\"><color rgba=\"0 0 1 1\"/></material>\
+                    <link name=\"a\"><visual><material name=\"blue\"/></visual></link></robot>";
+        let scan = Scan::new(text);
+        let blue = occurrences(&scan, Kind::Material, "blue");
+        assert_eq!(
+            blue.iter().map(|(_, d)| *d).collect::<Vec<_>>(),
+            [true, false]
+        );
+        assert_eq!(
+            name(target(text, &scan, text.rfind("blue").expect("use") + 1)),
+            Some((Kind::Material, "blue".into()))
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! Hover: on a link, its mass, centre of mass, principal moments, whether its mass and inertia drew a
 //! finding, and the mass it carries; on a joint, the gravity torque at the analysed pose, the declared
 //! effort, the margin and the effort needed; on a mesh or include path, the file it resolves to (or where
-//! it was looked for); on a xacro property, argument or macro, its value, default or parameters and where it
+//! it was looked for); on a material name, its colour or texture; on a xacro property, argument or macro, its value, default or parameters and where it
 //! is defined; on a rule code in a suppression comment, the rule. Values come from the last
 //! analysis that finished (the physics pass, when it has).
 
@@ -40,6 +40,11 @@ pub fn text(
             name,
             ..
         } => report.and_then(|r| joint(r, name)),
+        Target::Name {
+            kind: Kind::Material,
+            name,
+            ..
+        } => material(files, name),
         Target::Xacro { kind, name, .. } => xacro_names::describe(files, *kind, name),
         Target::Path { value, .. } => Some(match here::resolve_path(value, dir, resolver) {
             Ok(path) => format!("`{value}`\n\n→ `{}`", path.display()),
@@ -58,6 +63,33 @@ pub fn text(
             ))
         }
     }
+}
+
+/// A robot-level material's colour or texture.
+fn material(files: &[File], name: &str) -> Option<String> {
+    files.iter().find_map(|file| {
+        let scan = &file.scan;
+        let index = scan.elements.iter().position(|e| {
+            e.attribute("name").is_some_and(|a| {
+                a.value == name
+                    && here::reference_kind(e, "name") == Some(Kind::Material)
+                    && here::is_definition(scan, e, a)
+            })
+        })?;
+        let looks: Vec<String> = scan
+            .children(index)
+            .filter_map(|c| match c.name.as_str() {
+                "color" => c
+                    .attribute("rgba")
+                    .map(|a| format!("colour rgba `{}`", a.value)),
+                "texture" => c
+                    .attribute("filename")
+                    .map(|a| format!("texture `{}`", a.value)),
+                _ => None,
+            })
+            .collect();
+        Some(format!("**material `{name}`**  \n{}", looks.join("  \n")))
+    })
 }
 
 /// A link's mass properties and the mass below it.

@@ -118,6 +118,20 @@ async def test_pr2_diagnostics_hover_and_navigation(client, tmp_path):
     )
     assert len(references) == expected
 
+    # A material used in a visual: its definition at the robot's top level, its colour on hover.
+    grey_use = text.index('<material name="Grey"', text.index('<material name="Grey"') + 1) + len('<material name="') + 1
+    grey = types.Position(
+        line=text.count("\n", 0, grey_use), character=grey_use - text.rfind("\n", 0, grey_use) - 1
+    )
+    definition = await client.text_document_definition_async(
+        types.DefinitionParams(text_document=types.TextDocumentIdentifier(uri=uri), position=grey)
+    )
+    assert [d.range.start for d in definition] == [position_of(text, '<material name="Grey"', len('<material name="'))]
+    hover = await client.text_document_hover_async(
+        types.HoverParams(text_document=types.TextDocumentIdentifier(uri=uri), position=grey)
+    )
+    assert "**material `Grey`**" in hover.contents.value and "colour rgba" in hover.contents.value
+
     # Symbols: the kinematic tree, base_footprint at the root.
     symbols = await client.text_document_document_symbol_async(
         types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
@@ -330,6 +344,36 @@ async def test_a_newer_edit_cancels_the_analysis_under_way(client, tmp_path):
     ), "the physics pass of version 2 was published after version 3 arrived"
     # Meanwhile the physics findings of version 1 stayed shown (no flicker while typing).
     assert all(any(d.code == "U701" for d in p.diagnostics) for p in version_2)
+
+
+def folded_arm() -> str:
+    """A four-joint arm folded back onto itself: 'hand' touches 'base', 'l3' touches 'l1' (U601)."""
+    inertial = (
+        '<inertial><mass value="1"/><inertia ixx="0.00167" iyy="0.00167" izz="0.00167" '
+        'ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+    )
+    names = ["base", "l1", "l2", "l3", "hand"]
+    lines = ['<?xml version="1.0"?>', '<robot name="folded">', f'  <link name="base">{inertial}</link>']
+    for i, z in enumerate(["0.3", "0.3", "-0.3", "-0.3"], start=1):
+        lines.append(
+            f'  <joint name="j{i}" type="revolute"><parent link="{names[i - 1]}"/><child link="{names[i]}"/>'
+            f'<origin xyz="0 0 {z}"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="100" velocity="1"/></joint>'
+        )
+        lines.append(f'  <link name="{names[i]}">{inertial}</link>')
+    return "\n".join(lines + ["</robot>", ""])
+
+
+async def test_a_pair_finding_relates_both_links(client, tmp_path):
+    text = folded_arm()
+    path = tmp_path / "folded.urdf"
+    path.write_text(text)
+    uri = open_file(client, path)
+    await wait_for("U601", lambda: "U601" in codes(client, uri), timeout=120)
+    [pair] = [d for d in client.diagnostics[uri] if d.code == "U601" and "'hand'" in d.message]
+    # The finding is on 'hand' (its line); the other link of the pair is related information.
+    assert pair.range.start.line == position_of(text, '<link name="hand"').line
+    related = {r.message: r.location.range.start for r in pair.related_information}
+    assert related == {"link 'base'": position_of(text, '<link name="base"', len('<link name="'))}
 
 
 async def test_half_typed_xml_is_a_diagnostic_and_the_last_analysis_stays(client, tmp_path):
