@@ -566,7 +566,27 @@ impl Server<'_> {
                 files.push(File::new(other, text));
             }
         }
+        files.extend(self.srdf_of(uri));
         files
+    }
+
+    /// The SRDF of the robot at `uri` (the one `--srdf` names, else the one beside it that the analyses
+    /// read: [`urdf_validator::input::srdf::find`]), as the editor has it when open.
+    fn srdf_of(&self, uri: &Url) -> Option<File> {
+        let path = documents::path_of(uri)?;
+        let config = crate::config::discover(&path);
+        let session = self.sessions.get(&config)?.as_ref().ok()?;
+        let robot = self
+            .analysis_of(uri)
+            .map(|a| a.validation.report.robot_name.clone());
+        let explicit = session.options().statics.pose.srdf.clone();
+        let srdf = urdf_validator::input::srdf::find(&path, robot.as_deref(), explicit.as_deref())?;
+        let srdf_uri = Url::from_file_path(&srdf).ok()?;
+        let text = match self.documents.get(&srdf_uri) {
+            Some(document) => document.text.clone(),
+            None => urdf_validator::input::srdf::Srdf::read(srdf).text.ok()?,
+        };
+        Some(File::new(srdf_uri, text))
     }
 
     /// The byte offset of `position` in the open document `uri`.

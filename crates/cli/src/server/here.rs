@@ -87,7 +87,7 @@ pub fn target(text: &str, scan: &Scan, offset: usize) -> Option<Target> {
     })
 }
 
-/// What an attribute `attribute` of `element` names, if a link or joint.
+/// What an attribute `attribute` of `element` names, if a link, joint or material.
 pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
     match (element.name.as_str(), attribute) {
         ("link", "name") | ("parent" | "child", "link") | ("gazebo", "reference") => {
@@ -95,6 +95,21 @@ pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
         }
         ("joint", "name") | ("mimic", "joint") => Some(Kind::Joint),
         ("material", "name") => Some(Kind::Material),
+        _ => None,
+    }
+}
+
+/// What an attribute of an SRDF element refers to (MoveIt's names of the URDF's links and joints: groups,
+/// chains, collision entries, the virtual joint). An SRDF defines none of them.
+pub fn srdf_reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
+    match (element.name.as_str(), attribute) {
+        ("link", "name")
+        | ("chain", "base_link" | "tip_link")
+        | ("disable_collisions" | "enable_collisions", "link1" | "link2")
+        | ("disable_default_collisions", "link")
+        | ("virtual_joint", "child_link")
+        | ("end_effector", "parent_link") => Some(Kind::Link),
+        ("joint" | "passive_joint", "name") => Some(Kind::Joint),
         _ => None,
     }
 }
@@ -109,7 +124,8 @@ pub fn is_definition(scan: &Scan, element: &Element, attribute: &Attribute) -> b
 }
 
 /// Every place of the scanned text naming the `kind` thing `name`: (span of the name, whether it defines it).
-pub fn occurrences(scan: &Scan, kind: Kind, name: &str) -> Vec<(Range<usize>, bool)> {
+/// `srdf`: the text is an SRDF (it only refers to names).
+pub fn occurrences(scan: &Scan, kind: Kind, name: &str, srdf: bool) -> Vec<(Range<usize>, bool)> {
     scan.elements
         .iter()
         .flat_map(|element| {
@@ -117,13 +133,17 @@ pub fn occurrences(scan: &Scan, kind: Kind, name: &str) -> Vec<(Range<usize>, bo
                 .attributes
                 .iter()
                 .filter(move |attribute| {
-                    attribute.value == name
-                        && reference_kind(element, &attribute.name) == Some(kind)
+                    let refers = if srdf {
+                        srdf_reference_kind(element, &attribute.name)
+                    } else {
+                        reference_kind(element, &attribute.name)
+                    };
+                    attribute.value == name && refers == Some(kind)
                 })
                 .map(move |attribute| {
                     (
                         attribute.value_span.clone(),
-                        is_definition(scan, element, attribute),
+                        !srdf && is_definition(scan, element, attribute),
                     )
                 })
         })
@@ -248,13 +268,13 @@ mod tests {
             Some(Target::Rule { code, .. }) if code == "U203"
         ));
         assert_eq!(target(text, &scan, at("ignore U")), None);
-        let uses = occurrences(&scan, Kind::Link, "base");
+        let uses = occurrences(&scan, Kind::Link, "base", false);
         assert_eq!(uses.iter().filter(|(_, d)| *d).count(), 1);
         assert_eq!(uses.len(), 2);
         let text = "<robot><material name=\"blue\"><color rgba=\"0 0 1 1\"/></material>\
                     <link name=\"a\"><visual><material name=\"blue\"/></visual></link></robot>";
         let scan = Scan::new(text);
-        let blue = occurrences(&scan, Kind::Material, "blue");
+        let blue = occurrences(&scan, Kind::Material, "blue", false);
         assert_eq!(
             blue.iter().map(|(_, d)| *d).collect::<Vec<_>>(),
             [true, false]
@@ -263,5 +283,16 @@ mod tests {
             name(target(text, &scan, text.rfind("blue").expect("use") + 1)),
             Some((Kind::Material, "blue".into()))
         );
+        let srdf = "<robot><group name=\"arm\"><link name=\"a\"/><joint name=\"j\"/></group>\
+                    <disable_collisions link1=\"a\" link2=\"b\" reason=\"Adjacent\"/></robot>";
+        let scan = Scan::new(srdf);
+        assert_eq!(
+            occurrences(&scan, Kind::Link, "a", true)
+                .iter()
+                .map(|(span, defines)| (&srdf[span.clone()], *defines))
+                .collect::<Vec<_>>(),
+            [("a", false), ("a", false)]
+        );
+        assert_eq!(occurrences(&scan, Kind::Joint, "j", true).len(), 1);
     }
 }

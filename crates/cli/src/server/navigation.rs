@@ -39,6 +39,11 @@ impl File {
         }
     }
 
+    /// Whether the file is an SRDF (MoveIt's semantic description: it refers to links and joints).
+    pub fn is_srdf(&self) -> bool {
+        self.uri.path().ends_with(".srdf")
+    }
+
     fn location(&self, span: &std::ops::Range<usize>) -> Location {
         Location::new(
             self.uri.clone(),
@@ -59,7 +64,7 @@ pub fn definition(
         Target::Name { kind, name, .. } => files
             .iter()
             .flat_map(|file| {
-                here::occurrences(&file.scan, *kind, name)
+                here::occurrences(&file.scan, *kind, name, file.is_srdf())
                     .into_iter()
                     .filter(|(_, definition)| *definition)
                     .map(|(span, _)| file.location(&span))
@@ -87,7 +92,9 @@ pub fn definition(
 /// `include_declaration`).
 pub fn references(target: &Target, files: &[File], include_declaration: bool) -> Vec<Location> {
     let occurrences = |file: &File| match target {
-        Target::Name { kind, name, .. } => here::occurrences(&file.scan, *kind, name),
+        Target::Name { kind, name, .. } => {
+            here::occurrences(&file.scan, *kind, name, file.is_srdf())
+        }
         Target::Xacro { kind, name, .. } => xacro_names::occurrences(file, *kind, name),
         Target::Path { .. } | Target::Rule { .. } => Vec::new(),
     };

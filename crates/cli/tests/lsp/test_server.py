@@ -346,6 +346,46 @@ async def test_a_newer_edit_cancels_the_analysis_under_way(client, tmp_path):
     assert all(any(d.code == "U701" for d in p.diagnostics) for p in version_2)
 
 
+SRDF = """<?xml version="1.0"?>
+<robot name="arm">
+  <group name="arm"><chain base_link="base" tip_link="upper"/><joint name="shoulder"/></group>
+  <disable_collisions link1="base" link2="upper" reason="Adjacent"/>
+</robot>
+"""
+
+
+async def test_references_reach_the_robots_srdf(client, tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(BROKEN_AXIS)
+    (tmp_path / "arm.srdf").write_text(SRDF)
+    srdf_uri = (tmp_path / "arm.srdf").as_uri()
+    uri = open_file(client, path)
+    await wait_for("the arm's diagnostics", lambda: "U310" in codes(client, uri))
+    references = await client.text_document_references_async(
+        types.ReferenceParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(BROKEN_AXIS, '<link name="base"', len('<link name="') + 1),
+            context=types.ReferenceContext(include_declaration=False),
+        )
+    )
+    in_srdf = sorted((r.range.start.line, r.range.start.character) for r in references if r.uri == srdf_uri)
+    assert in_srdf == [
+        (p.line, p.character)
+        for p in (
+            position_of(SRDF, 'base_link="base"', len('base_link="')),
+            position_of(SRDF, 'link1="base"', len('link1="')),
+        )
+    ]
+    references = await client.text_document_references_async(
+        types.ReferenceParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(BROKEN_AXIS, '<joint name="shoulder"', len('<joint name="') + 1),
+            context=types.ReferenceContext(include_declaration=False),
+        )
+    )
+    assert [r.uri for r in references] == [srdf_uri]
+
+
 def folded_arm() -> str:
     """A four-joint arm folded back onto itself: 'hand' touches 'base', 'l3' touches 'l1' (U601)."""
     inertial = (
