@@ -1,4 +1,5 @@
-//! What the cursor is on: a link or joint name (where defined or where used), a xacro property, argument or
+//! What the cursor is on: a link, joint, material or SDFormat frame name (where defined or where used, an
+//! SDFormat `<parent>`/`<child>` text included), a xacro property, argument or
 //! macro name, a mesh or include path, or a rule code in a suppression comment, read from the text as the
 //! editor has it now.
 
@@ -66,6 +67,9 @@ pub fn target(text: &str, scan: &Scan, offset: usize) -> Option<Target> {
     if let Some((kind, name, span)) = xacro_names::at(text, scan, offset) {
         return Some(Target::Xacro { kind, name, span });
     }
+    if let Some(name) = content_at(text, scan, offset) {
+        return Some(name);
+    }
     let (index, attribute) = scan.at(offset)?;
     let attribute = attribute?;
     let element = &scan.elements[index];
@@ -95,8 +99,36 @@ pub fn reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
         }
         ("joint", "name") | ("mimic", "joint") => Some(Kind::Joint),
         ("material", "name") => Some(Kind::Material),
+        // SDFormat: frames share the links' names; poses and axes are expressed in either.
+        ("frame", "name") | (_, "relative_to" | "attached_to" | "expressed_in") => Some(Kind::Link),
         _ => None,
     }
+}
+
+/// SDFormat's `<parent>` and `<child>` of a joint name a link or frame in their text (URDF's carry a `link`
+/// attribute instead): the bytes of that name, trimmed, when `element` is one.
+fn content_name(text: &str, element: &Element) -> Option<Range<usize>> {
+    if !matches!(element.name.as_str(), "parent" | "child") || !element.attributes.is_empty() {
+        return None;
+    }
+    let start = element.tag.end;
+    let end = start + text.get(start..)?.find('<')?;
+    let body = &text[start..end];
+    let first = start + (body.len() - body.trim_start().len());
+    let last = end - (body.len() - body.trim_end().len());
+    (first < last).then_some(first..last)
+}
+
+/// The SDFormat `<parent>`/`<child>` name under `offset`.
+fn content_at(text: &str, scan: &Scan, offset: usize) -> Option<Target> {
+    scan.elements.iter().find_map(|element| {
+        let span = content_name(text, element)?;
+        (span.start <= offset && offset <= span.end).then(|| Target::Name {
+            kind: Kind::Link,
+            name: text[span.clone()].to_string(),
+            span,
+        })
+    })
 }
 
 /// What an attribute of an SRDF element refers to (MoveIt's names of the URDF's links and joints: groups,
@@ -119,14 +151,26 @@ pub fn is_definition(scan: &Scan, element: &Element, attribute: &Attribute) -> b
     let parent = element.parent.map(|p| scan.elements[p].name.as_str());
     attribute.name == "name"
         && (element.name == "link"
+            || element.name == "frame"
             || element.name == "joint" && parent != Some("transmission")
             || element.name == "material" && parent == Some("robot"))
 }
 
-/// Every place of the scanned text naming the `kind` thing `name`: (span of the name, whether it defines it).
-/// `srdf`: the text is an SRDF (it only refers to names).
-pub fn occurrences(scan: &Scan, kind: Kind, name: &str, srdf: bool) -> Vec<(Range<usize>, bool)> {
-    scan.elements
+/// Every place of `text` (scanned as `scan`) naming the `kind` thing `name`: (span of the name, whether it
+/// defines it). `srdf`: the text is an SRDF (it only refers to names).
+pub fn occurrences(
+    text: &str,
+    scan: &Scan,
+    kind: Kind,
+    name: &str,
+    srdf: bool,
+) -> Vec<(Range<usize>, bool)> {
+    let in_content = scan.elements.iter().filter_map(|element| {
+        let span = content_name(text, element)?;
+        (kind == Kind::Link && &text[span.clone()] == name).then_some((span, false))
+    });
+    let mut found: Vec<(Range<usize>, bool)> = scan
+        .elements
         .iter()
         .flat_map(|element| {
             element
@@ -147,7 +191,10 @@ pub fn occurrences(scan: &Scan, kind: Kind, name: &str, srdf: bool) -> Vec<(Rang
                     )
                 })
         })
-        .collect()
+        .collect();
+    found.extend(in_content);
+    found.sort_by_key(|(span, _)| span.start);
+    found
 }
 
 /// The file a path attribute names: `package://`, `file://`, `$(find pkg)/...` or relative to `dir`.
@@ -268,13 +315,13 @@ mod tests {
             Some(Target::Rule { code, .. }) if code == "U203"
         ));
         assert_eq!(target(text, &scan, at("ignore U")), None);
-        let uses = occurrences(&scan, Kind::Link, "base", false);
+        let uses = occurrences(text, &scan, Kind::Link, "base", false);
         assert_eq!(uses.iter().filter(|(_, d)| *d).count(), 1);
         assert_eq!(uses.len(), 2);
         let text = "<robot><material name=\"blue\"><color rgba=\"0 0 1 1\"/></material>\
                     <link name=\"a\"><visual><material name=\"blue\"/></visual></link></robot>";
         let scan = Scan::new(text);
-        let blue = occurrences(&scan, Kind::Material, "blue", false);
+        let blue = occurrences(text, &scan, Kind::Material, "blue", false);
         assert_eq!(
             blue.iter().map(|(_, d)| *d).collect::<Vec<_>>(),
             [true, false]
@@ -287,12 +334,33 @@ mod tests {
                     <disable_collisions link1=\"a\" link2=\"b\" reason=\"Adjacent\"/></robot>";
         let scan = Scan::new(srdf);
         assert_eq!(
-            occurrences(&scan, Kind::Link, "a", true)
+            occurrences(srdf, &scan, Kind::Link, "a", true)
                 .iter()
                 .map(|(span, defines)| (&srdf[span.clone()], *defines))
                 .collect::<Vec<_>>(),
             [("a", false), ("a", false)]
         );
-        assert_eq!(occurrences(&scan, Kind::Joint, "j", true).len(), 1);
+        assert_eq!(occurrences(srdf, &scan, Kind::Joint, "j", true).len(), 1);
+        let sdf = "<sdf><model name=\"m\"><link name=\"base\"/><frame name=\"tool\" attached_to=\"base\"/>\
+                   <joint name=\"j\" type=\"revolute\"><parent> base </parent><child>arm</child>\
+                   <pose relative_to=\"tool\"/></joint></model></sdf>";
+        let scan = Scan::new(sdf);
+        let at = |needle: &str| sdf.find(needle).expect("needle") + 1;
+        assert_eq!(
+            name(target(sdf, &scan, at("base </parent>"))),
+            Some((Kind::Link, "base".into()))
+        );
+        let base = occurrences(sdf, &scan, Kind::Link, "base", false);
+        assert_eq!(
+            base.iter()
+                .map(|(span, defines)| (&sdf[span.clone()], *defines))
+                .collect::<Vec<_>>(),
+            [("base", true), ("base", false), ("base", false)]
+        );
+        let tool = occurrences(sdf, &scan, Kind::Link, "tool", false);
+        assert_eq!(
+            tool.iter().map(|(_, d)| *d).collect::<Vec<_>>(),
+            [true, false]
+        );
     }
 }

@@ -64,7 +64,7 @@ pub fn definition(
         Target::Name { kind, name, .. } => files
             .iter()
             .flat_map(|file| {
-                here::occurrences(&file.scan, *kind, name, file.is_srdf())
+                here::occurrences(&file.text, &file.scan, *kind, name, file.is_srdf())
                     .into_iter()
                     .filter(|(_, definition)| *definition)
                     .map(|(span, _)| file.location(&span))
@@ -93,7 +93,7 @@ pub fn definition(
 pub fn references(target: &Target, files: &[File], include_declaration: bool) -> Vec<Location> {
     let occurrences = |file: &File| match target {
         Target::Name { kind, name, .. } => {
-            here::occurrences(&file.scan, *kind, name, file.is_srdf())
+            here::occurrences(&file.text, &file.scan, *kind, name, file.is_srdf())
         }
         Target::Xacro { kind, name, .. } => xacro_names::occurrences(file, *kind, name),
         Target::Path { .. } | Target::Rule { .. } => Vec::new(),
