@@ -12,7 +12,7 @@ use urdf_validator::analysis::statics::JointStatics;
 use urdf_validator::diagnostics::rules;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::report::Report;
-use urdf_validator::urdf::robot::Inertia;
+use urdf_validator::urdf::robot::principal_moments;
 
 use super::here::{self, Kind, Target};
 use super::navigation::File;
@@ -106,7 +106,10 @@ fn link(report: &Report, scans: &[Scan], name: &str) -> Option<String> {
     if let Some(com) = link.com_offset {
         lines.push(format!("centre of mass (link frame): {}", vector(&com)));
     }
-    if let Some(moments) = link.inertia_tensor.and_then(|t| principal_moments(&t)) {
+    if let Some(moments) = link
+        .inertia_tensor
+        .and_then(|t| principal_moments(&rows(&t)))
+    {
         lines.push(format!("principal moments: {} kg·m²", vector(&moments)));
     }
     let marker = format!("link[@name='{name}']");
@@ -215,19 +218,13 @@ fn joint_lines(name: &str, pose: &str, joint: &JointStatics) -> Vec<String> {
     lines
 }
 
-/// The eigenvalues of a row-major inertia tensor, ascending.
-fn principal_moments(tensor: &[f64; 9]) -> Option<[f64; 3]> {
-    Inertia {
-        span: Default::default(),
-        ixx: tensor[0],
-        ixy: tensor[1],
-        ixz: tensor[2],
-        iyy: tensor[4],
-        iyz: tensor[5],
-        izz: tensor[8],
-        values: Default::default(),
-    }
-    .principal_moments()
+/// A row-major 3×3 tensor (as the report writes it) as rows.
+fn rows(tensor: &[f64; 9]) -> [[f64; 3]; 3] {
+    [
+        [tensor[0], tensor[1], tensor[2]],
+        [tensor[3], tensor[4], tensor[5]],
+        [tensor[6], tensor[7], tensor[8]],
+    ]
 }
 
 /// A number with at most four decimals.
@@ -259,7 +256,7 @@ mod tests {
         assert_eq!(number(2.5), "2.5");
         assert_eq!(number(-0.00001), "0");
         assert_eq!(number(12.0), "12");
-        let moments = principal_moments(&[2.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 3.0]);
+        let moments = principal_moments(&rows(&[2.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 3.0]));
         assert_eq!(moments, Some([1.0, 2.0, 3.0]));
     }
 }

@@ -12,8 +12,6 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{Matrix3, SymmetricEigen};
-
 use crate::assets::Assets;
 use crate::input::mesh::{SolidSource, VolumeIntegrals};
 use crate::model::kinematics::pose_isometry;
@@ -305,17 +303,6 @@ fn describe(geometry: &Geometry) -> &'static str {
         Geometry::Capsule { .. } => "a capsule",
         Geometry::Mesh { .. } => "a mesh with a zero or non-finite scale",
     }
-}
-
-/// The principal moments of a symmetric 3×3 tensor, ascending; `None` when a component is not finite.
-pub fn principal_moments(tensor: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
-    if !tensor.iter().flatten().all(|v| v.is_finite()) {
-        return None;
-    }
-    let m = Matrix3::from_fn(|a, b| tensor[a][b]);
-    let mut moments: Vec<f64> = SymmetricEigen::new(m).eigenvalues.iter().copied().collect();
-    moments.sort_by(f64::total_cmp);
-    Some([moments[0], moments[1], moments[2]])
 }
 
 #[cfg(test)]

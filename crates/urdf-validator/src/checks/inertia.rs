@@ -2,13 +2,13 @@
 //! triangle inequality on the principal moments, and the declared tensor against the link's geometry.
 //! Findings the geometry can resolve carry the fix that writes its inertia ([`super::inertia_fix`]).
 
-use crate::analysis::geometry_inertia::{self, principal_moments, GeometryInertia};
+use crate::analysis::geometry_inertia::{self, GeometryInertia};
 use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
-use crate::urdf::robot::{Inertia, Inertial, Link, Robot};
+use crate::urdf::robot::{principal_moments, Inertia, Inertial, Link, Robot};
 
 use super::inertia_fix;
 

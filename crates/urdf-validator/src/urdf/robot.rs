@@ -124,15 +124,20 @@ impl Inertia {
 
     /// The principal moments (the tensor's eigenvalues), ascending; `None` when a component is not finite.
     pub fn principal_moments(&self) -> Option<[f64; 3]> {
-        let m = self.matrix();
-        if m.iter().flatten().any(|v| !v.is_finite()) {
-            return None;
-        }
-        let tensor = nalgebra::Matrix3::from_fn(|r, c| m[r][c]);
-        let mut values: [f64; 3] = nalgebra::SymmetricEigen::new(tensor).eigenvalues.into();
-        values.sort_by(f64::total_cmp);
-        Some(values)
+        principal_moments(&self.matrix())
     }
+}
+
+/// The principal moments of a symmetric 3×3 tensor (its eigenvalues), ascending; `None` when a component is
+/// not finite.
+pub fn principal_moments(tensor: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+    if tensor.iter().flatten().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let m = nalgebra::Matrix3::from_fn(|r, c| tensor[r][c]);
+    let mut values: [f64; 3] = nalgebra::SymmetricEigen::new(m).eigenvalues.into();
+    values.sort_by(f64::total_cmp);
+    Some(values)
 }
 
 /// A `<visual>` or `<collision>`.
