@@ -17,7 +17,6 @@ use urdf_validator::urdf::robot::principal_moments;
 use super::here::{self, Kind, Target};
 use super::navigation::File;
 use super::xacro_names;
-use super::xml::Scan;
 
 /// The hover text (Markdown) of `target`, from `report` (the last analysis) when it has one.
 pub fn text(
@@ -27,14 +26,12 @@ pub fn text(
     dir: &Path,
     resolver: &PackageResolver,
 ) -> Option<String> {
-    let scans: Vec<Scan> = files.iter().map(|f| f.scan.clone()).collect();
-    let scans = scans.as_slice();
     match target {
         Target::Name {
             kind: Kind::Link,
             name,
             ..
-        } => report.and_then(|r| link(r, scans, name)),
+        } => report.and_then(|r| link(r, files, name)),
         Target::Name {
             kind: Kind::Joint,
             name,
@@ -93,7 +90,7 @@ fn material(files: &[File], name: &str) -> Option<String> {
 }
 
 /// A link's mass properties and the mass below it.
-fn link(report: &Report, scans: &[Scan], name: &str) -> Option<String> {
+fn link(report: &Report, files: &[File], name: &str) -> Option<String> {
     let link = report.links.iter().find(|l| l.name == name)?;
     let mut lines = vec![format!("**link `{name}`**")];
     if link.frame {
@@ -125,7 +122,7 @@ fn link(report: &Report, scans: &[Scan], name: &str) -> Option<String> {
     } else {
         format!("mass and inertia: {}", mass_findings.join(", "))
     });
-    if let Some(mass) = subtree_mass(report, scans, name) {
+    if let Some(mass) = subtree_mass(report, files, name) {
         lines.push(format!(
             "mass carried (this link and below): {} kg",
             number(mass)
@@ -136,9 +133,9 @@ fn link(report: &Report, scans: &[Scan], name: &str) -> Option<String> {
 
 /// The declared mass of `link` and every link below it, through the joints the files declare (`None`
 /// when none of them declares a mass).
-fn subtree_mass(report: &Report, scans: &[Scan], link: &str) -> Option<f64> {
+fn subtree_mass(report: &Report, files: &[File], link: &str) -> Option<f64> {
     let mut below: HashMap<&str, Vec<&str>> = HashMap::new();
-    for scan in scans {
+    for scan in files.iter().map(|f| &f.scan) {
         for (i, joint) in scan.elements.iter().enumerate() {
             if joint.name != "joint" {
                 continue;
