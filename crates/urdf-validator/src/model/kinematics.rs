@@ -242,7 +242,19 @@ pub fn forward_kinematics_links(model: &Model, q: &[f64], links: &[LinkId], data
             Some((joint, parent)) => {
                 let info = &model.joint_data[joint.0];
                 let value = q.get(joint.0).copied().unwrap_or(0.0);
-                data.link_placement[parent.0] * info.placement * info.motion(value)
+                let placed = data.link_placement[parent.0] * info.placement;
+                // A joint at zero (and a fixed one) moves nothing: its motion is the identity, and
+                // composing with it would change no bit of the placement, only cost a sine and cosine.
+                if value == 0.0
+                    || matches!(
+                        info.kind,
+                        JointKind::Fixed | JointKind::Floating | JointKind::Planar
+                    )
+                {
+                    placed
+                } else {
+                    placed * info.motion(value)
+                }
             }
             None => model.up.root_placement(),
         };

@@ -33,6 +33,7 @@
 //! [`CollisionModel`] is immutable during checks and `Sync`; each thread keeps its own [`CheckScratch`]
 //! (with rayon: `map_init`).
 
+mod held;
 mod shape;
 
 use std::collections::HashSet;
@@ -54,6 +55,7 @@ pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
 /// chain took minutes and gigabytes).
 pub const MAX_COLLISION_LINKS: usize = 1024;
 
+use held::{set_bits, HeldBroad, HeldSpheres};
 use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
 
 /// Why a pair of links is never checked.
@@ -109,6 +111,9 @@ pub struct PairSet {
     /// For sets with many pairs per link (long chains): a sweep-and-prune index, so a pose costs about
     /// the number of nearby pairs instead of every pair.
     sweep: Option<SweepIndex>,
+    /// For checks that hold the links the set's joints do not move ([`CheckScratch::holding_fixed`]):
+    /// the moving links' rigid groups, whose spheres stand for their pairs.
+    held: Option<HeldBroad>,
 }
 
 /// Pair sets with more pairs than this per link use the sweep-and-prune broad phase (below it, scanning
@@ -251,6 +256,10 @@ pub struct CheckScratch {
     axis: Vec<Vector>,
     simplex: VoronoiSimplex,
     sweep: SweepScratch,
+    /// With `hold_fixed`: the spheres of the pair set's [`HeldBroad`], and the pairs it keeps in the
+    /// current pose.
+    held_spheres: HeldSpheres,
+    held_candidates: Vec<u64>,
     /// The links a pair set's joints do not move keep their placements between checks
     /// ([`CheckScratch::holding_fixed`]).
     hold_fixed: bool,
@@ -269,6 +278,8 @@ impl CheckScratch {
             axis: Vec::new(),
             simplex: VoronoiSimplex::new(),
             sweep: SweepScratch::default(),
+            held_spheres: HeldSpheres::default(),
+            held_candidates: Vec::new(),
             hold_fixed: false,
             fixed_usable: None,
         }
@@ -474,9 +485,9 @@ impl CollisionModel {
 
     /// A pair set, largest links first: big links (a base, a torso) are the likeliest to be hit, and
     /// [`check`](Self::check) stops at the first contact.
-    /// `moves`: per link, whether its placement changes with the set's joints (`None`: every link may
-    /// move).
-    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>, moves: Option<&[bool]>) -> PairSet {
+    /// `motion`: which links the set's joints move (`None`: every link may move).
+    fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>, motion: Option<&Motion>) -> PairSet {
+        let moves = motion.map(|m| m.links.as_slice());
         let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
         pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
         let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
@@ -498,6 +509,12 @@ impl CollisionModel {
             let radius = links.iter().map(|l| self.bodies[l.0].radius).collect();
             SweepIndex::new(&broad, radius)
         });
+        let held = motion.and_then(|motion| {
+            let group_root: Vec<Option<LinkId>> = (0..self.parent.len())
+                .map(|link| self.group_root(LinkId(link), motion))
+                .collect();
+            HeldBroad::new(&broad, &links, &group_root)
+        });
         PairSet {
             pairs,
             links,
@@ -505,6 +522,7 @@ impl CollisionModel {
             slot_moves,
             broad,
             sweep,
+            held,
         }
     }
 
@@ -595,8 +613,20 @@ impl CollisionModel {
             self.geometric_pairs()
                 .filter(|&(a, b)| self.allowed(a, b).is_none() && self.path_has(a, b, varies))
                 .collect(),
-            Some(&motion.links),
+            Some(motion),
         )
+    }
+
+    /// The root of `link`'s rigid group under `motion`: the nearest link at or above it whose parent joint
+    /// varies (`None` when no joint above it varies: the link is held).
+    fn group_root(&self, mut link: LinkId, motion: &Motion) -> Option<LinkId> {
+        while let Some((joint, parent)) = self.parent.get(link.0).copied().flatten() {
+            if motion.joints.get(joint.0).copied().unwrap_or(false) {
+                return Some(link);
+            }
+            link = parent;
+        }
+        None
     }
 
     /// Pairs (not yet allowed) in contact with every link at `placements` (world placements indexed by
@@ -689,6 +719,19 @@ impl CollisionModel {
                     .push(centre.unwrap_or(Vector3::repeat(f64::NAN)));
             }
             scratch.fixed_usable = scratch.hold_fixed.then_some(fixed_usable);
+            if let (true, Some(held)) = (scratch.hold_fixed, &pairs.held) {
+                let radius: Vec<f64> = pairs
+                    .links
+                    .iter()
+                    .map(|l| self.bodies[l.0].radius)
+                    .collect();
+                held.load(
+                    &scratch.centre,
+                    &radius,
+                    placements,
+                    &mut scratch.held_spheres,
+                );
+            }
         }
         let centre = &scratch.centre;
         if !all_usable {
@@ -707,6 +750,34 @@ impl CollisionModel {
         // Pairs are visited in set order either way, so the sweep changes no result, only the time. The
         // first pairs of the set (the largest links) are scanned before the sweep is built: a pose in
         // contact usually stops there.
+        let mut state = Scan {
+            margin,
+            nearest: None,
+            in_contact: false,
+        };
+        let grouped = pairs
+            .held
+            .as_ref()
+            .filter(|_| held.is_some() && all_usable && pairs.sweep.is_none());
+        if let Some(held_broad) = grouped {
+            // The held links are where the first check left them, and each moving group keeps its
+            // shape: only the pairs behind spheres that meet can be within the margin.
+            let mut kept = std::mem::take(&mut scratch.held_candidates);
+            held_broad.candidates(placements, &mut scratch.held_spheres, margin, &mut kept);
+            self.scan(
+                pairs,
+                set_bits(&kept),
+                placements,
+                scratch,
+                &mut state,
+                on_contact,
+            );
+            scratch.held_candidates = kept;
+            if !state.in_contact {
+                result.min_clearance = state.nearest;
+            }
+            return result;
+        }
         let mut candidates = std::mem::take(&mut scratch.sweep.candidates);
         let sweep = pairs
             .sweep
@@ -715,11 +786,6 @@ impl CollisionModel {
         let scanned = match sweep {
             Some(_) => (SWEEP_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len()),
             None => pairs.broad.len(),
-        };
-        let mut state = Scan {
-            margin,
-            nearest: None,
-            in_contact: false,
         };
         let going = self.scan(
             pairs,
@@ -902,13 +968,21 @@ mod tests {
     }
 
     /// A scratch holding the links the pair set's joints do not move gives every pose the same result as
-    /// one recomputing every link, when only those joints vary (the other links stay where they are).
+    /// one recomputing every link, when only those joints vary (the other links stay where they are):
+    /// with one link per moving group (the last six joints vary, the first six hold their reference
+    /// bends), and with groups of three links (every third joint varies).
     #[test]
     fn holding_the_fixed_links_changes_no_result() {
+        let six: Vec<JointId> = (6..12).map(JointId).collect();
+        let every_third: Vec<JointId> = [2, 5, 8, 11].map(JointId).to_vec();
+        holding_changes_no_result(&six);
+        holding_changes_no_result(&every_third);
+    }
+
+    fn holding_changes_no_result(varied: &[JointId]) {
         let (model, collision) = chain_collision(12, 3.0);
-        // The last six joints vary; the first six hold their reference bends.
-        let varied: Vec<JointId> = (6..12).map(JointId).collect();
-        let pairs = collision.pairs_moved_by(&model.motion_of(&varied));
+        let pairs = collision.pairs_moved_by(&model.motion_of(varied));
+        assert!(pairs.held.is_some(), "the rigid-group broad phase is used");
         assert!(
             pairs.moving.len() < pairs.links.len(),
             "some links are held"
@@ -925,7 +999,7 @@ mod tests {
         for _ in 0..400 {
             let mut sample = model.zero_configuration();
             sampler.sample_into(&mut sample);
-            for joint in &varied {
+            for joint in varied {
                 q[joint.0] = sample[joint.0];
             }
             forward_kinematics(&model, &q, &mut data);

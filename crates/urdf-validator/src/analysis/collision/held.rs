@@ -1,0 +1,363 @@
+//! The broad phase of a pair set checked over many poses in which only the links its joints move change
+//! place (a sampler varying an arm's joints, the rest of the robot held).
+//!
+//! The moving links fall into rigid groups: the links below one varying joint, down to the next ones (a
+//! hand with its fingers held is one group). A group keeps its shape from pose to pose, so one sphere
+//! around its links' bounding spheres, carried by the group's root link, stands for all of them. A pose
+//! tests each group's sphere against the held links' spheres and the other groups' spheres; only the
+//! pairs behind a test that passes are then tested one by one, exactly and in pair order. This stage
+//! changes which pairs are looked at, never a result.
+
+use nalgebra::{Isometry3, Point3, Vector3};
+
+use crate::model::LinkId;
+
+/// Held spheres per block: a group's sphere is tested against a block at once, in straight-line code (no
+/// branch per sphere).
+const LANES: usize = 8;
+
+/// The most rigid groups grouped this way: the group-against-group tests grow with the square of their
+/// number (a long chain, every joint varying, is left to the other broad phases).
+const MAX_GROUPS: usize = 64;
+
+/// Added to every group radius, metres, on top of a relative 1e-9: a group sphere is computed once and
+/// then carried by its root link, while the exact test places each link anew; the difference is
+/// rounding, far below this.
+const SLACK: f64 = 1e-6;
+
+/// The rigid groups of a pair set's moving links, and its pairs sorted by which spheres stand for them.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct HeldBroad {
+    /// Per group: the link whose placement carries it (the child link of its varying joint).
+    group_root: Vec<LinkId>,
+    /// Per group: its slots.
+    members: Vec<Vec<u32>>,
+    /// The held slots.
+    held: Vec<u32>,
+    /// The pairs of group `g` and held slot `held[h]` are `group_held_pairs[o[i]..o[i + 1]]` with
+    /// `i = g * held.len() + h` and `o` = `group_held_offsets`.
+    group_held_offsets: Vec<u32>,
+    group_held_pairs: Vec<u32>,
+    /// Per two groups `g < k` with pairs between them: `g`, `k`, and where their pairs are in
+    /// `group_pairs`.
+    group_links: Vec<(u32, u32, u32, u32)>,
+    group_pairs: Vec<u32>,
+    /// One bit per pair of the set: the pairs no sphere stands for (always tested one by one).
+    always: Vec<u64>,
+}
+
+/// Per-thread state of a [`HeldBroad`]: what the first check of the set measured.
+#[derive(Clone, Debug, Default)]
+pub(super) struct HeldSpheres {
+    /// Per group: its sphere's centre in its root link's frame, and its radius (slack included; infinite
+    /// when a link of the group had no usable placement then, so that every pair of it is kept).
+    group: Vec<(Point3<f64>, f64)>,
+    /// Per group: its sphere's centre in the current pose.
+    group_centre: Vec<Vector3<f64>>,
+    /// The held slots' spheres (they stay where they are), [`LANES`] per block: x, y, z and radius of each
+    /// (the padding of the last block is infinitely far).
+    held: Vec<[[f64; LANES]; 4]>,
+}
+
+impl HeldBroad {
+    /// The grouping of a pair set: `broad` holds each pair's two slots, `links` each slot's link;
+    /// `group_root` gives, per link, the root of its rigid group when it moves (`None`: held). `None`
+    /// when no link moves.
+    pub(super) fn new(
+        broad: &[(u32, u32, f64)],
+        links: &[LinkId],
+        group_root: &[Option<LinkId>],
+    ) -> Option<HeldBroad> {
+        let mut roots: Vec<LinkId> = links
+            .iter()
+            .filter_map(|l| group_root.get(l.0).copied().flatten())
+            .collect();
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.is_empty() || roots.len() > MAX_GROUPS {
+            return None;
+        }
+        let mut members = vec![Vec::new(); roots.len()];
+        let mut held = Vec::new();
+        // Per slot: its group, or its index among the held slots.
+        let place: Vec<Result<usize, usize>> = links
+            .iter()
+            .enumerate()
+            .map(
+                |(slot, link)| match group_root.get(link.0).copied().flatten() {
+                    Some(root) => {
+                        let group = roots.binary_search(&root).unwrap_or_default();
+                        members[group].push(slot as u32);
+                        Ok(group)
+                    }
+                    None => {
+                        held.push(slot as u32);
+                        Err(held.len() - 1)
+                    }
+                },
+            )
+            .collect();
+        let (groups, held_count) = (roots.len(), held.len());
+        let mut always = vec![0u64; broad.len().div_ceil(64)];
+        let mut by_group_held = vec![Vec::new(); groups * held_count];
+        let mut by_groups = vec![Vec::new(); groups * groups];
+        for (index, &(a, b, _)) in broad.iter().enumerate() {
+            let at = |slot: u32| place.get(slot as usize).copied();
+            match (at(a), at(b)) {
+                (Some(Ok(g)), Some(Err(h))) | (Some(Err(h)), Some(Ok(g))) => {
+                    by_group_held[g * held_count + h].push(index as u32);
+                }
+                (Some(Ok(g)), Some(Ok(k))) if g != k => {
+                    by_groups[g.min(k) * groups + g.max(k)].push(index as u32);
+                }
+                _ => always[index / 64] |= 1 << (index % 64),
+            }
+        }
+        let (group_held_offsets, group_held_pairs) = compressed(by_group_held);
+        let (group_offsets, group_pairs) = compressed(by_groups);
+        let group_links = (0..groups)
+            .flat_map(|g| (g + 1..groups).map(move |k| (g, k)))
+            .filter_map(|(g, k)| {
+                let (start, end) = (
+                    group_offsets[g * groups + k],
+                    group_offsets[g * groups + k + 1],
+                );
+                (start < end).then_some((g as u32, k as u32, start, end))
+            })
+            .collect();
+        Some(HeldBroad {
+            group_root: roots,
+            members,
+            held,
+            group_held_offsets,
+            group_held_pairs,
+            group_links,
+            group_pairs,
+            always,
+        })
+    }
+
+    /// Measure the groups and the held slots at the first check: `centre` and `radius` per slot (a NaN
+    /// centre: placement not usable), `placements` per link.
+    pub(super) fn load(
+        &self,
+        centre: &[Vector3<f64>],
+        radius: &[f64],
+        placements: &[Isometry3<f64>],
+        into: &mut HeldSpheres,
+    ) {
+        let sphere = |slot: u32| {
+            let slot = slot as usize;
+            (
+                centre
+                    .get(slot)
+                    .copied()
+                    .unwrap_or(Vector3::repeat(f64::NAN)),
+                radius.get(slot).copied().unwrap_or(f64::NAN),
+            )
+        };
+        into.held.clear();
+        into.held.extend(self.held.chunks(LANES).map(|slots| {
+            let mut block = [[f64::INFINITY; LANES]; 4];
+            block[3] = [0.0; LANES];
+            for (lane, &slot) in slots.iter().enumerate() {
+                let (c, r) = sphere(slot);
+                (block[0][lane], block[1][lane], block[2][lane]) = (c.x, c.y, c.z);
+                block[3][lane] = r;
+            }
+            block
+        }));
+        into.group.clear();
+        into.group.extend(
+            self.group_root
+                .iter()
+                .zip(&self.members)
+                .map(|(root, members)| {
+                    let Some(root) = placements.get(root.0) else {
+                        return (Point3::origin(), f64::INFINITY);
+                    };
+                    let local: Vec<(Point3<f64>, f64)> = members
+                        .iter()
+                        .map(|&slot| {
+                            let (c, r) = sphere(slot);
+                            (root.inverse_transform_point(&Point3::from(c)), r)
+                        })
+                        .collect();
+                    let mean = local.iter().map(|(c, _)| c.coords).sum::<Vector3<f64>>()
+                        / local.len().max(1) as f64;
+                    let reach = local
+                        .iter()
+                        .map(|(c, r)| (c.coords - mean).norm() + r)
+                        .fold(0.0, f64::max);
+                    let radius = reach + SLACK + 1e-9 * (mean.norm() + reach);
+                    if radius.is_finite() && mean.iter().all(|v| v.is_finite()) {
+                        (Point3::from(mean), radius)
+                    } else {
+                        (Point3::origin(), f64::INFINITY)
+                    }
+                }),
+        );
+    }
+
+    /// Into `bits` (one per pair of the set), with the links at `placements` (every moving link's
+    /// placement usable) and the spheres [`load`](Self::load) measured: every pair that may be within
+    /// `margin` of contact (and the pairs no sphere stands for).
+    pub(super) fn candidates(
+        &self,
+        placements: &[Isometry3<f64>],
+        spheres: &mut HeldSpheres,
+        margin: f64,
+        bits: &mut Vec<u64>,
+    ) {
+        bits.clear();
+        bits.extend_from_slice(&self.always);
+        let mut keep = |pairs: &[u32]| {
+            for &pair in pairs {
+                if let Some(word) = bits.get_mut(pair as usize / 64) {
+                    *word |= 1 << (pair % 64);
+                }
+            }
+        };
+        spheres.group_centre.clear();
+        spheres
+            .group_centre
+            .extend(
+                self.group_root.iter().zip(&spheres.group).map(
+                    |(root, (local, _))| match placements.get(root.0) {
+                        Some(placement) => placement.transform_point(local).coords,
+                        None => Vector3::repeat(f64::NAN),
+                    },
+                ),
+            );
+        let near = |a: &Vector3<f64>, b: &Vector3<f64>, reach: f64| {
+            // Infinite reach (a group measured unusable) or a centre gone non-finite: keep the pairs.
+            let squared = (a - b).norm_squared();
+            squared < reach * reach || squared.is_nan() || reach.is_nan()
+        };
+        let held_count = self.held.len();
+        let range = |offsets: &[u32], i: usize| {
+            offsets.get(i).copied().unwrap_or_default() as usize
+                ..offsets.get(i + 1).copied().unwrap_or_default() as usize
+        };
+        for (g, (centre, (_, radius))) in
+            spheres.group_centre.iter().zip(&spheres.group).enumerate()
+        {
+            let reach = radius + margin;
+            for (block, [x, y, z, held_radius]) in spheres.held.iter().enumerate() {
+                // Squared distance less squared reach, lane by lane: negative exactly when the distance
+                // is below the reach. NaN (a centre or radius that is not finite) keeps the pairs.
+                let mut excess = [0.0; LANES];
+                for lane in 0..LANES {
+                    let (dx, dy, dz) = (centre.x - x[lane], centre.y - y[lane], centre.z - z[lane]);
+                    let lane_reach = reach + held_radius[lane];
+                    excess[lane] = dx * dx + dy * dy + dz * dz - lane_reach * lane_reach;
+                }
+                let mut hits = 0u32;
+                for (lane, excess) in excess.iter().enumerate() {
+                    hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
+                }
+                while hits != 0 {
+                    let h = block * LANES + hits.trailing_zeros() as usize;
+                    hits &= hits - 1;
+                    if h < held_count {
+                        keep(
+                            &self.group_held_pairs
+                                [range(&self.group_held_offsets, g * held_count + h)],
+                        );
+                    }
+                }
+            }
+        }
+        for &(g, k, start, end) in &self.group_links {
+            let [(one, (_, one_radius)), (other, (_, other_radius))] =
+                [g, k].map(|g| (&spheres.group_centre[g as usize], spheres.group[g as usize]));
+            if near(one, other, one_radius + other_radius + margin) {
+                keep(&self.group_pairs[start as usize..end as usize]);
+            }
+        }
+    }
+}
+
+/// Lists as one array and the offsets of each list's start (and of the end).
+fn compressed(lists: Vec<Vec<u32>>) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = Vec::with_capacity(lists.len() + 1);
+    let mut all = Vec::new();
+    offsets.push(0);
+    for list in lists {
+        all.extend(list);
+        offsets.push(all.len() as u32);
+    }
+    (offsets, all)
+}
+
+/// The indices of the set bits of `bits`, in increasing order.
+pub(super) fn set_bits(bits: &[u64]) -> impl Iterator<Item = usize> + '_ {
+    bits.iter().enumerate().flat_map(|(word_index, &word)| {
+        let mut word = word;
+        std::iter::from_fn(move || {
+            (word != 0).then(|| {
+                let bit = word.trailing_zeros() as usize;
+                word &= word - 1;
+                word_index * 64 + bit
+            })
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn set_bits_come_in_order() {
+        let bits = [0b1010_0001, 0, 1 << 63];
+        assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![0, 5, 7, 191]);
+    }
+
+    /// Links 0 and 1 are held; links 2 and 3 form one group (root 2), link 4 another (root 4).
+    #[test]
+    fn keeps_the_pairs_of_the_spheres_that_meet() {
+        let links: Vec<LinkId> = (0..5).map(LinkId).collect();
+        let roots = [
+            None,
+            None,
+            Some(LinkId(2)),
+            Some(LinkId(2)),
+            Some(LinkId(4)),
+        ];
+        // Pairs: 2–0, 3–1, 2–4, 0–1 (both held: always).
+        let broad = [(2, 0, 0.0), (3, 1, 0.0), (2, 4, 0.0), (0, 1, 0.0)];
+        let grouping = HeldBroad::new(&broad, &links, &roots).unwrap();
+        let at = |x: f64| Vector3::new(x, 0.0, 0.0);
+        // Slot centres: held 0 at x=0, held 1 at x=10; group (2, 3) at x=3 and x=5; link 4 at x=20.
+        let centre = [at(0.0), at(10.0), at(3.0), at(5.0), at(20.0)];
+        let radius = [0.5; 5];
+        let placements: Vec<Isometry3<f64>> = centre
+            .iter()
+            .map(|c| Isometry3::translation(c.x, c.y, c.z))
+            .collect();
+        let mut spheres = HeldSpheres::default();
+        grouping.load(&centre, &radius, &placements, &mut spheres);
+        // The group's sphere: centre x=4, radius 1.5 (+ slack).
+        let mut bits = Vec::new();
+        grouping.candidates(&placements, &mut spheres, 0.0, &mut bits);
+        assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![3]);
+        grouping.candidates(&placements, &mut spheres, 2.1, &mut bits);
+        assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![0, 3]);
+        grouping.candidates(&placements, &mut spheres, 4.1, &mut bits);
+        assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![0, 1, 3]);
+        // The group moves next to link 4: 2–4 is kept.
+        let mut moved = placements.clone();
+        for link in [2, 3] {
+            moved[link] = Isometry3::translation(15.0, 0.0, 0.0) * moved[link];
+        }
+        grouping.candidates(&moved, &mut spheres, 0.0, &mut bits);
+        assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![2, 3]);
+    }
+
+    #[test]
+    fn no_moving_link_no_grouping() {
+        let links = [LinkId(0), LinkId(1)];
+        assert_eq!(HeldBroad::new(&[(0, 1, 1.0)], &links, &[None, None]), None);
+    }
+}
