@@ -4,7 +4,9 @@
 For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with, at
 `qpos0` and at two seeded random configurations: per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
-forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint; and per
+forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, with
+gravity on even where the model turns it off (`<flag gravity="disable"/>`, recorded as
+`gravity_disabled`: the validator's statics are about the robot under gravity); and per
 actuator the fields that bound its force (`gear`, `ctrlrange`, `forcerange`, `gainprm`, `biasprm`, the
 joint's `actfrcrange`).
 
@@ -84,6 +86,9 @@ def configurations(model: mujoco.MjModel) -> list[tuple[str, np.ndarray]]:
 
 def golden(path: Path, root: Path) -> dict:
     model = mujoco.MjModel.from_xml_path(str(path))
+    gravity_bit = int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
+    gravity_disabled = bool(model.opt.disableflags & gravity_bit)
+    model.opt.disableflags &= ~gravity_bit
     data = mujoco.MjData(model)
     bodies = [name_of(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(model.nbody)]
     joints = []
@@ -141,6 +146,7 @@ def golden(path: Path, root: Path) -> dict:
         "source": path.relative_to(root).as_posix(),
         "mujoco_version": mujoco.__version__,
         "gravity": model.opt.gravity.tolist(),
+        "gravity_disabled": gravity_disabled,
         "total_mass": float(sum(model.body_mass)),
         "bodies": [
             {"name": bodies[b], "parent": bodies[model.body_parentid[b]], "mass": float(model.body_mass[b])}

@@ -1,0 +1,243 @@
+//! The MJCF reader against MuJoCo itself: for every dm_control suite model MuJoCo compiles, our total mass,
+//! per-body mass, world centres of mass and gravity torques (statics at the same joint values) agree with
+//! MuJoCo's (`tests/golden/mujoco/*.json`, written by `scripts/oracle/mjcf_goldens.py` with MuJoCo 4.0.0:
+//! `body_mass`, `xipos`, `subtree_com` of the world, `qfrc_bias` at zero velocity, gravity on even where
+//! the model turns it off) at `qpos0` and at two seeded random configurations.
+//!
+//! Agreement: |ours − MuJoCo's| ≤ 1e-9 · max(|ours|, |MuJoCo's|) + floor, with floors of 1e-12 kg for
+//! masses, 1e-12 m for positions and 1e-10 N·m (N) for torques (forces): values near zero (a COM on an
+//! axis, a torque about a vertical axis) are rounding noise in both. The models come from the
+//! `dm-control==1.0.50` wheel (`URDF_VALIDATOR_MJCF_CORPUS`, the wheel's `dm_control/suite` folder;
+//! `scripts/setup-test-env.sh` unpacks it); under `CI=true` a missing corpus fails.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
+
+mod common;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use nalgebra::Vector3;
+use serde_json::Value;
+use urdf_validator::analysis::statics::gravity::{evaluate, StaticsData};
+use urdf_validator::input::mesh::MeshCache;
+use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::input::Loaded;
+use urdf_validator::model::{LinkMass, Model};
+
+/// Models compared with MuJoCo but not expected to agree, with the reason. None today.
+const EXCLUDED: [(&str, &str); 0] = [];
+
+const RELATIVE: f64 = 1e-9;
+const MASS_FLOOR: f64 = 1e-12;
+const POSITION_FLOOR: f64 = 1e-12;
+const TORQUE_FLOOR: f64 = 1e-10;
+
+fn goldens() -> Vec<PathBuf> {
+    let dir = common::repo_root().join("crates/urdf-validator/tests/golden/mujoco");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("the MuJoCo goldens are committed")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    files
+}
+
+fn corpus() -> Option<PathBuf> {
+    let default = common::repo_root().join("target/dm-control/dm_control/suite");
+    common::data_dir(
+        "URDF_VALIDATOR_MJCF_CORPUS",
+        Some(default),
+        "the dm_control suite models (dm-control==1.0.50 wheel)",
+    )
+}
+
+/// Our name of a MuJoCo body or joint (MuJoCo's `#N` for an unnamed one is our `body#N` / `joint#N`).
+fn ours(name: &str, kind: &str) -> String {
+    match name.strip_prefix('#') {
+        Some(id) => format!("{kind}#{id}"),
+        None => name.to_string(),
+    }
+}
+
+fn agrees(ours: f64, theirs: f64, floor: f64) -> bool {
+    (ours - theirs).abs() <= RELATIVE * ours.abs().max(theirs.abs()) + floor
+}
+
+fn vector(value: &Value) -> Vector3<f64> {
+    let v: Vec<f64> = value
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect();
+    Vector3::new(v[0], v[1], v[2])
+}
+
+/// The differences between our reading of `model` and MuJoCo's `golden`, one line each.
+fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
+    let mut out = Vec::new();
+    // Our statics use standard gravity; MuJoCo's numbers are with the model's (on even where the model
+    // turns it off: the oracle turns it back on).
+    let gravity = vector(&golden["gravity"]);
+    if (gravity - Vector3::new(0.0, 0.0, -9.81)).norm() > 0.0 {
+        out.push(format!(
+            "gravity {gravity:?} is not (0, 0, -9.81): not comparable"
+        ));
+    }
+    let resolver = PackageResolver::default();
+    let loaded = Loaded::read(model_path, &[], &resolver).expect("the model loads");
+    let files = loaded.mjcf().expect("an MJCF model");
+    let (robot, _) = urdf_validator::mjcf::parse_mjcf(files, &MeshCache::new(), &resolver);
+    let (model, _) = Model::build(&robot);
+    let mass_of = |name: &str| {
+        model
+            .link(name)
+            .map(|l| model.link_mass[l.0].mass())
+            .unwrap_or(f64::NAN)
+    };
+    let total: f64 = model.link_mass.iter().map(LinkMass::mass).sum();
+    let golden_total = golden["total_mass"].as_f64().expect("total_mass");
+    if !agrees(total, golden_total, MASS_FLOOR) {
+        out.push(format!("total mass {total} kg, MuJoCo {golden_total} kg"));
+    }
+    let bodies = golden["bodies"].as_array().expect("bodies");
+    for body in bodies {
+        let name = ours(body["name"].as_str().expect("name"), "body");
+        let mass = body["mass"].as_f64().expect("mass");
+        let ours = mass_of(&name);
+        if !agrees(ours, mass, MASS_FLOOR) {
+            out.push(format!("body '{name}': mass {ours} kg, MuJoCo {mass} kg"));
+        }
+    }
+    // MuJoCo's qpos layout: free 7, ball 4, slide and hinge 1 number, in joint order.
+    let mut address = HashMap::new();
+    let mut next = 0;
+    for joint in golden["joints"].as_array().expect("joints") {
+        let kind = joint["type"].as_i64().expect("type");
+        address.insert(ours(joint["name"].as_str().expect("name"), "joint"), next);
+        next += match kind {
+            0 => 7,
+            1 => 4,
+            _ => 1,
+        };
+    }
+    let configurations = golden["configurations"].as_array().expect("configurations");
+    let qpos0: Vec<f64> = configurations[0]["qpos"]
+        .as_array()
+        .expect("qpos")
+        .iter()
+        .map(|v| v.as_f64().expect("number"))
+        .collect();
+    let mut data = StaticsData::new(&model);
+    for configuration in configurations {
+        let label = configuration["label"].as_str().expect("label");
+        let qpos: Vec<f64> = configuration["qpos"]
+            .as_array()
+            .expect("qpos")
+            .iter()
+            .map(|v| v.as_f64().expect("number"))
+            .collect();
+        let mut q = model.zero_configuration();
+        for (name, &at) in &address {
+            if let Some(joint) = model.joint(name) {
+                q[joint.0] = qpos[at] - qpos0[at];
+            }
+        }
+        evaluate(&model, &q, &mut data);
+        for body in bodies {
+            let name = ours(body["name"].as_str().expect("name"), "body");
+            if body["mass"].as_f64().expect("mass") <= 0.0 {
+                continue; // A massless body's xipos is its frame, not a centre of mass.
+            }
+            let Some(link) = model.link(&name) else {
+                out.push(format!("{label}: body '{name}' is not a link"));
+                continue;
+            };
+            let LinkMass::Declared { com, .. } = model.link_mass[link.0] else {
+                out.push(format!("{label}: body '{name}' has no mass here"));
+                continue;
+            };
+            let world = data.kinematics.link_placement[link.0]
+                .transform_point(&com.into())
+                .coords;
+            let theirs = vector(&configuration["body_com"][body["name"].as_str().expect("name")]);
+            if (0..3).any(|i| !agrees(world[i], theirs[i], POSITION_FLOOR)) {
+                out.push(format!(
+                    "{label}: body '{name}' centre of mass {world:?}, MuJoCo {theirs:?}"
+                ));
+            }
+        }
+        if golden_total > 0.0 {
+            let (_, centre) =
+                urdf_validator::analysis::statics::gravity::mass_and_com(&model, &data);
+            let theirs = vector(&configuration["total_com"]);
+            match centre {
+                Some(c) if (0..3).all(|i| agrees(c[i], theirs[i], POSITION_FLOOR)) => {}
+                other => out.push(format!(
+                    "{label}: centre of mass {other:?}, MuJoCo {theirs:?}"
+                )),
+            }
+        }
+        let forces = configuration["gravity_force"]
+            .as_object()
+            .expect("gravity_force");
+        for (name, force) in forces {
+            let theirs = force.as_f64().expect("number");
+            let name = ours(name, "joint");
+            let Some(joint) = model.joint(&name) else {
+                out.push(format!("{label}: joint '{name}' is not a joint here"));
+                continue;
+            };
+            let torque = data.raw_torque[joint.0];
+            if !agrees(torque, theirs, TORQUE_FLOOR) {
+                out.push(format!(
+                    "{label}: joint '{name}' gravity torque {torque}, MuJoCo {theirs}"
+                ));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_dm_control_model_agrees_with_mujoco() {
+    let Some(corpus) = corpus() else { return };
+    let goldens = goldens();
+    assert!(
+        goldens.len() >= 18,
+        "expected the dm_control suite goldens, found {}",
+        goldens.len()
+    );
+    let mut failures = Vec::new();
+    let mut compared = 0;
+    for golden_path in goldens {
+        let golden: Value =
+            serde_json::from_str(&std::fs::read_to_string(&golden_path).expect("read"))
+                .expect("json");
+        let source = golden["source"].as_str().expect("source");
+        let stem = golden_path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .expect("stem");
+        let model_path = corpus.join(source);
+        assert!(model_path.is_file(), "{} is missing", model_path.display());
+        let differences = compare(&model_path, &golden);
+        let excluded = EXCLUDED.iter().find(|(name, _)| *name == stem);
+        match (excluded, differences.is_empty()) {
+            (None, true) => compared += 1,
+            (None, false) => failures.push(format!(
+                "{stem}: {} difference(s):\n  {}",
+                differences.len(),
+                differences.join("\n  ")
+            )),
+            (Some((_, why)), true) => failures.push(format!(
+                "{stem} is excluded ({why}) but agrees now: take it off the list"
+            )),
+            (Some(_), false) => {}
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    eprintln!("{compared} models agree with MuJoCo");
+}
