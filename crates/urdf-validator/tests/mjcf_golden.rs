@@ -9,6 +9,12 @@
 //! axis, a torque about a vertical axis) are rounding noise in both. The models come from the
 //! `dm-control==1.0.50` wheel (`URDF_VALIDATOR_MJCF_CORPUS`, the wheel's `dm_control/suite` folder;
 //! `scripts/setup-test-env.sh` unpacks it); under `CI=true` a missing corpus fails.
+//!
+//! A second test writes models that use what the suite does not (nested classes and childclass,
+//! `<frame>`, every orientation form, `eulerseq`, several joints in one body, `ref`, ball and free joints,
+//! welded and free top-level bodies, `inertiafromgeom`, `inertiagrouprange`, `boundmass`,
+//! `boundinertia`, `balanceinertia`, `settotalmass`, meshes with `scale` and legacy/exact inertia,
+//! unnamed bodies and joints) and compares them with MuJoCo run now (the venv's `mujoco`).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
 
@@ -240,4 +246,164 @@ fn every_dm_control_model_agrees_with_mujoco() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     eprintln!("{compared} models agree with MuJoCo");
+}
+
+/// A binary STL of `triangles`.
+fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+    let mut out = vec![0u8; 80];
+    out.extend((triangles.len() as u32).to_le_bytes());
+    for t in triangles {
+        out.extend([0u8; 12]);
+        for v in t {
+            for c in v {
+                out.extend(c.to_le_bytes());
+            }
+        }
+        out.extend([0u8; 2]);
+    }
+    out
+}
+
+/// A unit cube whose top face is dented down to its centre: closed, wound outwards, not convex (so
+/// MuJoCo's legacy volume, which counts every pyramid positive, is not the volume it encloses).
+fn dented_cube() -> Vec<[[f32; 3]; 3]> {
+    let v =
+        |i: usize| -> [f32; 3] { [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32] };
+    let faces = [
+        [0, 2, 1],
+        [1, 2, 3],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    let mut out: Vec<[[f32; 3]; 3]> = faces.iter().map(|f| f.map(v)).collect();
+    let dent = [0.5, 0.5, 0.4];
+    for (a, b) in [(4, 5), (5, 7), (7, 6), (6, 4)] {
+        out.push([v(a), v(b), dent]);
+    }
+    out
+}
+
+const FEATURES: &str = r#"<mujoco model="features">
+  <compiler angle="radian" eulerseq="zyx" boundmass="0.01" boundinertia="1e-5" balanceinertia="true"
+            inertiagrouprange="0 3"/>
+  <default>
+    <geom density="500"/>
+    <default class="limb">
+      <geom type="capsule" size="0.03"/>
+      <joint axis="0 1 0" range="-1 1"/>
+      <default class="fat"><geom size="0.06" density="800"/></default>
+    </default>
+  </default>
+  <worldbody>
+    <geom type="plane" size="1 1 0.1"/>
+    <body name="base" pos="0.1 0.2 1" euler="0.1 0.2 0.3">
+      <freejoint name="root"/>
+      <geom type="box" size="0.2 0.1 0.05"/>
+      <geom type="ellipsoid" size="0.05 0.06 0.07" pos="0 0 0.1" xyaxes="0 1 0 -1 0 0"/>
+      <frame pos="0.2 0 0" zaxis="1 0 1">
+        <body name="arm" childclass="limb" quat="0.9 0.1 0.2 0.3">
+          <joint name="j1" pos="0 0 0.05" ref="0.3"/>
+          <joint name="j2" type="slide" axis="1 0 0" range="-0.1 0.1"/>
+          <joint name="j3" axis="0 0 1" pos="0.01 0 0"/>
+          <geom fromto="0 0 0 0.3 0 0"/>
+          <geom class="fat" fromto="0.3 0 0 0.3 0 0.2"/>
+          <body name="hand" pos="0.3 0 0.2" axisangle="1 1 0 0.5">
+            <joint name="wrist" class="main" type="ball" pos="0 0 0.02"/>
+            <inertial pos="0.01 0.02 0.03" mass="0.5" diaginertia="0.001 0.002 0.0025" quat="1 0 0.3 0"/>
+            <geom type="sphere" size="0.04"/>
+            <body pos="0.05 0 0">
+              <joint axis="1 0 0"/>
+              <geom type="cylinder" size="0.01 0.05" euler="0.3 0.2 0.1"/>
+            </body>
+          </body>
+          <body name="light" pos="0 0.1 0">
+            <joint name="flap" axis="1 0 0"/>
+            <geom type="cylinder" size="0.01 0.02" group="4" mass="0.2"/>
+          </body>
+        </body>
+      </frame>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+
+const ASSEMBLY: &str = r#"<mujoco model="assembly">
+  <compiler angle="degree" eulerseq="XYZ" inertiafromgeom="true" settotalmass="7" meshdir="meshes"/>
+  <asset>
+    <mesh name="dent" file="dented.stl" scale="0.2 0.4 0.1"/>
+    <mesh file="dented.stl" name="dent_exact" inertia="exact" scale="0.1 0.1 0.1"/>
+  </asset>
+  <worldbody>
+    <body name="post" pos="0 0 0.5" euler="10 20 30">
+      <inertial pos="0 0 0" mass="100" diaginertia="1 1 1"/>
+      <geom type="cylinder" fromto="0 0 -0.5 0 0 0.5" size="0.05"/>
+      <body name="boom" pos="0 0 0.5">
+        <joint name="yaw" axis="0 0 1" range="-90 90" ref="30"/>
+        <geom type="mesh" mesh="dent" pos="0.2 0 0"/>
+        <body name="bracket" pos="0.4 0 0">
+          <geom type="mesh" mesh="dent_exact" euler="0 90 0"/>
+          <body name="tip" pos="0.1 0 0">
+            <joint name="pitch" axis="0 1 0"/>
+            <joint name="roll" axis="1 0 0" pos="0.05 0 0"/>
+            <geom type="box" size="0.02 0.03 0.04" pos="0.1 0 0" mass="0.3"/>
+          </body>
+        </body>
+      </body>
+    </body>
+    <body name="ball" pos="1 0 0.2">
+      <freejoint/>
+      <geom type="sphere" size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+
+#[test]
+fn models_using_every_feature_read_agree_with_mujoco_run_now() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("mjcf-features-{}", std::process::id()));
+    let out = dir.join("golden");
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    std::fs::write(dir.join("features.xml"), FEATURES).unwrap();
+    std::fs::write(dir.join("assembly.xml"), ASSEMBLY).unwrap();
+    std::fs::write(dir.join("meshes/dented.stl"), binary_stl(&dented_cube())).unwrap();
+    let script = common::repo_root().join("scripts/oracle/mjcf_goldens.py");
+    let run = std::process::Command::new(&python)
+        .arg(&script)
+        .arg("--models")
+        .arg(&dir)
+        .arg("--out")
+        .arg(&out)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let report = String::from_utf8_lossy(&run.stdout).into_owned();
+    let mut failures = Vec::new();
+    for stem in ["features", "assembly"] {
+        let golden: Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(format!("{stem}.json")))
+                .unwrap_or_else(|e| panic!("no golden for {stem}.xml ({e}):\n{report}")),
+        )
+        .unwrap();
+        let differences = compare(&dir.join(format!("{stem}.xml")), &golden);
+        if !differences.is_empty() {
+            failures.push(format!("{stem}:\n  {}", differences.join("\n  ")));
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

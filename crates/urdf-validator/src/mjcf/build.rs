@@ -642,7 +642,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             visuals: Vec::new(),
             collisions: Vec::new(),
         };
-        let mut from_geoms = MassProps::zero();
+        let mut from_geoms = None;
         for (geom_el, geom_class, geom_frame) in &contents.geoms {
             let (shape, collides, mass) =
                 self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
@@ -654,7 +654,7 @@ impl<'a, 'r> Builder<'a, 'r> {
                 }
             }
             if let Some(mass) = mass {
-                from_geoms = from_geoms.plus(&mass);
+                from_geoms = Some(from_geoms.unwrap_or_else(MassProps::zero).plus(&mass));
             }
         }
         let declared = match (contents.inertial, self.compiler.inertia_from_geom) {
@@ -666,10 +666,8 @@ impl<'a, 'r> Builder<'a, 'r> {
         };
         let mass = match declared {
             Some(props) => Some(props),
-            None if self.compiler.inertia_from_geom != InertiaFromGeom::False
-                && !contents.geoms.is_empty() =>
-            {
-                Some((from_geoms, self.reader.span(el)))
+            None if self.compiler.inertia_from_geom != InertiaFromGeom::False => {
+                from_geoms.map(|props| (props, self.reader.span(el)))
             }
             None => None,
         };
@@ -677,7 +675,19 @@ impl<'a, 'r> Builder<'a, 'r> {
             link.inertial = Some(inertial_of(&props, span));
             self.masses.push((link_index, props));
         } else if self.compiler.bound_mass > 0.0 {
-            self.masses.push((link_index, MassProps::zero()));
+            // MuJoCo gives a body without mass the inertial frame (pos, quat) of the body in its parent,
+            // read in the body's own frame: that is where boundmass puts its mass.
+            let frame = body_in_link * placement;
+            self.masses.push((
+                link_index,
+                MassProps {
+                    com: frame.translation.vector,
+                    ..MassProps::zero()
+                },
+            ));
+        } else if !(link.visuals.is_empty() && link.collisions.is_empty()) {
+            // Geoms that count for no mass: MuJoCo's body is massless, not of unknown mass.
+            link.inertial = Some(inertial_of(&MassProps::zero(), self.reader.span(el)));
         }
         self.links.push(link);
         let here = Parent {

@@ -177,15 +177,11 @@ pub enum MeshVolume {
 }
 
 /// The solid of a mesh surface (`vertices` already scaled, `triangles` indices into them) as MuJoCo's
-/// compiler computes it (`mjCMesh::Process`): vertices rounded to single precision as MuJoCo stores
-/// them; the centre of mass from pyramids with their apex at the area-weighted centroid of the
+/// compiler computes it (`mjCMesh::Process`, MuJoCo 4.0): the centre of mass from pyramids with their apex at the area-weighted centroid of the
 /// triangles; then the volume and inertia from pyramids with their apex at that centre. `None` when
 /// the surface has no area or no volume (MuJoCo refuses such a mesh).
 pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> Option<Solid> {
-    let points: Vec<Vector3<f64>> = vertices
-        .iter()
-        .map(|v| Vector3::new(v[0] as f32 as f64, v[1] as f32 as f64, v[2] as f32 as f64))
-        .collect();
+    let points: Vec<Vector3<f64>> = vertices.iter().map(|v| Vector3::from(*v)).collect();
     let corners = |t: &[u32; 3]| -> Option<[Vector3<f64>; 3]> {
         Some([
             *points.get(t[0] as usize)?,
