@@ -23,8 +23,10 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import subprocess
 import sys
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -164,7 +166,10 @@ def main() -> int:
     parser.add_argument("--out", type=Path, default=REPO / "crates/urdf-validator/tests/golden/mujoco")
     parser.add_argument("--check", action="store_true")
     args = parser.parse_args()
-    root = args.models or dm_control_suite()
+    root = (args.models or dm_control_suite()).resolve()
+    args.out = args.out.resolve()
+    # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory: not into the repository.
+    os.chdir(tempfile.mkdtemp(prefix="mjcf-goldens-"))
     stale = 0
     rows = []
     for path in sorted(root.glob("*.xml")):
