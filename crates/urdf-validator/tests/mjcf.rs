@@ -316,3 +316,58 @@ fn hostile_values_never_panic() {
     }
     assert!(variants > 250, "{variants}");
 }
+
+#[test]
+fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
+    let dir = Scratch::new("actuators");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <compiler angle="radian"/>
+  <default><motor ctrlrange="-1 1"/></default>
+  <worldbody>
+    <body name="arm">
+      <joint name="shoulder" axis="0 1 0" range="-1 1"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05" mass="2"/>
+    </body>
+    <body name="strong" pos="0 2 0">
+      <joint name="elbow" axis="0 1 0" actuatorfrcrange="-50 50"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+    <body name="swing" pos="0 1 0">
+      <joint name="passive" axis="0 1 0"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="shoulder" gear="10" forcerange="-0.3 0.3"/>
+    <position joint="elbow" kp="100" ctrlrange="-1 1"/>
+    <motor tendon="t"/>
+  </actuator>
+</mujoco>"#,
+    );
+    let r = robot(&path);
+    let effort = |name: &str| {
+        r.joints
+            .iter()
+            .find(|j| j.name.value == name)
+            .and_then(|j| j.limit.as_ref()?.effort.as_ref())
+            .map(|e| e.value)
+    };
+    // The motor's ctrlrange comes from the class default; its forcerange caps it: 0.3 N × gear 10.
+    assert_eq!(effort("shoulder"), Some(3.0));
+    // kp 100 over a ctrl range of 2: 200 N·m, capped by the joint's actuatorfrcrange.
+    assert_eq!(effort("elbow"), Some(50.0));
+    assert_eq!(effort("passive"), None);
+    let v = run(&path);
+    // 2 kg at 0.25 m needs 4.905 N·m: undersized, at the forcerange that limits it.
+    has(&v, "U701", "m.xml", 19, "shoulder");
+    assert!(
+        !findings(&v, "U701")
+            .iter()
+            .any(|(_, _, m)| m.contains("passive")),
+        "{:?}",
+        findings(&v, "U701")
+    );
+    has(&v, "U033", "m.xml", 21, "tendon");
+}

@@ -117,6 +117,22 @@ fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
             out.push(format!("body '{name}': mass {ours} kg, MuJoCo {mass} kg"));
         }
     }
+    for (name, theirs) in expected_efforts(golden) {
+        let ours = model
+            .joint(&name)
+            .and_then(|j| robot.joints[j.0].limit.as_ref())
+            .and_then(|l| l.effort.as_ref())
+            .map(|e| e.value);
+        let same = match (ours, theirs) {
+            (Some(a), Some(b)) => agrees(a, b, TORQUE_FLOOR),
+            (a, b) => a == b,
+        };
+        if !same {
+            out.push(format!(
+                "joint '{name}': effort {ours:?}, from MuJoCo's actuators {theirs:?}"
+            ));
+        }
+    }
     // MuJoCo's qpos layout: free 7, ball 4, slide and hinge 1 number, in joint order.
     let mut address = HashMap::new();
     let mut next = 0;
@@ -205,6 +221,64 @@ fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
         }
     }
     out
+}
+
+fn pair(value: &Value) -> Option<(f64, f64)> {
+    let v = value.as_array()?;
+    Some((v[0].as_f64()?, v[1].as_f64()?))
+}
+
+/// Each hinge and slide joint's effort from MuJoCo's compiled actuators (gear, ctrlrange, forcerange,
+/// gainprm, biasprm, the joint's actfrcrange) by the rule of `mjcf/build/actuators.rs`: per actuator on a
+/// joint, |gain| · max |ctrl| (a position bias: |gain| · ctrl range width), clamped by max |force|, times
+/// |gear|; summed, clamped by max |actfrcrange|; `None` when unbounded or without actuator.
+fn expected_efforts(golden: &Value) -> Vec<(String, Option<f64>)> {
+    let joints = golden["joints"].as_array().expect("joints");
+    let mut sums: HashMap<usize, Option<f64>> = HashMap::new();
+    for actuator in golden["actuators"].as_array().expect("actuators") {
+        // mjTRN_JOINT and mjTRN_JOINTINPARENT.
+        if actuator["trntype"].as_i64().expect("trntype") > 1 {
+            continue;
+        }
+        let joint = actuator["target"].as_u64().expect("target") as usize;
+        let gain = actuator["gainprm"][0].as_f64().expect("gain");
+        let position_like = actuator["biasprm"][1].as_f64().expect("bias") != 0.0;
+        let from_ctrl = pair(&actuator["ctrlrange"]).map(|(lo, hi)| {
+            gain.abs()
+                * if position_like {
+                    hi - lo
+                } else {
+                    lo.abs().max(hi.abs())
+                }
+        });
+        let from_force = pair(&actuator["forcerange"]).map(|(lo, hi)| lo.abs().max(hi.abs()));
+        let most = match (from_ctrl, from_force) {
+            (Some(c), Some(f)) => Some(c.min(f)),
+            (c, f) => c.or(f),
+        };
+        let effort = most.map(|m| m * actuator["gear"].as_f64().expect("gear").abs());
+        let sum = match sums.get(&joint) {
+            None => effort,
+            Some(previous) => previous.zip(effort).map(|(a, b)| a + b),
+        };
+        sums.insert(joint, sum);
+    }
+    joints
+        .iter()
+        .enumerate()
+        .filter(|(_, j)| j["type"].as_i64().expect("type") >= 2)
+        .map(|(i, j)| {
+            let name = ours(j["name"].as_str().expect("name"), "joint");
+            let clamp = pair(&j["actfrcrange"]).map(|(lo, hi)| lo.abs().max(hi.abs()));
+            let effort = match (sums.get(&i), clamp) {
+                (None, _) => None,
+                (Some(Some(sum)), Some(most)) => Some(sum.min(most)),
+                (Some(None), Some(most)) => Some(most),
+                (Some(sum), None) => *sum,
+            };
+            (name, effort)
+        })
+        .collect()
 }
 
 #[test]

@@ -8,6 +8,8 @@
 //! child bodies are placed in the link frame through it. At q = 0 every body is where MuJoCo puts it at
 //! `qpos0` (a joint's q is MuJoCo's `qpos − ref`, its limits shifted by `ref` too).
 
+mod actuators;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -25,6 +27,20 @@ use crate::input::source::{Span, Spanned};
 use crate::urdf::robot::{
     Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose, Robot, Shape,
 };
+
+/// The actuator elements, which share one default per class.
+const ACTUATOR_KINDS: [&str; 10] = [
+    "general",
+    "motor",
+    "position",
+    "velocity",
+    "intvelocity",
+    "damper",
+    "cylinder",
+    "muscle",
+    "adhesion",
+    "plugin",
+];
 
 /// Elements a body may hold that are not turned into the robot (and say nothing about mass).
 const IGNORED_IN_BODY: [&str; 3] = ["site", "camera", "light"];
@@ -48,11 +64,7 @@ const QUIET_SECTIONS: [&str; 11] = [
 ];
 
 /// Sections read by the MJCF reader of a later step: what they hold is left out, with a U033.
-const SECTIONS_NOT_READ: [(&str, &str); 3] = [
-    (
-        "actuator",
-        "actuators are not read yet: joints have no effort limit",
-    ),
+const SECTIONS_NOT_READ: [(&str, &str); 2] = [
     (
         "equality",
         "equality constraints are not read yet: couplings and loops are left out",
@@ -106,6 +118,8 @@ pub struct Builder<'a, 'r> {
     masses: Vec<(usize, MassProps)>,
     bodies: usize,
     joint_ids: usize,
+    /// Each hinge and slide joint's `actuatorfrcrange` when it is limited, with its span.
+    actuator_force: HashMap<String, ((f64, f64), Span)>,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -138,11 +152,12 @@ impl<'a, 'r> Builder<'a, 'r> {
             masses: Vec::new(),
             bodies: 0,
             joint_ids: 0,
+            actuator_force: HashMap::new(),
         };
         for section in sections {
             match section.tag() {
                 "asset" => builder.assets(*section),
-                "worldbody" | "compiler" => {}
+                "worldbody" | "compiler" | "actuator" => {}
                 tag if QUIET_SECTIONS.contains(&tag) => {}
                 tag => match SECTIONS_NOT_READ.iter().find(|(t, _)| *t == tag) {
                     Some((_, why)) => builder.note(*section, why.to_string()),
@@ -200,6 +215,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             self.body(el, &class, &world, frame, true, floating_root);
         }
         self.finish_masses();
+        self.set_efforts(sections);
         let span = self.reader.span(root);
         Robot {
             name: root.attr("model").map(|m| Spanned {
@@ -230,8 +246,38 @@ impl<'a, 'r> Builder<'a, 'r> {
                 text: a.value(),
                 span: self.reader.files().span(el.file, a.range_value()),
             }),
-            None => self.defaults.get(class, el.tag(), name),
+            None => self.defaults.get(class, el.tag(), name).or_else(|| {
+                // One default actuator per class, whichever element kind wrote it (MuJoCo).
+                ACTUATOR_KINDS
+                    .contains(&el.tag())
+                    .then(|| {
+                        ACTUATOR_KINDS
+                            .iter()
+                            .find_map(|kind| self.defaults.get(class, kind, name))
+                    })
+                    .flatten()
+            }),
         }
+    }
+
+    /// `{prefix}range` when `{prefix}limited` says it applies (`auto`: when written and `autolimits`),
+    /// with the range's span.
+    fn range(&mut self, el: El<'a>, class: &str, prefix: &str) -> Option<((f64, f64), Span)> {
+        let name = format!("{prefix}range");
+        let written = self.value(el, class, &name);
+        let on = match self.word(
+            el,
+            class,
+            &format!("{prefix}limited"),
+            &["auto", "true", "false"],
+        ) {
+            "true" => true,
+            "false" => false,
+            _ => written.is_some() && self.compiler.auto_limits,
+        };
+        let span = written.filter(|_| on)?.span;
+        let [lo, hi] = self.vector(el, class, &name, [0.0, 0.0]);
+        Some(((lo, hi), span))
     }
 
     /// The class of `el`: its `class`, else `inherited` (a U030 when the class does not exist).
@@ -814,6 +860,9 @@ impl<'a, 'r> Builder<'a, 'r> {
             effort: None,
             velocity: None,
         });
+        if let Some(range) = self.range(el, class, "actuatorfrc") {
+            self.actuator_force.insert(name.clone(), range);
+        }
         let damping = self.scalar(el, class, "damping", 0.0);
         let friction = self.scalar(el, class, "frictionloss", 0.0);
         spec.dynamics = Some(Dynamics {

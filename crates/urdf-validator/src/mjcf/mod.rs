@@ -17,10 +17,13 @@
 //!   surface bounds; `mass` or `density` (1000); then `boundmass`, `boundinertia`, `balanceinertia` and
 //!   `settotalmass`;
 //! - geoms with `contype` and `conaffinity` 0 are visual shapes, the others collision shapes; geoms of the
-//!   world body (the floor) are not part of the robot.
+//!   world body (the floor) are not part of the robot;
+//! - a joint's effort is what its `motor`, `position`, `velocity` and `general` actuators can apply
+//!   (`build/actuators.rs`); a joint without actuator is passive (no effort: statics UNKNOWN).
 //!
-//! Not read yet (U033): actuators, equality constraints, tendons, composite/flexcomp/replicate/attach,
-//! height fields, SDF geoms, shell inertia; keyframes, contact pairs and exclusions are not read either.
+//! Not read yet (U033): actuators on tendons, sites or bodies and other actuator kinds, equality
+//! constraints, tendons, composite/flexcomp/replicate/attach, height fields, SDF geoms, shell inertia;
+//! keyframes, contact pairs and exclusions are not read either.
 
 mod build;
 mod compiler;
