@@ -248,12 +248,25 @@ fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line
       <geom size="0.1" quat="1 0 0 0" euler="0 0 1"/>
       <widget/>
       <body name="b"><freejoint/><geom size="0.1" pos="1 2"/></body>
+      <body name="c" childclass="missing"><joint/><geom size="0.1"/></body>
     </body>
   </worldbody>
   <equality/>
 </mujoco>"#,
     );
     let v = run(&path);
+    has(&v, "U030", "m.xml", 11, "childclass 'missing'");
+    // The body's own elements still take the top-level defaults (a sphere of 0.1 m: 4.19 kg).
+    let c = robot(&path);
+    let mass = c
+        .links
+        .iter()
+        .find(|l| l.name.value == "c")
+        .unwrap()
+        .inertial
+        .as_ref()
+        .unwrap();
+    assert!((mass.mass.as_ref().unwrap().value - 4.0 / 3.0 * std::f64::consts::PI).abs() < 1e-12);
     has(&v, "U032", "m.xml", 2, "angle");
     has(&v, "U032", "m.xml", 4, "not finite");
     has(&v, "U030", "m.xml", 5, "axis is zero");
@@ -263,7 +276,7 @@ fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line
     has(&v, "U030", "m.xml", 9, "<widget>");
     has(&v, "U030", "m.xml", 10, "only a body of the <worldbody>");
     has(&v, "U032", "m.xml", 10, "3 numbers expected");
-    has(&v, "U033", "m.xml", 13, "equality");
+    has(&v, "U033", "m.xml", 14, "equality");
 }
 
 #[test]

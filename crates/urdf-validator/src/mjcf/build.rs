@@ -297,6 +297,24 @@ impl<'a, 'r> Builder<'a, 'r> {
         }
     }
 
+    /// The class the children of `el` (a body or frame) take: its `childclass`, else `inherited` (a U030
+    /// when the class does not exist).
+    fn child_class(&mut self, el: El<'a>, inherited: &str) -> String {
+        match el.attr("childclass") {
+            Some(class) if self.defaults.has(class) => class.to_string(),
+            Some(class) => {
+                let span = self.reader.attr_span(el, "childclass");
+                self.reader.report(
+                    &rules::MJCF_STRUCTURE,
+                    span,
+                    format!("childclass '{class}' is not a <default> class of this model (MuJoCo refuses it)"),
+                );
+                inherited.to_string()
+            }
+            None => inherited.to_string(),
+        }
+    }
+
     /// The numbers of attribute `name` (`count` of them), else `fallback`; a U032 when they do not parse.
     fn vector<const N: usize>(
         &mut self,
@@ -506,16 +524,13 @@ impl<'a, 'r> Builder<'a, 'r> {
             let tag = child.tag();
             match tag {
                 "body" => {
-                    let inherited = child.attr("childclass").unwrap_or(class).to_string();
+                    let inherited = self.child_class(child, class);
                     out.bodies.push((child, inherited, frame));
                 }
                 "frame" => {
                     let own = self.class_of(child, class);
                     let at = frame * self.placement(child, &own);
-                    let inherited = match child.attr("childclass") {
-                        Some(c) if self.defaults.has(c) => c.to_string(),
-                        _ => class.to_string(),
-                    };
+                    let inherited = self.child_class(child, class);
                     self.collect(child, &inherited, at, world, out);
                 }
                 "geom" => {
