@@ -67,7 +67,7 @@ pub enum IncludeSyntax {
 
 /// One file of the set.
 #[derive(Debug)]
-struct SdfFile {
+struct XmlFile {
     source: SourceText,
     /// Where its byte 0 is in the shared span space.
     base: u32,
@@ -90,7 +90,7 @@ pub enum IncludeTarget {
 #[derive(Debug)]
 pub struct XmlFiles {
     syntax: IncludeSyntax,
-    files: Vec<SdfFile>,
+    files: Vec<XmlFile>,
     /// `<include>` element start (shared span space) → what it resolved to.
     includes: HashMap<u32, IncludeTarget>,
     /// Canonical path → index of the files read, so a model included twice is read once.
@@ -134,7 +134,7 @@ impl XmlFiles {
                 .saturating_add(len32(f.source.text()))
                 .saturating_add(1)
         });
-        self.files.push(SdfFile {
+        self.files.push(XmlFile {
             source: SourceText::new(path, text),
             base,
             included_at,
@@ -323,7 +323,7 @@ impl XmlFiles {
     }
 
     /// The file holding shared-space byte `at`, and the offset inside it.
-    fn file_at(&self, at: u32) -> Option<(&SdfFile, usize)> {
+    fn file_at(&self, at: u32) -> Option<(&XmlFile, usize)> {
         let index = self
             .files
             .partition_point(|f| f.base <= at)
