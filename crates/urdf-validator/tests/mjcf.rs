@@ -162,11 +162,18 @@ fn joints_of_one_body_are_chained_through_massless_links_and_the_last_reaches_th
     assert!((rooty.origin.xyz[2] - 0.3).abs() < 1e-15);
     let v = run(&path);
     has(&v, "U033", "m.xml", 6, "three hinges");
-    // The chain's links are the reader's, not the author's: no missing-inertial warning on them.
+    // The chain's links are the reader's, not the author's: no missing-inertial warning on them, and
+    // [PHYSICS] counts them as frames (with the world), not as links whose mass is missing.
     assert!(
         findings(&v, "U201").is_empty(),
         "{:?}",
         findings(&v, "U201")
+    );
+    let physics = &v.report.physics;
+    assert_eq!(
+        (physics.frames, physics.mass_missing),
+        (5, 0),
+        "{physics:?}"
     );
 }
 
