@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """MuJoCo's own numbers for MJCF models: the oracle of the MJCF reader (issue #30).
 
-For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with, at
+For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with each
+body's mass and principal moments of inertia (`body_mass`, `body_inertia`) and, at
 `qpos0` and at two seeded random configurations: per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
 forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, with
@@ -151,7 +152,12 @@ def golden(path: Path, root: Path) -> dict:
         "gravity_disabled": gravity_disabled,
         "total_mass": float(sum(model.body_mass)),
         "bodies": [
-            {"name": bodies[b], "parent": bodies[model.body_parentid[b]], "mass": float(model.body_mass[b])}
+            {
+                "name": bodies[b],
+                "parent": bodies[model.body_parentid[b]],
+                "mass": float(model.body_mass[b]),
+                "inertia": model.body_inertia[b].tolist(),
+            }
             for b in range(1, model.nbody)
         ],
         "joints": joints,
