@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Creates (once) the Python test environment `.venv` in the repo root and installs the pinned test data.
+# Creates (once) the Python test environment `.venv` in the repo root and installs the pinned test data,
+# and unpacks dm_control's suite models (MJCF) into target/dm-control.
 #
 #   bash scripts/setup-test-env.sh        # prints the example-robot-data corpus path on stdout
 #
@@ -45,6 +46,31 @@ find_corpus() {
     fi
 }
 
+# dm_control's suite models (MJCF, with their includes and the dog's meshes): the MJCF reader's MuJoCo
+# oracle corpus (crates/urdf-validator/tests/mjcf_golden.rs, scripts/oracle/mjcf_goldens.py). Only the
+# wheel's dm_control/suite files that are not Python are unpacked; dm_control is never installed.
+DM_CONTROL="dm-control==1.0.50"
+dm_control_dir="$repo_root/target/dm-control"
+
+# Unpack the dm_control suite into target/dm-control once (the wheel is downloaded with the venv's pip).
+ensure_dm_control() {
+    [[ -f "$dm_control_dir/dm_control/suite/dog.xml" ]] && return 0
+    log "downloading $DM_CONTROL (the MJCF test corpus) into $dm_control_dir"
+    mkdir -p "$dm_control_dir"
+    "$venv/bin/python" -m pip download --quiet --disable-pip-version-check --no-input --no-deps \
+        "$DM_CONTROL" -d "$dm_control_dir" >&2 ||
+        die "pip download $DM_CONTROL failed (is PyPI reachable?)"
+    "$venv/bin/python" - "$dm_control_dir" <<'PY' || die "cannot unpack the $DM_CONTROL wheel"
+import pathlib, sys, zipfile
+root = pathlib.Path(sys.argv[1])
+wheel = next(root.glob("dm_control-*.whl"))
+with zipfile.ZipFile(wheel) as z:
+    for name in z.namelist():
+        if name.startswith("dm_control/suite/") and not name.endswith(".py"):
+            z.extract(name, root)
+PY
+}
+
 wanted="$(printf '%s\n' "${TEST_PACKAGES[@]}")"
 
 # Fast path: the venv works, holds exactly this package list, and the corpus is there.
@@ -52,6 +78,7 @@ if [[ -x "$venv/bin/python" ]] && "$venv/bin/python" -c '' 2>/dev/null &&
     [[ -f "$stamp" ]] && [[ "$(cat "$stamp")" == "$wanted" ]]; then
     corpus="$(find_corpus)"
     if [[ -n "$corpus" ]]; then
+        ensure_dm_control
         printf '%s\n' "$corpus"
         exit 0
     fi
@@ -95,6 +122,7 @@ corpus="$(find_corpus)"
 [[ -n "$corpus" ]] ||
     die "example-robot-data installed, but no corpus at $venv/lib/python3.*/site-packages/cmeel.prefix/share/example-robot-data/robots"
 
+ensure_dm_control
 printf '%s\n' "$wanted" >"$stamp"
 log "corpus: $(find "$corpus" -name '*.urdf' | wc -l) URDF files"
 printf '%s\n' "$corpus"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The SDFormat and inertia goldens against their oracle: installs Drake (PyPI drake==1.51.1) in a throw-away venv under
+# The SDFormat, inertia and MJCF goldens against their oracles: installs Drake (PyPI drake==1.51.1) in a throw-away venv under
 # target/ and regenerates the goldens in memory (scripts/oracle/sdf_golden.py --check); exits 1 when a
 # committed golden differs from what Drake computes now. The Rust test tests/sdf_golden.rs compares our
 # reader to the committed goldens to 1e-9, so together they tie our values to Drake's.
@@ -19,3 +19,7 @@ fi
 # Inertia from geometry: Drake's CalcSpatialInertia per link as fix_inertia sums it (tests/inertia.rs compares
 # ours to these goldens to 1e-9); reads example-robot-data from the test venv and ../shared/robots.
 "$venv/bin/python" scripts/oracle/inertia_golden.py --check
+# MJCF: MuJoCo's own numbers for dm_control's suite models (tests/mjcf_golden.rs compares our reader to them
+# to 1e-9); MuJoCo from the test venv (mujoco==4.0.0, scripts/setup-test-env.sh), the models it unpacks.
+bash scripts/setup-test-env.sh >/dev/null
+.venv/bin/python scripts/oracle/mjcf_goldens.py --check

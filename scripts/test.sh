@@ -27,6 +27,10 @@ else
     echo "test.sh: $shared_robots is absent; its tests skip (or fail under CI=true)" >&2
 fi
 
+# dm_control's suite models, unpacked by setup-test-env.sh: the MJCF reader's MuJoCo oracle corpus.
+export URDF_VALIDATOR_MJCF_CORPUS="$repo_root/target/dm-control/dm_control/suite"
+echo "test.sh: URDF_VALIDATOR_MJCF_CORPUS=$URDF_VALIDATOR_MJCF_CORPUS" >&2
+
 # The CLI keeps mesh hulls between runs; the tests keep theirs under target/, not in the user's cache.
 export URDF_VALIDATOR_CACHE_DIR="$repo_root/target/mesh-cache"
 

@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """MuJoCo's own numbers for MJCF models: the oracle of the MJCF reader (issue #30).
 
-For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with, at
+For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with each
+body's mass and principal moments of inertia (`body_mass`, `body_inertia`) and, at
 `qpos0` and at two seeded random configurations: per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
-forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint; and per
+forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, with
+gravity on even where the model turns it off (`<flag gravity="disable"/>`, recorded as
+`gravity_disabled`: the validator's statics are about the robot under gravity); and per
 actuator the fields that bound its force (`gear`, `ctrlrange`, `forcerange`, `gainprm`, `biasprm`, the
 joint's `actfrcrange`).
 
@@ -21,8 +24,10 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import subprocess
 import sys
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -84,6 +89,9 @@ def configurations(model: mujoco.MjModel) -> list[tuple[str, np.ndarray]]:
 
 def golden(path: Path, root: Path) -> dict:
     model = mujoco.MjModel.from_xml_path(str(path))
+    gravity_bit = int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
+    gravity_disabled = bool(model.opt.disableflags & gravity_bit)
+    model.opt.disableflags &= ~gravity_bit
     data = mujoco.MjData(model)
     bodies = [name_of(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(model.nbody)]
     joints = []
@@ -141,9 +149,15 @@ def golden(path: Path, root: Path) -> dict:
         "source": path.relative_to(root).as_posix(),
         "mujoco_version": mujoco.__version__,
         "gravity": model.opt.gravity.tolist(),
+        "gravity_disabled": gravity_disabled,
         "total_mass": float(sum(model.body_mass)),
         "bodies": [
-            {"name": bodies[b], "parent": bodies[model.body_parentid[b]], "mass": float(model.body_mass[b])}
+            {
+                "name": bodies[b],
+                "parent": bodies[model.body_parentid[b]],
+                "mass": float(model.body_mass[b]),
+                "inertia": model.body_inertia[b].tolist(),
+            }
             for b in range(1, model.nbody)
         ],
         "joints": joints,
@@ -158,7 +172,10 @@ def main() -> int:
     parser.add_argument("--out", type=Path, default=REPO / "crates/urdf-validator/tests/golden/mujoco")
     parser.add_argument("--check", action="store_true")
     args = parser.parse_args()
-    root = args.models or dm_control_suite()
+    root = (args.models or dm_control_suite()).resolve()
+    args.out = args.out.resolve()
+    # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory: not into the repository.
+    os.chdir(tempfile.mkdtemp(prefix="mjcf-goldens-"))
     stale = 0
     rows = []
     for path in sorted(root.glob("*.xml")):

@@ -20,8 +20,9 @@ use clap::{Parser, ValueEnum};
                   Editors: `urdf_validate server` is the language server (LSP over stdio; `urdf_validate server --help`)."
 )]
 pub struct Args {
-    /// URDF, xacro or SDFormat files, or directories (every *.urdf, *.sdf and *.world below them, and
-    /// every *.xacro with a <robot> root that builds a robot), and xacro arguments as `name:=value`.
+    /// URDF, xacro, SDFormat or MJCF files, or directories (every *.urdf, *.sdf and *.world below them,
+    /// every *.xml with a <mujoco> root, and every *.xacro with a <robot> root that builds a robot), and
+    /// xacro arguments as `name:=value`.
     #[arg(value_name = "URDF_OR_DIR")]
     pub inputs: Vec<PathBuf>,
 

@@ -35,8 +35,9 @@ pub fn parse_xacro_arg_flag(arg: &str) -> Result<(String, String), String> {
 
 /// Files named directly are kept as given (with `skip_libraries`, a named `*.xacro` that builds no robot,
 /// a macro library, is left out, as in directories); directories contribute every `*.urdf`, `*.sdf` and
-/// `*.world` below them and every `*.xacro` whose root element is `<robot>` (not the macro libraries it
-/// includes), sorted; hidden folders and
+/// `*.world` below them, every `*.xml` whose root element is `<mujoco>` (an MJCF model) and every
+/// `*.xacro` whose root element is `<robot>` (not the macro libraries it includes), sorted; hidden
+/// folders and
 /// files ignored by `.gitignore` are skipped. Inputs that
 /// do not exist come back as error lines.
 pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<String>) {
@@ -49,7 +50,7 @@ pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<St
             files[before..].sort();
             if files.len() == before {
                 errors.push(format!(
-                    "{}: directory holds no *.urdf, *.sdf or *.world file and no *.xacro robot",
+                    "{}: directory holds no *.urdf, *.sdf or *.world file, no MJCF *.xml and no *.xacro robot",
                     input.display()
                 ));
             }
@@ -72,8 +73,8 @@ pub fn expand(inputs: &[PathBuf], skip_libraries: bool) -> (Vec<PathBuf>, Vec<St
     (files, errors)
 }
 
-/// Every `*.urdf`, `*.sdf`, `*.world` and robot `*.xacro` below `dir`, skipping hidden folders and what `.gitignore` /
-/// `.ignore` files exclude (build and install trees).
+/// Every `*.urdf`, `*.sdf`, `*.world`, MJCF `*.xml` and robot `*.xacro` below `dir`, skipping hidden
+/// folders and what `.gitignore` / `.ignore` files exclude (build and install trees).
 fn collect_urdfs(dir: &Path, files: &mut Vec<PathBuf>) {
     let walk = ignore::WalkBuilder::new(dir)
         .max_depth(Some(MAX_DEPTH))
@@ -89,10 +90,25 @@ fn collect_urdfs(dir: &Path, files: &mut Vec<PathBuf>) {
             .map(|e| e.to_ascii_lowercase())
             .unwrap_or_default();
         let description = ["urdf", "sdf", "world"].iter().any(|e| extension == *e);
-        if description || (extension == "xacro" && is_robot_xacro(path)) {
+        if description
+            || (extension == "xacro" && is_robot_xacro(path))
+            || (extension == "xml" && is_mjcf(path))
+        {
             files.push(path.to_path_buf());
         }
     }
+}
+
+/// How much of an `*.xml` file is read to find its root element.
+const MJCF_PEEK: u64 = 64 * 1024;
+
+/// True when the `*.xml` file's root element is `<mujoco>` (within its first [`MJCF_PEEK`] bytes).
+fn is_mjcf(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MJCF_PEEK).read_to_end(&mut head))
+        .is_ok_and(|_| urdf_validator::input::xml_files::is_mjcf(&String::from_utf8_lossy(&head)))
 }
 
 /// Largest xacro file looked into when deciding whether it is a robot.

@@ -618,3 +618,46 @@ fn sdf_files_run_end_to_end_and_directories_pick_them_up() {
     assert!(stdout.contains("empty.world"), "{stdout}");
     assert!(stdout.contains("U020"), "{stdout}");
 }
+
+#[test]
+fn mjcf_files_run_end_to_end_and_directories_pick_up_only_mujoco_xml() {
+    let dir = temp_dir();
+    let arm = r#"<mujoco model="arm">
+  <compiler angle="degree"/>
+  <include file="parts/defaults.xml"/>
+  <worldbody>
+    <body name="upper" pos="0 0 1">
+      <joint name="shoulder" axis="0 1 0" range="-90 90"/>
+      <geom class="link" fromto="0 0 0 0.5 0 0"/>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+    write(&dir, "arm.xml", arm);
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    write(
+        &dir,
+        "parts/defaults.xml",
+        "<mujoco><default><default class=\"link\"><geom type=\"capsule\" size=\"0.05\" mass=\"2\"/></default></default></mujoco>\n",
+    );
+    write(
+        &dir,
+        "notes.xml",
+        "<notes><note>not a model</note></notes>\n",
+    );
+    let arm_path = dir.join("arm.xml");
+    let result = run(&[arm_path.to_str().unwrap(), "--no-write", "--format", "json"]);
+    let report: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    // 2 kg at 0.25 m from the shoulder: 4.905 N·m, read through the include and the default class.
+    let mass = report["statics"]["total_mass"].as_f64().unwrap();
+    assert!((mass - 2.0).abs() < 1e-12, "{report}");
+    let torque = report["statics"]["joints"][0]["required_torque_gravity"]
+        .as_f64()
+        .unwrap();
+    assert!((torque.abs() - 2.0 * 9.81 * 0.25).abs() < 1e-9, "{report}");
+    let result = run(&[dir.to_str().unwrap(), "--no-write", "--samples", "500"]);
+    let stdout = text(&result.stdout);
+    assert!(stdout.contains("arm.xml"), "{stdout}");
+    assert!(stdout.contains("defaults.xml"), "{stdout}");
+    assert!(!stdout.contains("notes.xml"), "{stdout}");
+}

@@ -1,11 +1,11 @@
-//! urdf-validator: physics-aware validation of URDF (and xacro, and SDFormat) robot descriptions.
+//! urdf-validator: physics-aware validation of URDF (and xacro, SDFormat and MJCF) robot descriptions.
 //!
 //! The library is laid out by pipeline stage, each folder handing the next exactly what it needs:
 //!
 //! | stage | module | produces |
 //! |---|---|---|
 //! | load | [`input`] | the URDF text (xacro expanded), positions back into the files the user edits |
-//! | parse | [`urdf`], [`sdf`] | a typed [`urdf::Robot`] with spans (SDFormat read into the same type), and parse findings |
+//! | parse | [`urdf`], [`sdf`], [`mjcf`] | a typed [`urdf::Robot`] with spans (SDFormat and MJCF read into the same type), and parse findings |
 //! | model | [`model`] | the kinematic tree, forward kinematics, mass properties |
 //! | assets | [`assets`] | meshes and their hulls, link supports, the SRDF: loaded once |
 //! | checks | `checks` (internal) | structural findings |
@@ -27,6 +27,7 @@ pub mod assets;
 pub(crate) mod checks;
 pub mod diagnostics;
 pub mod input;
+pub mod mjcf;
 pub mod model;
 pub mod render;
 pub mod report;
@@ -179,16 +180,15 @@ fn run(
     mut clock: Stopwatch,
 ) -> Result<Validation, LoadError> {
     // A URDF's XML document is read once: the parse reads the robot from it, the report element paths.
-    let urdf_text = loaded
-        .sdf()
-        .is_none()
-        .then(|| urdf::parse::UrdfText::new(loaded.text()));
+    let urdf_text =
+        (loaded.format() == input::Format::Urdf).then(|| urdf::parse::UrdfText::new(loaded.text()));
     let document = urdf_text
         .as_ref()
         .map(|text| text.document(&loaded.path))
         .transpose()?;
-    let (mut robot, mut findings) = match (&urdf_text, &document) {
-        (Some(text), Some(document)) => text.parse(document),
+    let (mut robot, mut findings) = match (&urdf_text, &document, loaded.mjcf()) {
+        (Some(text), Some(document), _) => text.parse(document),
+        (_, _, Some(files)) => mjcf::parse_mjcf(files, &options.meshes, resolver),
         _ => parse_sdf(&loaded, options)?,
     };
     let overrides = value_overrides::apply(&mut robot, &options.value_overrides, document.as_ref())

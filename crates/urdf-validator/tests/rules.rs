@@ -334,6 +334,11 @@ const COVERED: &[&str] = &[
     "U027",
     "U028",
     "U029",
+    // U030–U033: tests/mjcf.rs (MJCF input: each at its line, includes, hostile values).
+    "U030",
+    "U031",
+    "U032",
+    "U033",
     // Untrusted mode's refusals: u013_access_refused below; crates/cli/tests/security.rs runs 33 hostile inputs.
     "U013",
     // Suppressions (tests/suppressions.rs and crates/cli/tests/config.rs cover the configuration side).
@@ -366,11 +371,11 @@ fn every_rule_in_the_registry_has_a_case() {
 rule_case! {
     u001_not_a_robot, "U001",
     fires: r#"<?xml version="1.0"?>
-<mujoco model="m">
+<scene name="m">
   <worldbody/>
-</mujoco>
+</scene>
 "#,
-    at: (2, 1, "<mujoco"),
+    at: (2, 1, "<scene"),
     clean: r#"<?xml version="1.0"?>
 <robot name="m">
   <link name="base"/>
@@ -2018,16 +2023,34 @@ fn an_error_on_a_later_line_reports_that_line() {
 }
 
 #[test]
-fn an_mjcf_root_is_u001_not_an_error() {
-    let urdf = r#"<mujoco model="m"><worldbody><body name="b"/></worldbody></mujoco>"#;
+fn a_root_that_is_no_description_is_u001_not_an_error() {
+    let urdf = r#"<scene model="m"><worldbody><body name="b"/></worldbody></scene>"#;
     let r = report(urdf);
     let hit = the_one(&r.findings, "U001");
     assert_eq!(hit.severity, Severity::Critical);
-    assert!(hit.message.contains("<mujoco>"), "{}", hit.message);
+    assert!(hit.message.contains("<scene>"), "{}", hit.message);
     assert_eq!((hit.line, hit.column), (Some(1), Some(1)));
     // Nothing else is checked on a document that is not a robot.
     assert_eq!(r.findings.len(), 1, "{}", describe(&r.findings));
     assert_eq!(r.overall_status.exit_code(), 2);
+}
+
+#[test]
+fn an_mjcf_root_is_read_as_mjcf_not_u001() {
+    let r = report(
+        r#"<mujoco model="m"><worldbody><body name="b"><geom size="0.1"/></body></worldbody></mujoco>"#,
+    );
+    assert!(
+        with_code(&r.findings, "U001").is_empty(),
+        "{}",
+        describe(&r.findings)
+    );
+    // A sphere of 0.1 m at MuJoCo's default density, 1000 kg/m³.
+    let mass = r.statics.as_ref().and_then(|s| s.total_mass).unwrap();
+    assert!(
+        (mass - 4.0 / 3.0 * std::f64::consts::PI).abs() < 1e-12,
+        "{mass}"
+    );
 }
 
 #[test]

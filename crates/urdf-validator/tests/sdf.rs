@@ -701,8 +701,13 @@ fn hostile_values_never_panic() {
         for range in ranges {
             for value in hostile {
                 let mutated = format!("{}{value}{}", &text[..range.start], &text[range.end..]);
-                let files =
-                    urdf_validator::input::sdf::SdfFiles::load(&path, mutated, &resolver).unwrap();
+                let files = urdf_validator::input::xml_files::XmlFiles::load(
+                    &path,
+                    mutated,
+                    urdf_validator::input::xml_files::IncludeSyntax::Sdf,
+                    &resolver,
+                )
+                .unwrap();
                 let (robot, _) = urdf_validator::sdf::parse_sdf(&files, None).unwrap();
                 let _ = urdf_validator::model::Model::build(&robot);
                 variants += 1;

@@ -5,11 +5,14 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use crate::diagnostics::{Confidence, ConfidenceLevel};
+use crate::input::Format;
 use crate::urdf::robot::{Link, Robot};
 
-/// A pure frame: nothing physical on it, and attached rigidly (by a fixed joint, or as the root).
+/// A pure frame: nothing physical on it, and attached rigidly (by a fixed joint, or as the root); in MJCF
+/// any link without mass or shapes, since the reader makes them to chain one body's joints (MuJoCo's body
+/// has no such part, so nothing is missing from it).
 pub fn is_frame(robot: &Robot, model: &Model, link: LinkId) -> bool {
-    robot.links[link.0].is_bare() && !model.is_moving(robot, link)
+    robot.links[link.0].is_bare() && (robot.format == Format::Mjcf || !model.is_moving(robot, link))
 }
 
 fn finite_mass(link: &Link) -> Option<f64> {
@@ -113,7 +116,8 @@ pub fn confidence_level(summary: &PhysicsSummary) -> ConfidenceLevel {
 pub struct PhysicsSummary {
     /// All links.
     pub links: usize,
-    /// Pure frames: no inertial, no geometry, fixed to their parent (or the root).
+    /// Pure frames: no inertial, no geometry, fixed to their parent (or the root); in MJCF, every link
+    /// without mass or geometry (the links chaining one body's joints).
     pub frames: usize,
     /// Non-frame links declaring a finite mass.
     pub mass_exact: usize,

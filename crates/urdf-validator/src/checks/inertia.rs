@@ -6,6 +6,7 @@ use crate::analysis::geometry_inertia::{self, GeometryInertia};
 use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
+use crate::input::Format;
 use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
 use crate::urdf::robot::{principal_moments, Inertia, Inertial, Link, Robot};
@@ -26,7 +27,9 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
         let moving = model.is_moving(robot, LinkId(i));
         let geometry = || geometry_inertia::of_link(link, assets);
         let Some(inertial) = &link.inertial else {
-            if moving {
+            // An MJCF link without mass or shapes chains a body's joints (MuJoCo has no such body).
+            let joint_chain = robot.format == Format::Mjcf && link.is_bare();
+            if moving && !joint_chain {
                 findings.push(
                     Finding::new(
                         &rules::MISSING_INERTIAL,

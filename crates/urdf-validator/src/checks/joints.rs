@@ -112,8 +112,8 @@ fn check_limit(
         return;
     };
     for (value, attr) in [(&limit.effort, "effort"), (&limit.velocity, "velocity")] {
-        if value.is_none() && format == Format::Sdf {
-            // Optional in SDFormat (unlimited when absent).
+        if value.is_none() && format != Format::Urdf {
+            // Optional in SDFormat (unlimited when absent); MJCF puts them on actuators.
             findings.push(Finding::new(
                 &rules::MISSING_EFFORT_VELOCITY,
                 limit.span,

@@ -158,6 +158,26 @@ rules! {
         why: "sdformat refuses the file; read leniently, the value would silently change the physics.",
         fix: "Write plain decimal numbers separated by spaces, e.g. `<pose>0 0 0.1 0 0 1.57</pose>`.",
     }
+    MJCF_STRUCTURE = "U030" "mjcf-structure" Critical {
+        what: "The MJCF model breaks a rule MuJoCo's compiler enforces: an unknown element, a reference to a default class or mesh that does not exist, two orientations on one element, a free joint below a top-level body, a body that moves but has no mass.",
+        why: "MuJoCo refuses the model (`mj_loadXML` returns no model), so nothing simulates it; what is read here around the problem may not be what the author meant.",
+        fix: "Follow the message: it names the element and the rule (MuJoCo's XML reference, mujoco.readthedocs.io/en/stable/XMLreference.html).",
+    }
+    MJCF_INCLUDE_UNRESOLVED = "U031" "mjcf-include-unresolved" Critical {
+        what: "An `<include file>` that cannot be read: no such file beside the including file or the model file, not well-formed, its root is not `<mujoco>`, an include cycle, or a chain more than 16 deep.",
+        why: "MuJoCo refuses the model; without the included file the robot is incomplete, so every analysis here misses what it holds.",
+        fix: "Fix the path (relative to the including file or to the model file), or break the cycle.",
+    }
+    MJCF_INVALID_VALUE = "U032" "mjcf-invalid-value" Critical {
+        what: "An MJCF value does not parse: a number or a vector with too few, malformed, NaN or infinite numbers, a keyword that is not one of the attribute's.",
+        why: "MuJoCo refuses the model; read leniently, the value would silently change the physics.",
+        fix: "Write plain decimal numbers separated by spaces, as many as the attribute takes (e.g. `pos=\"0 0 0.1\"`).",
+    }
+    MJCF_NOT_READ = "U033" "mjcf-not-read" Info {
+        what: "An MJCF element or setting this validator does not turn into the robot yet: actuators on tendons, sites or bodies and actuator kinds other than motor, position, velocity and general (their joints get no effort from them), equality constraints, tendons, composite/flexcomp/replicate/attach bodies, height fields and SDF geoms, shell inertia; or a ball joint, analysed as three hinges about the body's x, y and z axes.",
+        why: "What it describes is left out of the analyses (or, for a ball joint, analysed as three single-axis joints whose gravity torques are MuJoCo's three ball dofs at the pose analysed).",
+        fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

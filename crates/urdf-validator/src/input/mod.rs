@@ -1,13 +1,13 @@
-//! The load stage: a file's text with the size limit applied, xacro expansion, SDFormat includes,
+//! The load stage: a file's text with the size limit applied, xacro expansion, SDFormat and MJCF includes,
 //! `package://` and `model://` resolution, SRDF files and meshes. Nothing here knows what a robot is; it hands text and geometry to the stages after it.
 
 pub mod mesh;
 pub mod resolve;
 pub mod sandbox;
-pub mod sdf;
 pub mod source;
 pub mod srdf;
 pub mod xacro;
+pub mod xml_files;
 
 use std::path::{Path, PathBuf};
 
@@ -144,7 +144,9 @@ enum Origin {
     /// The text was expanded from xacro sources.
     Xacro(xacro::Expanded),
     /// An SDFormat file (root element `<sdf>`) and the files it includes.
-    Sdf(sdf::SdfFiles),
+    Sdf(xml_files::XmlFiles),
+    /// An MJCF file (root element `<mujoco>`) and the files it includes.
+    Mjcf(xml_files::XmlFiles),
 }
 
 /// The description format of a loaded file.
@@ -155,6 +157,8 @@ pub enum Format {
     Urdf,
     /// SDFormat.
     Sdf,
+    /// MJCF (MuJoCo's XML).
+    Mjcf,
 }
 
 impl Loaded {
@@ -191,34 +195,51 @@ impl Loaded {
         Loaded::from_document(text, path, resolver)
     }
 
-    /// A URDF or SDFormat document `text` read from `path` (SDFormat by its `<sdf>` root: its includes are
-    /// read from `path`'s folder and through `resolver`).
+    /// A URDF, SDFormat or MJCF document `text` read from `path` (SDFormat by its `<sdf>` root, MJCF by
+    /// its `<mujoco>` root: their includes are read from `path`'s folder and through `resolver`).
     pub fn from_document(
         text: String,
         path: &Path,
         resolver: &resolve::PackageResolver,
     ) -> Result<Loaded, LoadError> {
-        if sdf::is_sdf(&text) {
-            return Ok(Loaded {
-                path: path.to_path_buf(),
-                origin: Origin::Sdf(sdf::SdfFiles::load(path, text, resolver)?),
-            });
-        }
-        Ok(Loaded::from_text(text, path))
+        let syntax = if xml_files::is_sdf(&text) {
+            xml_files::IncludeSyntax::Sdf
+        } else if xml_files::is_mjcf(&text) {
+            xml_files::IncludeSyntax::Mjcf
+        } else {
+            return Ok(Loaded::from_text(text, path));
+        };
+        let files = xml_files::XmlFiles::load(path, text, syntax, resolver)?;
+        Ok(Loaded {
+            path: path.to_path_buf(),
+            origin: match syntax {
+                xml_files::IncludeSyntax::Sdf => Origin::Sdf(files),
+                xml_files::IncludeSyntax::Mjcf => Origin::Mjcf(files),
+            },
+        })
     }
 
-    /// URDF or SDFormat.
+    /// URDF, SDFormat or MJCF.
     pub fn format(&self) -> Format {
         match &self.origin {
             Origin::Urdf(_) | Origin::Xacro(_) => Format::Urdf,
             Origin::Sdf(_) => Format::Sdf,
+            Origin::Mjcf(_) => Format::Mjcf,
         }
     }
 
     /// The SDFormat files, when the input is SDFormat.
-    pub fn sdf(&self) -> Option<&sdf::SdfFiles> {
+    pub fn sdf(&self) -> Option<&xml_files::XmlFiles> {
         match &self.origin {
             Origin::Sdf(files) => Some(files),
+            _ => None,
+        }
+    }
+
+    /// The MJCF files, when the input is MJCF.
+    pub fn mjcf(&self) -> Option<&xml_files::XmlFiles> {
+        match &self.origin {
+            Origin::Mjcf(files) => Some(files),
             _ => None,
         }
     }
@@ -236,7 +257,7 @@ impl Loaded {
         match &self.origin {
             Origin::Urdf(source) => source.text(),
             Origin::Xacro(expanded) => expanded.xml(),
-            Origin::Sdf(files) => files.text(0),
+            Origin::Sdf(files) | Origin::Mjcf(files) => files.text(0),
         }
     }
 
@@ -265,7 +286,7 @@ impl Loaded {
                 })
             }
             Origin::Xacro(expanded) => expanded.locate(span),
-            Origin::Sdf(files) => files.locate(span),
+            Origin::Sdf(files) | Origin::Mjcf(files) => files.locate(span),
         }
     }
 
@@ -280,13 +301,14 @@ impl Loaded {
             }
             Origin::Xacro(expanded) => expanded.literal_source(span),
             Origin::Sdf(_) => Err("fixes are not written into SDFormat files".into()),
+            Origin::Mjcf(_) => Err("fixes are not written into MJCF files".into()),
         }
     }
 
     /// The xacro expander's warnings, located in the xacro sources (none for a URDF).
     pub fn warnings(&self) -> Vec<xacro::Warning> {
         match &self.origin {
-            Origin::Urdf(_) | Origin::Sdf(_) => Vec::new(),
+            Origin::Urdf(_) | Origin::Sdf(_) | Origin::Mjcf(_) => Vec::new(),
             Origin::Xacro(expanded) => expanded.warnings(),
         }
     }
@@ -297,7 +319,7 @@ impl Loaded {
         match &self.origin {
             Origin::Urdf(source) => vec![(source.path().display().to_string(), source.text())],
             Origin::Xacro(expanded) => expanded.source_texts(),
-            Origin::Sdf(files) => files.source_texts(),
+            Origin::Sdf(files) | Origin::Mjcf(files) => files.source_texts(),
         }
     }
 
@@ -306,7 +328,7 @@ impl Loaded {
         match self.origin {
             Origin::Urdf(source) => vec![source],
             Origin::Xacro(expanded) => expanded.sources(),
-            Origin::Sdf(files) => files.into_sources(),
+            Origin::Sdf(files) | Origin::Mjcf(files) => files.into_sources(),
         }
     }
 }

@@ -13,7 +13,7 @@ use roxmltree::Document;
 
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
-use crate::input::sdf::SdfFiles;
+use crate::input::xml_files::XmlFiles;
 use crate::input::xml_options;
 use crate::urdf::robot::Robot;
 use scene::{Collector, El, Overrides, Scene, Scope, Sink, Version};
@@ -24,7 +24,7 @@ pub const SUPPORTED: (Version, Version) = ((1, 4), (1, 11));
 /// Parse the SDFormat `files` into the robot of their model (for a `<world>`: the model named `wanted`,
 /// else its first non-static model with joints), with the findings of the reading. The error names the
 /// models there are when none is named `wanted`.
-pub fn parse_sdf(files: &SdfFiles, wanted: Option<&str>) -> Result<(Robot, Vec<Finding>), String> {
+pub fn parse_sdf(files: &XmlFiles, wanted: Option<&str>) -> Result<(Robot, Vec<Finding>), String> {
     let docs: Vec<Option<Document>> = (0..files.len())
         .map(|i| Document::parse_with_options(files.text(i), xml_options()).ok())
         .collect();

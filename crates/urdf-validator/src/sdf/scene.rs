@@ -9,8 +9,8 @@ use roxmltree::{Document, Node};
 use super::pose::{self, Transform};
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules::{self, Rule};
-use crate::input::sdf::{IncludeTarget, SdfFiles};
 use crate::input::source::{Span, Spanned};
+use crate::input::xml_files::{IncludeTarget, XmlFiles};
 
 /// An SDFormat version, `(major, minor)`.
 pub type Version = (u32, u32);
@@ -28,7 +28,7 @@ pub const MAX_MODELS: usize = 10_000;
 /// An element and the file holding it.
 #[derive(Clone, Copy, Debug)]
 pub struct El<'a> {
-    /// Index of the file in [`SdfFiles`].
+    /// Index of the file in [`XmlFiles`].
     pub file: usize,
     /// The element.
     pub node: Node<'a, 'a>,
@@ -229,7 +229,7 @@ impl Scope {
 /// Where findings go, with the files their spans point into.
 pub struct Sink<'a> {
     /// The files.
-    pub files: &'a SdfFiles,
+    pub files: &'a XmlFiles,
     /// Findings so far.
     pub findings: Vec<Finding>,
 }

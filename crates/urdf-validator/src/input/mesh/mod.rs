@@ -374,7 +374,41 @@ struct RawMesh {
     faces: Option<Vec<[u32; 3]>>,
 }
 
+/// A mesh file's surface as written: its vertices (deduplicated exactly) and triangles (indices into
+/// them), for computations that follow another tool's reading of the triangles (MuJoCo's mesh inertia).
+#[derive(Debug, Clone)]
+pub struct Surface {
+    /// The vertices, metres.
+    pub vertices: Vec<[f64; 3]>,
+    /// The triangles.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The surface of an STL or OBJ file (COLLADA triangles are not read: an error says so), with the
+/// loader's limits.
+pub fn load_surface(path: &Path) -> Result<Surface, MeshError> {
+    let error = |message: String| MeshError {
+        path: path.to_path_buf(),
+        message,
+    };
+    let raw = read_raw(path, &MeshOptions::default()).map_err(error)?;
+    match raw.faces {
+        Some(triangles) => Ok(Surface {
+            vertices: raw.vertices,
+            triangles,
+        }),
+        None => Err(error(
+            "the mesh's triangles are not read (COLLADA, or an OBJ face naming no vertex)"
+                .to_string(),
+        )),
+    }
+}
+
 fn load(path: &Path, options: &MeshOptions) -> Result<MeshData, String> {
+    read_raw(path, options).map(finish)
+}
+
+fn read_raw(path: &Path, options: &MeshOptions) -> Result<RawMesh, String> {
     let format = format_of(path)?;
     let size = std::fs::metadata(path)
         .map_err(|e| format!("cannot read file: {e}"))?
@@ -391,12 +425,11 @@ fn load(path: &Path, options: &MeshOptions) -> Result<MeshData, String> {
             bytes.len()
         ));
     }
-    let raw = match format {
-        Format::Stl => parse_stl(&bytes)?,
-        Format::Obj => parse_obj(&bytes)?,
-        Format::Dae => parse_dae(&bytes, options)?,
-    };
-    Ok(finish(raw))
+    match format {
+        Format::Stl => parse_stl(&bytes),
+        Format::Obj => parse_obj(&bytes),
+        Format::Dae => parse_dae(&bytes, options),
+    }
 }
 
 fn format_of(path: &Path) -> Result<Format, String> {

@@ -1,5 +1,6 @@
-//! SDFormat input: the entry file and every file its `<include>`s pull in, read once with bounded depth,
-//! count and size, laid end to end in one span space so a [`Span`] names a file and a place in it.
+//! XML inputs made of several files (SDFormat, MJCF): the entry file and every file its `<include>`s pull
+//! in, read once with bounded depth, count and size, laid end to end in one span space so a [`Span`] names
+//! a file and a place in it.
 //!
 //! Findings inside an included file are located in that file, with the `<include>` chain as their stack
 //! (`in model://arm included at world.sdf:12:5`), as xacro findings carry their include stack.
@@ -20,6 +21,16 @@ pub const MAX_INCLUDED_FILES: usize = 256;
 
 /// True when `text`'s root element is `<sdf>` (whatever the file is called).
 pub fn is_sdf(text: &str) -> bool {
+    root_element_is(text, "sdf")
+}
+
+/// True when `text`'s root element is `<mujoco>`: an MJCF model (whatever the file is called).
+pub fn is_mjcf(text: &str) -> bool {
+    root_element_is(text, "mujoco")
+}
+
+/// True when the first element of `text` (after the XML declaration, comments and a DOCTYPE) is `<name`.
+fn root_element_is(text: &str, name: &str) -> bool {
     let mut rest = text.trim_start_matches('\u{feff}');
     loop {
         rest = rest.trim_start();
@@ -31,7 +42,7 @@ pub fn is_sdf(text: &str) -> bool {
         } else if rest.starts_with("<!") {
             skip_to(rest, ">")
         } else {
-            let Some(after) = rest.strip_prefix("<sdf") else {
+            let Some(after) = rest.strip_prefix('<').and_then(|r| r.strip_prefix(name)) else {
                 return false;
             };
             return after.starts_with(|c: char| c.is_whitespace() || c == '>' || c == '/');
@@ -43,9 +54,20 @@ pub fn is_sdf(text: &str) -> bool {
     }
 }
 
+/// How a format writes its includes, and where it looks for the file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IncludeSyntax {
+    /// SDFormat: `<include><uri>model://arm</uri></include>`, resolved as Gazebo does (`model://`,
+    /// `package://`, paths relative to the including file).
+    Sdf,
+    /// MJCF: `<include file="arm.xml"/>`, a path: relative to the including file's folder, else to the
+    /// entry file's (MuJoCo tries both); the included file's root must be `<mujoco>`.
+    Mjcf,
+}
+
 /// One file of the set.
 #[derive(Debug)]
-struct SdfFile {
+struct XmlFile {
     source: SourceText,
     /// Where its byte 0 is in the shared span space.
     base: u32,
@@ -64,21 +86,27 @@ pub enum IncludeTarget {
     Refused(String),
 }
 
-/// The entry SDFormat file and its includes.
+/// The entry file (SDFormat or MJCF) and its includes.
 #[derive(Debug)]
-pub struct SdfFiles {
-    files: Vec<SdfFile>,
+pub struct XmlFiles {
+    syntax: IncludeSyntax,
+    files: Vec<XmlFile>,
     /// `<include>` element start (shared span space) → what it resolved to.
     includes: HashMap<u32, IncludeTarget>,
     /// Canonical path → index of the files read, so a model included twice is read once.
     read: HashMap<PathBuf, usize>,
 }
 
-impl SdfFiles {
+impl XmlFiles {
     /// Read the entry file's `text` (from `path`) and, transitively, every file an `<include>` names.
     /// A malformed entry file is an error; a problem with an included file is recorded for its
-    /// `<include>` ([`SdfFiles::include`]).
-    pub fn load(path: &Path, text: String, resolver: &PackageResolver) -> Result<Self, LoadError> {
+    /// `<include>` ([`XmlFiles::include`]).
+    pub fn load(
+        path: &Path,
+        text: String,
+        syntax: IncludeSyntax,
+        resolver: &PackageResolver,
+    ) -> Result<Self, LoadError> {
         if let Err(e) = roxmltree::Document::parse_with_options(&text, xml_options()) {
             let pos = e.pos();
             return Err(LoadError::Xml {
@@ -88,7 +116,8 @@ impl SdfFiles {
                 message: e.to_string(),
             });
         }
-        let mut set = SdfFiles {
+        let mut set = XmlFiles {
+            syntax,
             files: Vec::new(),
             includes: HashMap::new(),
             read: HashMap::new(),
@@ -105,7 +134,7 @@ impl SdfFiles {
                 .saturating_add(len32(f.source.text()))
                 .saturating_add(1)
         });
-        self.files.push(SdfFile {
+        self.files.push(XmlFile {
             source: SourceText::new(path, text),
             base,
             included_at,
@@ -124,17 +153,19 @@ impl SdfFiles {
         else {
             return;
         };
+        let syntax = self.syntax;
         let includes: Vec<(Span, String)> = doc
             .descendants()
             .filter(|n| n.has_tag_name("include"))
             .map(|n| {
-                let uri = n
-                    .children()
-                    .find(|c| c.has_tag_name("uri"))
-                    .and_then(|u| u.text())
-                    .unwrap_or("")
-                    .trim()
-                    .to_string();
+                let uri = match syntax {
+                    IncludeSyntax::Sdf => n
+                        .children()
+                        .find(|c| c.has_tag_name("uri"))
+                        .and_then(|u| u.text()),
+                    IncludeSyntax::Mjcf => n.attribute("file"),
+                };
+                let uri = uri.unwrap_or("").trim().to_string();
                 (shift(Span::from_range(n.range()), base), uri)
             })
             .collect();
@@ -155,9 +186,16 @@ impl SdfFiles {
         resolver: &PackageResolver,
     ) -> IncludeTarget {
         if uri.is_empty() {
-            return IncludeTarget::Unresolved("<include> has no <uri>".to_string());
+            return IncludeTarget::Unresolved(match self.syntax {
+                IncludeSyntax::Sdf => "<include> has no <uri>".to_string(),
+                IncludeSyntax::Mjcf => "<include> has no file attribute".to_string(),
+            });
         }
-        let path = match resolver.resolve_include(uri, dir) {
+        let found = match self.syntax {
+            IncludeSyntax::Sdf => resolver.resolve_include(uri, dir),
+            IncludeSyntax::Mjcf => self.mjcf_include(uri, dir, resolver),
+        };
+        let path = match found {
             Ok(path) => path,
             Err(IncludeFailure::Unresolved(why)) => {
                 return IncludeTarget::Unresolved(format!("cannot resolve '{uri}': {why}"))
@@ -209,6 +247,12 @@ impl SdfFiles {
                 pos.col
             ));
         }
+        if self.syntax == IncludeSyntax::Mjcf && !is_mjcf(&text) {
+            return IncludeTarget::Unresolved(format!(
+                "{}: the root element is not <mujoco> (MuJoCo includes only MJCF files)",
+                path.display()
+            ));
+        }
         self.push(path, text, Some((from, at, uri.to_string())));
         let index = self.files.len() - 1;
         self.read.insert(key.clone(), index);
@@ -216,6 +260,31 @@ impl SdfFiles {
         deeper.push(key);
         self.follow(index, &deeper, resolver);
         IncludeTarget::File(index)
+    }
+
+    /// An MJCF `<include file>`: the path as written when absolute, else relative to the including
+    /// file's folder `dir`, else to the entry file's folder (MuJoCo finds it in either), through the
+    /// sandbox.
+    fn mjcf_include(
+        &self,
+        file: &str,
+        dir: &Path,
+        resolver: &PackageResolver,
+    ) -> Result<PathBuf, IncludeFailure> {
+        let entry_dir = parent_dir(self.path(0));
+        let candidates = [dir.join(file), entry_dir.join(file)];
+        let Some(path) = candidates.iter().find(|p| p.is_file()) else {
+            return Err(IncludeFailure::Unresolved(format!(
+                "no such file beside the including file ({}) or the model file ({})",
+                dir.display(),
+                entry_dir.display()
+            )));
+        };
+        resolver
+            .sandbox()
+            .check_file(path)
+            .map_err(IncludeFailure::Refused)?;
+        Ok(path.clone())
     }
 
     /// How many files were read (the entry file is index 0).
@@ -254,7 +323,7 @@ impl SdfFiles {
     }
 
     /// The file holding shared-space byte `at`, and the offset inside it.
-    fn file_at(&self, at: u32) -> Option<(&SdfFile, usize)> {
+    fn file_at(&self, at: u32) -> Option<(&XmlFile, usize)> {
         let index = self
             .files
             .partition_point(|f| f.base <= at)
@@ -346,5 +415,16 @@ mod tests {
         assert!(!is_sdf("<robot name='r'/>"));
         assert!(!is_sdf("<sdfx/>"));
         assert!(!is_sdf("<?xml"));
+    }
+
+    #[test]
+    fn mjcf_root_is_found_after_the_prolog() {
+        assert!(is_mjcf(
+            "<?xml version='1.0'?>\n<!-- c -->\n<mujoco model='m'>"
+        ));
+        assert!(is_mjcf("<mujoco/>"));
+        assert!(!is_mjcf("<mujocox/>"));
+        assert!(!is_mjcf("<robot name='r'/>"));
+        assert!(!is_sdf("<mujoco/>"));
     }
 }

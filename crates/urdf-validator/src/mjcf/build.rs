@@ -1,0 +1,1184 @@
+//! The `<worldbody>` tree as a URDF [`Robot`]: one link per body (named as the body), its joints chained
+//! through massless links, geoms as collision (or, with `contype` and `conaffinity` 0, visual) shapes,
+//! and the body's mass from `<inertial>` or its geoms as `inertiafromgeom` says.
+//!
+//! Frames: a URDF joint turns its child about the joint frame's origin, a MuJoCo hinge about its `pos` in
+//! the body. So a link's frame is its body's frame moved to the last hinge's anchor (`body_in_link` is
+//! the body frame seen from the link): the joint origin is the anchor, and the body's geoms, mass and
+//! child bodies are placed in the link frame through it. At q = 0 every body is where MuJoCo puts it at
+//! `qpos0` (a joint's q is MuJoCo's `qpos − ref`, its limits shifted by `ref` too).
+
+mod actuators;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use super::compiler::{boolean, keyword, Compiler, InertiaFromGeom};
+use super::defaults::{Defaults, Value, MAIN};
+use super::mass::{self, MassProps, MeshVolume, Solid};
+use super::orientation::{self, FORMS};
+use super::xml::{numbers, El, Reader};
+use crate::diagnostics::rules::{self, Rule};
+use crate::input::mesh::{load_surface, MeshCache};
+use crate::input::resolve::PackageResolver;
+use crate::input::source::{Span, Spanned};
+use crate::urdf::robot::{
+    Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose, Robot, Shape,
+};
+
+/// The actuator elements, which share one default per class.
+const ACTUATOR_KINDS: [&str; 10] = [
+    "general",
+    "motor",
+    "position",
+    "velocity",
+    "intvelocity",
+    "damper",
+    "cylinder",
+    "muscle",
+    "adhesion",
+    "plugin",
+];
+
+/// Elements a body may hold that are not turned into the robot (and say nothing about mass).
+const IGNORED_IN_BODY: [&str; 3] = ["site", "camera", "light"];
+
+/// Elements that make bodies this reader does not build.
+const NOT_BUILT_IN_BODY: [&str; 5] = ["composite", "flexcomp", "replicate", "attach", "plugin"];
+
+/// Top-level sections that say nothing about the tree or its mass.
+const QUIET_SECTIONS: [&str; 11] = [
+    "option",
+    "size",
+    "visual",
+    "statistic",
+    "sensor",
+    "keyframe",
+    "custom",
+    "extension",
+    "contact",
+    "deformable",
+    "default",
+];
+
+/// Sections read by the MJCF reader of a later step: what they hold is left out, with a U033.
+const SECTIONS_NOT_READ: [(&str, &str); 2] = [
+    (
+        "equality",
+        "equality constraints are not read yet: couplings and loops are left out",
+    ),
+    ("tendon", "tendons are not read yet"),
+];
+
+/// A `<mesh>` asset.
+#[derive(Clone, Debug)]
+struct MeshAsset {
+    /// The file, relative to the model file's folder (through `meshdir`).
+    file: String,
+    /// The `file` attribute.
+    span: Span,
+    /// `scale`.
+    scale: [f64; 3],
+    /// `inertia`: how its volume is summed (`shell` is read as `legacy`, with a U033).
+    volume: MeshVolume,
+    /// `inertia="convex"`: over the convex hull's triangles.
+    convex: bool,
+}
+
+/// A body's contents, `<frame>`s flattened.
+#[derive(Default)]
+struct Contents<'a> {
+    joints: Vec<(El<'a>, String)>,
+    geoms: Vec<(El<'a>, String, Isometry3<f64>)>,
+    inertial: Option<El<'a>>,
+    bodies: Vec<(El<'a>, String, Isometry3<f64>)>,
+}
+
+/// Where a body hangs: the URDF link of its parent body, and the parent body's frame seen from it.
+#[derive(Clone)]
+struct Parent {
+    link: String,
+    body_in_link: Isometry3<f64>,
+}
+
+/// The builder's state while it walks the tree.
+pub struct Builder<'a, 'r> {
+    reader: &'r mut Reader<'a>,
+    defaults: Defaults<'a>,
+    compiler: Compiler,
+    meshes: HashMap<String, MeshAsset>,
+    mesh_cache: &'r MeshCache,
+    resolver: &'r PackageResolver,
+    dir: PathBuf,
+    links: Vec<Link>,
+    joints: Vec<Joint>,
+    /// The mass of each body link built, by index in `links`.
+    masses: Vec<(usize, MassProps)>,
+    bodies: usize,
+    joint_ids: usize,
+    /// Each hinge and slide joint's `actuatorfrcrange` when it is limited, with its span.
+    actuator_force: HashMap<String, ((f64, f64), Span)>,
+}
+
+impl<'a, 'r> Builder<'a, 'r> {
+    /// A builder for the model whose top-level sections are `sections`; mesh files are found from
+    /// `model_path`'s folder and loaded through `mesh_cache` when the resolver's sandbox allows.
+    pub fn new(
+        reader: &'r mut Reader<'a>,
+        sections: &[El<'a>],
+        model_path: &Path,
+        mesh_cache: &'r MeshCache,
+        resolver: &'r PackageResolver,
+    ) -> Self {
+        let compiler = Compiler::read(reader, sections);
+        let defaults = Defaults::read(reader, sections);
+        let dir = model_path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."))
+            .to_path_buf();
+        let mut builder = Builder {
+            reader,
+            defaults,
+            compiler,
+            meshes: HashMap::new(),
+            mesh_cache,
+            resolver,
+            dir,
+            links: Vec::new(),
+            joints: Vec::new(),
+            masses: Vec::new(),
+            bodies: 0,
+            joint_ids: 0,
+            actuator_force: HashMap::new(),
+        };
+        for section in sections {
+            match section.tag() {
+                "asset" => builder.assets(*section),
+                "worldbody" | "compiler" | "actuator" => {}
+                tag if QUIET_SECTIONS.contains(&tag) => {}
+                tag => match SECTIONS_NOT_READ.iter().find(|(t, _)| *t == tag) {
+                    Some((_, why)) => builder.note(*section, why.to_string()),
+                    None => builder.problem(
+                        &rules::MJCF_STRUCTURE,
+                        *section,
+                        format!("<{tag}> is not an MJCF section (MuJoCo refuses the model)"),
+                    ),
+                },
+            }
+        }
+        builder
+    }
+
+    /// The robot of the `<worldbody>` sections among `sections`.
+    pub fn robot(mut self, root: El<'a>, sections: &[El<'a>]) -> Robot {
+        let mut top: Vec<(El<'a>, String, Isometry3<f64>)> = Vec::new();
+        for world in sections.iter().filter(|s| s.tag() == "worldbody") {
+            let contents = self.contents(*world, MAIN, Isometry3::identity(), true);
+            top.extend(contents.bodies);
+        }
+        let floating_root = match top.as_slice() {
+            [(el, class, _)] => {
+                let joints: Vec<El<'a>> = el
+                    .node
+                    .children()
+                    .filter(|n| n.has_tag_name("joint") || n.has_tag_name("freejoint"))
+                    .map(|node| El {
+                        file: el.file,
+                        node,
+                    })
+                    .collect();
+                matches!(joints.as_slice(), [j] if self.joint_type(*j, class) == "free")
+            }
+            _ => false,
+        };
+        if !floating_root {
+            let span = self.reader.span(root);
+            self.links.push(Link {
+                name: Spanned {
+                    value: "world".to_string(),
+                    span,
+                },
+                span,
+                inertial: None,
+                visuals: Vec::new(),
+                collisions: Vec::new(),
+            });
+        }
+        let world = Parent {
+            link: "world".to_string(),
+            body_in_link: Isometry3::identity(),
+        };
+        for (el, class, frame) in top {
+            self.body(el, &class, &world, frame, true, floating_root);
+        }
+        self.finish_masses();
+        self.set_efforts(sections);
+        let span = self.reader.span(root);
+        Robot {
+            name: root.attr("model").map(|m| Spanned {
+                value: m.to_string(),
+                span: self.reader.attr_span(root, "model"),
+            }),
+            span,
+            links: self.links,
+            joints: self.joints,
+            format: crate::input::Format::Mjcf,
+            ..Robot::default()
+        }
+    }
+
+    fn problem(&mut self, rule: &'static Rule, el: El<'_>, message: String) {
+        let span = self.reader.span(el);
+        self.reader.report(rule, span, message);
+    }
+
+    fn note(&mut self, el: El<'_>, message: String) {
+        self.problem(&rules::MJCF_NOT_READ, el, message);
+    }
+
+    /// Attribute `name` of `el`: written on it, else given by its class.
+    fn value(&self, el: El<'a>, class: &str, name: &str) -> Option<Value<'a>> {
+        match el.node.attribute_node(name) {
+            Some(a) => Some(Value {
+                text: a.value(),
+                span: self.reader.files().span(el.file, a.range_value()),
+            }),
+            None => self.defaults.get(class, el.tag(), name).or_else(|| {
+                // One default actuator per class, whichever element kind wrote it (MuJoCo).
+                ACTUATOR_KINDS
+                    .contains(&el.tag())
+                    .then(|| {
+                        ACTUATOR_KINDS
+                            .iter()
+                            .find_map(|kind| self.defaults.get(class, kind, name))
+                    })
+                    .flatten()
+            }),
+        }
+    }
+
+    /// `{prefix}range` when `{prefix}limited` says it applies (`auto`: when written and `autolimits`),
+    /// with the range's span.
+    fn range(&mut self, el: El<'a>, class: &str, prefix: &str) -> Option<((f64, f64), Span)> {
+        let name = format!("{prefix}range");
+        let written = self.value(el, class, &name);
+        let on = match self.word(
+            el,
+            class,
+            &format!("{prefix}limited"),
+            &["auto", "true", "false"],
+        ) {
+            "true" => true,
+            "false" => false,
+            _ => written.is_some() && self.compiler.auto_limits,
+        };
+        let span = written.filter(|_| on)?.span;
+        let [lo, hi] = self.vector(el, class, &name, [0.0, 0.0]);
+        Some(((lo, hi), span))
+    }
+
+    /// The class of `el`: its `class`, else `inherited` (a U030 when the class does not exist).
+    fn class_of(&mut self, el: El<'a>, inherited: &str) -> String {
+        match el.attr("class") {
+            Some(class) if self.defaults.has(class) => class.to_string(),
+            Some(class) => {
+                let span = self.reader.attr_span(el, "class");
+                self.reader.report(
+                    &rules::MJCF_STRUCTURE,
+                    span,
+                    format!("class '{class}' is not a <default> class of this model (MuJoCo refuses it)"),
+                );
+                inherited.to_string()
+            }
+            None => inherited.to_string(),
+        }
+    }
+
+    /// The class the children of `el` (a body or frame) take: its `childclass`, else `inherited` (a U030
+    /// when the class does not exist).
+    fn child_class(&mut self, el: El<'a>, inherited: &str) -> String {
+        match el.attr("childclass") {
+            Some(class) if self.defaults.has(class) => class.to_string(),
+            Some(class) => {
+                let span = self.reader.attr_span(el, "childclass");
+                self.reader.report(
+                    &rules::MJCF_STRUCTURE,
+                    span,
+                    format!("childclass '{class}' is not a <default> class of this model (MuJoCo refuses it)"),
+                );
+                inherited.to_string()
+            }
+            None => inherited.to_string(),
+        }
+    }
+
+    /// The numbers of attribute `name` (`count` of them), else `fallback`; a U032 when they do not parse.
+    fn vector<const N: usize>(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        name: &str,
+        fallback: [f64; N],
+    ) -> [f64; N] {
+        let Some(value) = self.value(el, class, name) else {
+            return fallback;
+        };
+        match numbers(value.text).map(<[f64; N]>::try_from) {
+            Ok(Ok(v)) => v,
+            Ok(Err(v)) => {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    value.span,
+                    format!(
+                        "<{} {name}>: {N} numbers expected, {} written",
+                        el.tag(),
+                        v.len()
+                    ),
+                );
+                fallback
+            }
+            Err(why) => {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    value.span,
+                    format!("<{} {name}>: {why}", el.tag()),
+                );
+                fallback
+            }
+        }
+    }
+
+    /// The numbers of attribute `name`, however many; a U032 when they do not parse.
+    fn list(&mut self, el: El<'a>, class: &str, name: &str) -> Option<Vec<f64>> {
+        let value = self.value(el, class, name)?;
+        match numbers(value.text) {
+            Ok(v) => Some(v),
+            Err(why) => {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    value.span,
+                    format!("<{} {name}>: {why}", el.tag()),
+                );
+                None
+            }
+        }
+    }
+
+    fn scalar(&mut self, el: El<'a>, class: &str, name: &str, fallback: f64) -> f64 {
+        self.vector(el, class, name, [fallback])[0]
+    }
+
+    /// A keyword attribute among `words` (the first when unwritten); a U032 names the words.
+    fn word(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        name: &str,
+        words: &[&'static str],
+    ) -> &'static str {
+        let Some(value) = self.value(el, class, name) else {
+            return words[0];
+        };
+        match keyword(value.text.trim(), words) {
+            Some(i) => words[i],
+            None => {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    value.span,
+                    format!(
+                        "<{} {name}=\"{}\">: expected one of {}",
+                        el.tag(),
+                        value.text,
+                        words.join(", ")
+                    ),
+                );
+                words[0]
+            }
+        }
+    }
+
+    /// `pos` and the orientation of `el` (at most one of [`FORMS`]) as a transform.
+    fn placement(&mut self, el: El<'a>, class: &str) -> Isometry3<f64> {
+        let pos = self.vector(el, class, "pos", [0.0; 3]);
+        let rotation = self.rotation(el, class);
+        Isometry3::from_parts(Translation3::from(Vector3::from(pos)), rotation)
+    }
+
+    fn rotation(&mut self, el: El<'a>, class: &str) -> UnitQuaternion<f64> {
+        let written: Vec<(&str, Value<'a>)> = FORMS
+            .iter()
+            .filter_map(|form| self.value(el, class, form).map(|v| (*form, v)))
+            .collect();
+        let Some((form, value)) = written.first().copied() else {
+            return UnitQuaternion::identity();
+        };
+        if written.len() > 1 {
+            let names: Vec<&str> = written.iter().map(|(f, _)| *f).collect();
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                value.span,
+                format!(
+                    "<{}> has more than one orientation ({}): MuJoCo refuses it",
+                    el.tag(),
+                    names.join(", ")
+                ),
+            );
+        }
+        let rotation = numbers(value.text)
+            .and_then(|values| orientation::rotation(form, &values, &self.compiler));
+        match rotation {
+            Ok(r) => r,
+            Err(why) => {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    value.span,
+                    format!("<{} {form}>: {why}", el.tag()),
+                );
+                UnitQuaternion::identity()
+            }
+        }
+    }
+
+    fn assets(&mut self, section: El<'a>) {
+        for el in self.reader.children(section) {
+            if el.tag() != "mesh" {
+                continue;
+            }
+            let class = self.class_of(el, MAIN);
+            let Some(file) = self.value(el, &class, "file") else {
+                self.note(
+                    el,
+                    "a <mesh> without a file (inline vertices) is not read: geoms using it have no shape or mass".to_string(),
+                );
+                continue;
+            };
+            let name = el.attr("name").map(str::to_string).unwrap_or_else(|| {
+                Path::new(file.text)
+                    .file_stem()
+                    .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+            });
+            let scale = self.vector(el, &class, "scale", [1.0; 3]);
+            let inertia = self.word(
+                el,
+                &class,
+                "inertia",
+                &["legacy", "exact", "convex", "shell"],
+            );
+            if inertia == "shell" {
+                self.note(
+                    el,
+                    "inertia=\"shell\" is not read: the mesh's mass is taken from its volume (legacy)"
+                        .to_string(),
+                );
+            }
+            let relative = match &self.compiler.mesh_dir {
+                Some(dir) if !Path::new(file.text).is_absolute() => Path::new(dir)
+                    .join(file.text)
+                    .to_string_lossy()
+                    .into_owned(),
+                _ => file.text.to_string(),
+            };
+            self.meshes.insert(
+                name,
+                MeshAsset {
+                    file: relative,
+                    span: file.span,
+                    scale,
+                    volume: if inertia == "legacy" || inertia == "shell" {
+                        MeshVolume::Legacy
+                    } else {
+                        MeshVolume::Exact
+                    },
+                    convex: inertia == "convex",
+                },
+            );
+        }
+    }
+
+    /// The contents of a body (or the world body, or a `<frame>`), frames flattened: `frame` places the
+    /// element's frame in the body's, `class` is the childclass in force.
+    fn contents(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        frame: Isometry3<f64>,
+        world: bool,
+    ) -> Contents<'a> {
+        let mut out = Contents::default();
+        self.collect(el, class, frame, world, &mut out);
+        out
+    }
+
+    fn collect(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        frame: Isometry3<f64>,
+        world: bool,
+        out: &mut Contents<'a>,
+    ) {
+        for child in self.reader.children(el) {
+            let tag = child.tag();
+            match tag {
+                "body" => {
+                    let inherited = self.child_class(child, class);
+                    out.bodies.push((child, inherited, frame));
+                }
+                "frame" => {
+                    let own = self.class_of(child, class);
+                    let at = frame * self.placement(child, &own);
+                    let inherited = self.child_class(child, class);
+                    self.collect(child, &inherited, at, world, out);
+                }
+                "geom" => {
+                    let own = self.class_of(child, class);
+                    out.geoms.push((child, own, frame));
+                }
+                "joint" | "freejoint" if !world => {
+                    let own = self.class_of(child, class);
+                    out.joints.push((child, own));
+                }
+                "inertial" if !world => match out.inertial {
+                    None => out.inertial = Some(child),
+                    Some(_) => self.problem(
+                        &rules::MJCF_STRUCTURE,
+                        child,
+                        "a second <inertial> in one body (MuJoCo refuses it)".to_string(),
+                    ),
+                },
+                _ if IGNORED_IN_BODY.contains(&tag) => {}
+                _ if NOT_BUILT_IN_BODY.contains(&tag) => self.note(
+                    child,
+                    format!("<{tag}> is not read: the bodies it makes are left out"),
+                ),
+                _ => self.problem(
+                    &rules::MJCF_STRUCTURE,
+                    child,
+                    format!(
+                        "<{tag}> cannot be in {} (MuJoCo refuses the model)",
+                        if world { "<worldbody>" } else { "a <body>" }
+                    ),
+                ),
+            }
+        }
+    }
+
+    fn joint_type(&self, el: El<'a>, class: &str) -> &'a str {
+        if el.tag() == "freejoint" {
+            return "free";
+        }
+        self.value(el, class, "type")
+            .map_or("hinge", |v| v.text.trim())
+    }
+
+    /// Build body `el` and, recursively, its children.
+    fn body(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        parent: &Parent,
+        frame: Isometry3<f64>,
+        top_level: bool,
+        floating_root: bool,
+    ) {
+        self.bodies += 1;
+        let name = el
+            .attr("name")
+            .map_or_else(|| format!("body#{}", self.bodies), str::to_string);
+        let name_span = self.reader.attr_span(el, "name");
+        let own = self.class_of(el, class);
+        let placement = frame * self.placement(el, &own);
+        let contents = self.contents(el, class, Isometry3::identity(), false);
+        // The body's frame at q = 0 seen from the link being chained to.
+        let mut at = parent.body_in_link * placement;
+        let mut parent_link = parent.link.clone();
+        let mut body_in_link = Isometry3::identity();
+        let count = contents.joints.len();
+        if count == 0 {
+            self.joints.push(Joint {
+                name: Spanned {
+                    value: format!("{}_to_{name}", parent.link),
+                    span: name_span,
+                },
+                span: self.reader.span(el),
+                kind: Some(Spanned {
+                    value: JointKind::Fixed,
+                    span: self.reader.span(el),
+                }),
+                origin: pose(&at),
+                parent: Some(Spanned {
+                    value: parent_link.clone(),
+                    span: name_span,
+                }),
+                child: Some(Spanned {
+                    value: name.clone(),
+                    span: name_span,
+                }),
+                ..blank_joint()
+            });
+        }
+        for (i, (joint_el, joint_class)) in contents.joints.iter().enumerate() {
+            let last = i + 1 == count;
+            let kind = self.joint_type(*joint_el, joint_class);
+            if kind == "free" && floating_root {
+                // The root of a floating-base robot: its link frame is the world frame at qpos0.
+                body_in_link = at;
+                self.joint_ids += 1;
+                continue;
+            }
+            let joint = self.joint(*joint_el, joint_class, &name, kind, top_level);
+            for (k, axis) in joint.axes.iter().enumerate() {
+                let final_link = last && k + 1 == joint.axes.len();
+                let child = if final_link {
+                    name.clone()
+                } else {
+                    format!("{name}:{}", joint.names[k])
+                };
+                let (origin, after) = match joint.kind {
+                    JointKind::Prismatic | JointKind::Floating => (at, Isometry3::identity()),
+                    _ if k == 0 => (
+                        at * Translation3::from(joint.anchor),
+                        Isometry3::from(Translation3::from(-joint.anchor)),
+                    ),
+                    _ => (
+                        Isometry3::identity(),
+                        Isometry3::from(Translation3::from(-joint.anchor)),
+                    ),
+                };
+                self.joints.push(Joint {
+                    name: Spanned {
+                        value: joint.names[k].clone(),
+                        span: joint.name_span,
+                    },
+                    span: joint.span,
+                    kind: Some(Spanned {
+                        value: joint.kind,
+                        span: joint.type_span,
+                    }),
+                    origin: pose(&origin),
+                    parent: Some(Spanned {
+                        value: parent_link.clone(),
+                        span: joint.span,
+                    }),
+                    child: Some(Spanned {
+                        value: child.clone(),
+                        span: joint.span,
+                    }),
+                    axis: Some(Spanned {
+                        value: [axis.x, axis.y, axis.z],
+                        span: joint.axis_span,
+                    }),
+                    limit: joint.limit.clone(),
+                    dynamics: joint.dynamics,
+                    ..blank_joint()
+                });
+                if !final_link {
+                    self.links.push(Link {
+                        name: Spanned {
+                            value: child.clone(),
+                            span: joint.name_span,
+                        },
+                        span: joint.span,
+                        inertial: None,
+                        visuals: Vec::new(),
+                        collisions: Vec::new(),
+                    });
+                }
+                parent_link = child;
+                at = after;
+                body_in_link = after;
+            }
+        }
+        let link_index = self.links.len();
+        let mut link = Link {
+            name: Spanned {
+                value: name.clone(),
+                span: name_span,
+            },
+            span: self.reader.span(el),
+            inertial: None,
+            visuals: Vec::new(),
+            collisions: Vec::new(),
+        };
+        let mut from_geoms = None;
+        for (geom_el, geom_class, geom_frame) in &contents.geoms {
+            let (shape, collides, mass) =
+                self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
+            if let Some(shape) = shape {
+                if collides {
+                    link.collisions.push(shape);
+                } else {
+                    link.visuals.push(shape);
+                }
+            }
+            if let Some(mass) = mass {
+                from_geoms = Some(from_geoms.unwrap_or_else(MassProps::zero).plus(&mass));
+            }
+        }
+        let declared = match (contents.inertial, self.compiler.inertia_from_geom) {
+            (Some(inertial), InertiaFromGeom::False | InertiaFromGeom::Auto) => Some((
+                self.inertial(inertial).placed(&body_in_link),
+                self.reader.span(inertial),
+            )),
+            _ => None,
+        };
+        let mass = match declared {
+            Some(props) => Some(props),
+            None if self.compiler.inertia_from_geom != InertiaFromGeom::False => {
+                from_geoms.map(|props| (props, self.reader.span(el)))
+            }
+            None => None,
+        };
+        if let Some((props, span)) = mass {
+            link.inertial = Some(inertial_of(&props, span));
+            self.masses.push((link_index, props));
+        } else if self.compiler.bound_mass > 0.0 {
+            // MuJoCo gives a body without mass the inertial frame (pos, quat) of the body in its parent,
+            // read in the body's own frame: that is where boundmass puts its mass.
+            let frame = body_in_link * placement;
+            self.masses.push((
+                link_index,
+                MassProps {
+                    com: frame.translation.vector,
+                    ..MassProps::zero()
+                },
+            ));
+        } else if !(link.visuals.is_empty() && link.collisions.is_empty()) {
+            // Geoms that count for no mass: MuJoCo's body is massless, not of unknown mass.
+            link.inertial = Some(inertial_of(&MassProps::zero(), self.reader.span(el)));
+        }
+        self.links.push(link);
+        let here = Parent {
+            link: name,
+            body_in_link,
+        };
+        for (child, child_class, child_frame) in contents.bodies {
+            self.body(child, &child_class, &here, child_frame, false, false);
+        }
+    }
+
+    /// A joint's numbers (three hinges for a ball joint).
+    fn joint(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        body: &str,
+        kind: &str,
+        top_level: bool,
+    ) -> JointSpec {
+        let name = el
+            .attr("name")
+            .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string);
+        self.joint_ids += 1;
+        let span = self.reader.span(el);
+        let name_span = self.reader.attr_span(el, "name");
+        let type_span = self.reader.attr_span(el, "type");
+        let anchor = Vector3::from(self.vector(el, class, "pos", [0.0; 3]));
+        let axis_span = self.value(el, class, "axis").map_or(span, |v| v.span);
+        let written_axis = Vector3::from(self.vector(el, class, "axis", [0.0, 0.0, 1.0]));
+        let axis = match written_axis.try_normalize(1e-14) {
+            Some(a) => a,
+            None => {
+                self.reader.report(
+                    &rules::MJCF_STRUCTURE,
+                    axis_span,
+                    format!("joint '{name}': the axis is zero (MuJoCo refuses it)"),
+                );
+                Vector3::z()
+            }
+        };
+        let mut spec = JointSpec {
+            names: vec![name.clone()],
+            span,
+            name_span,
+            type_span,
+            axis_span,
+            anchor,
+            axes: vec![axis],
+            kind: JointKind::Revolute,
+            limit: None,
+            dynamics: None,
+        };
+        match kind {
+            "free" => {
+                if !top_level {
+                    self.problem(
+                        &rules::MJCF_STRUCTURE,
+                        el,
+                        format!("joint '{name}' in body '{body}' is free, but only a body of the <worldbody> may have a free joint (MuJoCo refuses it)"),
+                    );
+                }
+                spec.kind = JointKind::Floating;
+                return spec;
+            }
+            "ball" => {
+                self.note(
+                    el,
+                    format!("ball joint '{name}' is analysed as three hinges '{name}_x', '{name}_y', '{name}_z' about the body's axes (MuJoCo's three ball dofs at the pose analysed)"),
+                );
+                spec.names = ["x", "y", "z"]
+                    .iter()
+                    .map(|a| format!("{name}_{a}"))
+                    .collect();
+                spec.axes = vec![Vector3::x(), Vector3::y(), Vector3::z()];
+                spec.kind = JointKind::Continuous;
+                return spec;
+            }
+            "hinge" | "slide" => {}
+            other => {
+                self.problem(
+                    &rules::MJCF_INVALID_VALUE,
+                    el,
+                    format!("joint '{name}': type '{other}' is not free, ball, slide or hinge; read as a hinge"),
+                );
+            }
+        }
+        let hinge = kind != "slide";
+        let degrees = hinge && self.compiler.degrees;
+        let to_q = |v: f64| if degrees { v.to_radians() } else { v };
+        let reference = to_q(self.scalar(el, class, "ref", 0.0));
+        let range = self.value(el, class, "range");
+        let limited = match self.word(el, class, "limited", &["auto", "true", "false"]) {
+            "true" => true,
+            "false" => false,
+            _ => {
+                if range.is_some() && !self.compiler.auto_limits {
+                    self.problem(
+                        &rules::MJCF_STRUCTURE,
+                        el,
+                        format!("joint '{name}' has a range but neither limited=\"true\" nor <compiler autolimits=\"true\"> (MuJoCo refuses it)"),
+                    );
+                }
+                range.is_some() && self.compiler.auto_limits
+            }
+        };
+        let bounds = self.vector(el, class, "range", [0.0, 0.0]);
+        spec.kind = match (hinge, limited) {
+            (true, true) => JointKind::Revolute,
+            (true, false) => JointKind::Continuous,
+            (false, _) => JointKind::Prismatic,
+        };
+        let limit_span = range.map_or(span, |r| r.span);
+        spec.limit = Some(Limit {
+            span: limit_span,
+            lower: limited.then(|| Spanned {
+                value: to_q(bounds[0]) - reference,
+                span: limit_span,
+            }),
+            upper: limited.then(|| Spanned {
+                value: to_q(bounds[1]) - reference,
+                span: limit_span,
+            }),
+            effort: None,
+            velocity: None,
+        });
+        if let Some(range) = self.range(el, class, "actuatorfrc") {
+            self.actuator_force.insert(name.clone(), range);
+        }
+        let damping = self.scalar(el, class, "damping", 0.0);
+        let friction = self.scalar(el, class, "frictionloss", 0.0);
+        spec.dynamics = Some(Dynamics {
+            damping: Some(damping),
+            friction: Some(friction),
+        });
+        spec
+    }
+
+    /// The mass properties of an `<inertial>`, in the body frame.
+    fn inertial(&mut self, el: El<'a>) -> MassProps {
+        let mass = self.scalar(el, MAIN, "mass", 0.0);
+        let placement = self.placement(el, MAIN);
+        let diagonal = self.list(el, MAIN, "diaginertia");
+        let full = self.list(el, MAIN, "fullinertia");
+        let inertia = match (diagonal.as_deref(), full.as_deref()) {
+            (Some([a, b, c]), None) => nalgebra::Matrix3::from_diagonal(&Vector3::new(*a, *b, *c)),
+            (None, Some([xx, yy, zz, xy, xz, yz])) => {
+                nalgebra::Matrix3::new(*xx, *xy, *xz, *xy, *yy, *yz, *xz, *yz, *zz)
+            }
+            _ => {
+                self.problem(
+                    &rules::MJCF_STRUCTURE,
+                    el,
+                    "<inertial> needs diaginertia (3 numbers) or fullinertia (6), one of them (MuJoCo refuses it)".to_string(),
+                );
+                nalgebra::Matrix3::zeros()
+            }
+        };
+        MassProps {
+            mass,
+            com: Vector3::zeros(),
+            inertia,
+        }
+        .placed(&placement)
+    }
+
+    /// A geom's shape (in the link frame: `frame` places the geom's written frame there), whether it
+    /// collides, and its mass properties when it counts for the body's mass.
+    fn geom(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        frame: &Isometry3<f64>,
+    ) -> (Option<Shape>, bool, Option<MassProps>) {
+        let kind = self.word(
+            el,
+            class,
+            "type",
+            &[
+                "sphere",
+                "capsule",
+                "ellipsoid",
+                "cylinder",
+                "box",
+                "mesh",
+                "plane",
+                "hfield",
+                "sdf",
+            ],
+        );
+        let mut size = self.list(el, class, "size").unwrap_or_default();
+        size.resize(3, 0.0);
+        let mut size = [size[0], size[1], size[2]];
+        let mut placement = self.placement(el, class);
+        if let Some(fromto) = self.value(el, class, "fromto") {
+            match numbers(fromto.text).map(<[f64; 6]>::try_from) {
+                Ok(Ok([x0, y0, z0, x1, y1, z1])) => {
+                    let (a, b) = (Vector3::new(x0, y0, z0), Vector3::new(x1, y1, z1));
+                    let d = b - a;
+                    let half = d.norm() / 2.0;
+                    match kind {
+                        "capsule" | "cylinder" => size[1] = half,
+                        "box" | "ellipsoid" => size[2] = half,
+                        _ => {}
+                    }
+                    let rotation = d
+                        .try_normalize(1e-14)
+                        .map_or_else(UnitQuaternion::identity, orientation::z_to);
+                    placement = Isometry3::from_parts(Translation3::from((a + b) / 2.0), rotation);
+                }
+                _ => self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    fromto.span,
+                    "<geom fromto>: 6 finite numbers expected".to_string(),
+                ),
+            }
+        }
+        let at = frame * placement;
+        let contype = self.scalar(el, class, "contype", 1.0);
+        let conaffinity = self.scalar(el, class, "conaffinity", 1.0);
+        let collides = contype != 0.0 || conaffinity != 0.0;
+        let group = self.scalar(el, class, "group", 0.0);
+        let (lo, hi) = self.compiler.inertia_groups;
+        let counts = group >= lo as f64 && group <= hi as f64;
+        let span = self.reader.span(el);
+        let (geometry, solid) = match kind {
+            "mesh" => self.mesh_geom(el, class),
+            "plane" => (None, None),
+            "hfield" | "sdf" => {
+                self.note(el, format!("a {kind} geom is not read: no shape, no mass"));
+                (None, None)
+            }
+            _ => {
+                let [a, b, c] = size;
+                let geometry = match kind {
+                    "sphere" => Some(Geometry::Sphere { radius: a }),
+                    "capsule" => Some(Geometry::Capsule {
+                        radius: a,
+                        length: 2.0 * b,
+                    }),
+                    "cylinder" => Some(Geometry::Cylinder {
+                        radius: a,
+                        length: 2.0 * b,
+                    }),
+                    "box" => Some(Geometry::Box {
+                        size: [2.0 * a, 2.0 * b, 2.0 * c],
+                    }),
+                    _ => None,
+                };
+                (geometry, mass::primitive(kind, size))
+            }
+        };
+        let mass = solid.filter(|_| counts).map(|solid: Solid| {
+            let mass = match self.value(el, class, "mass") {
+                Some(_) => self.scalar(el, class, "mass", 0.0),
+                None => self.scalar(el, class, "density", 1000.0) * solid.volume,
+            };
+            solid.with_mass(mass).placed(&at)
+        });
+        let shape = geometry.map(|geometry| Shape {
+            span,
+            name: el.attr("name").map(str::to_string),
+            origin: pose(&at),
+            geometry: Some(Spanned {
+                value: geometry,
+                span,
+            }),
+            material: None,
+        });
+        (shape, collides, mass)
+    }
+
+    /// A mesh geom's shape and solid (the mesh file read through the sandbox and the mesh cache).
+    fn mesh_geom(&mut self, el: El<'a>, class: &str) -> (Option<Geometry>, Option<Solid>) {
+        let Some(name) = self.value(el, class, "mesh") else {
+            self.problem(
+                &rules::MJCF_STRUCTURE,
+                el,
+                "a mesh geom without a mesh attribute (MuJoCo refuses it)".to_string(),
+            );
+            return (None, None);
+        };
+        let Some(asset) = self.meshes.get(name.text).cloned() else {
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                name.span,
+                format!(
+                    "mesh '{}' is not an <asset> mesh of this model (MuJoCo refuses it)",
+                    name.text
+                ),
+            );
+            return (None, None);
+        };
+        if self
+            .value(el, class, "shellinertia")
+            .is_some_and(|v| boolean(v.text) == Some(true))
+        {
+            self.note(
+                el,
+                "shellinertia is not read: the mesh's mass is taken from its volume".to_string(),
+            );
+        }
+        let geometry = Geometry::Mesh {
+            filename: Spanned {
+                value: asset.file.clone(),
+                span: asset.span,
+            },
+            scale: asset.scale,
+        };
+        let path = self.dir.join(&asset.file);
+        if self.resolver.sandbox().check_file(&path).is_err() || !path.is_file() {
+            // The asset checks report a missing or refused mesh file; without it there is no solid.
+            return (Some(geometry), None);
+        }
+        let scaled = |points: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            points
+                .iter()
+                .map(|p| [0, 1, 2].map(|k| p[k] * asset.scale[k]))
+                .collect()
+        };
+        let solid = if asset.convex {
+            match self.mesh_cache.get(&path).as_ref() {
+                Ok(data) => mass::mesh(&scaled(&data.hull), &data.hull_triangles, asset.volume),
+                Err(_) => None,
+            }
+        } else {
+            match load_surface(&path) {
+                Ok(surface) => {
+                    mass::mesh(&scaled(&surface.vertices), &surface.triangles, asset.volume)
+                }
+                Err(_) => None,
+            }
+        };
+        (Some(geometry), solid)
+    }
+
+    /// `boundmass`, `boundinertia`, `balanceinertia` and `settotalmass` applied to every body's mass.
+    fn finish_masses(&mut self) {
+        let c = &self.compiler;
+        let bounded: Vec<(usize, MassProps)> = self
+            .masses
+            .iter()
+            .map(|(i, p)| {
+                (
+                    *i,
+                    p.bounded(c.bound_mass, c.bound_inertia, c.balance_inertia),
+                )
+            })
+            .collect();
+        let total: f64 = bounded.iter().map(|(_, p)| p.mass).sum();
+        let factor = match c.set_total_mass {
+            Some(target) if total > 0.0 => target / total,
+            _ => 1.0,
+        };
+        for (i, props) in bounded {
+            let props = props.scaled(factor);
+            if let Some(link) = self.links.get_mut(i) {
+                let span = link.inertial.as_ref().map_or(link.span, |m| m.span);
+                link.inertial = Some(inertial_of(&props, span));
+            }
+        }
+    }
+}
+
+/// What a joint element turns into: one URDF joint per axis (three for a ball).
+struct JointSpec {
+    names: Vec<String>,
+    span: Span,
+    name_span: Span,
+    type_span: Span,
+    axis_span: Span,
+    anchor: Vector3<f64>,
+    axes: Vec<Vector3<f64>>,
+    kind: JointKind,
+    limit: Option<Limit>,
+    dynamics: Option<Dynamics>,
+}
+
+fn blank_joint() -> Joint {
+    Joint {
+        name: Spanned {
+            value: String::new(),
+            span: Span::default(),
+        },
+        span: Span::default(),
+        kind: None,
+        origin: Pose::default(),
+        parent: None,
+        child: None,
+        axis: None,
+        limit: None,
+        dynamics: None,
+        mimic: None,
+        safety_controller: None,
+        calibration: None,
+    }
+}
+
+/// A transform as a URDF pose (translation and quaternion).
+fn pose(at: &Isometry3<f64>) -> Pose {
+    let q = at.rotation.quaternion();
+    Pose {
+        xyz: at.translation.vector.into(),
+        quat_xyzw: Some([q.i, q.j, q.k, q.w]),
+        ..Pose::default()
+    }
+}
+
+/// Mass properties (in the link frame) as a URDF inertial at their centre, axes of the link.
+fn inertial_of(props: &MassProps, span: Span) -> Inertial {
+    let m = props.inertia;
+    Inertial {
+        span,
+        origin: Pose {
+            xyz: props.com.into(),
+            ..Pose::default()
+        },
+        mass: Some(Spanned {
+            value: props.mass,
+            span,
+        }),
+        inertia: Some(Inertia {
+            span,
+            ixx: m[(0, 0)],
+            ixy: m[(0, 1)],
+            ixz: m[(0, 2)],
+            iyy: m[(1, 1)],
+            iyz: m[(1, 2)],
+            izz: m[(2, 2)],
+            values: [span; 6],
+        }),
+    }
+}

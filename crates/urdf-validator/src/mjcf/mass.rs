@@ -1,0 +1,338 @@
+//! Mass properties as MuJoCo's compiler computes them: each geom's volume and inertia (primitives exactly,
+//! a mesh as the solid its surface bounds), its mass from `mass` or `density` × volume, and a body's
+//! total about its centre of mass; then `boundmass`, `boundinertia` and `balanceinertia`.
+
+use nalgebra::{Isometry3, Matrix3, SymmetricEigen, Vector3};
+
+/// Mass, centre of mass and the inertia tensor about it, in one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MassProps {
+    /// kg.
+    pub mass: f64,
+    /// Centre of mass, m.
+    pub com: Vector3<f64>,
+    /// Inertia about `com`, kg·m², in the frame's axes.
+    pub inertia: Matrix3<f64>,
+}
+
+impl MassProps {
+    /// Nothing.
+    pub fn zero() -> Self {
+        MassProps {
+            mass: 0.0,
+            com: Vector3::zeros(),
+            inertia: Matrix3::zeros(),
+        }
+    }
+
+    /// The same body seen from a frame in which this one's frame is at `at`.
+    pub fn placed(&self, at: &Isometry3<f64>) -> Self {
+        let r = at.rotation.to_rotation_matrix().into_inner();
+        MassProps {
+            mass: self.mass,
+            com: at.transform_point(&self.com.into()).coords,
+            inertia: r * self.inertia * r.transpose(),
+        }
+    }
+
+    /// The two together (parallel-axis theorem about the common centre of mass).
+    pub fn plus(&self, other: &MassProps) -> Self {
+        let mass = self.mass + other.mass;
+        if mass <= 0.0 {
+            return MassProps {
+                mass,
+                ..MassProps::zero()
+            };
+        }
+        let com = (self.com * self.mass + other.com * other.mass) / mass;
+        let shifted = |p: &MassProps| {
+            let d = p.com - com;
+            p.inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * p.mass
+        };
+        MassProps {
+            mass,
+            com,
+            inertia: shifted(self) + shifted(other),
+        }
+    }
+
+    /// Every mass and inertia times `factor` (`settotalmass`).
+    pub fn scaled(&self, factor: f64) -> Self {
+        MassProps {
+            mass: self.mass * factor,
+            com: self.com,
+            inertia: self.inertia * factor,
+        }
+    }
+
+    /// `boundmass`, `boundinertia` and `balanceinertia` applied (to the principal moments).
+    pub fn bounded(&self, bound_mass: f64, bound_inertia: f64, balance: bool) -> Self {
+        let mass = self.mass.max(bound_mass);
+        let eigen = SymmetricEigen::new(self.inertia);
+        let mut moments = eigen.eigenvalues.map(|v| v.max(bound_inertia));
+        let (a, b, c) = (moments[0], moments[1], moments[2]);
+        if balance && (a + b < c || a + c < b || b + c < a) {
+            moments = Vector3::repeat((a + b + c) / 3.0);
+        }
+        let v = eigen.eigenvectors;
+        MassProps {
+            mass,
+            com: self.com,
+            inertia: v * Matrix3::from_diagonal(&moments) * v.transpose(),
+        }
+    }
+}
+
+/// A geom's solid: volume (m³) and inertia per unit mass about its centre, in the geom frame (its centre
+/// at the origin for primitives, at `com` for meshes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solid {
+    /// m³.
+    pub volume: f64,
+    /// Centre of the solid in the geom frame.
+    pub com: Vector3<f64>,
+    /// Inertia about `com` per kg of mass, m².
+    pub unit_inertia: Matrix3<f64>,
+}
+
+impl Solid {
+    /// The mass properties of the solid with mass `mass`.
+    pub fn with_mass(&self, mass: f64) -> MassProps {
+        MassProps {
+            mass,
+            com: self.com,
+            inertia: self.unit_inertia * mass,
+        }
+    }
+}
+
+/// The solid of a primitive geom of MuJoCo type `kind` with MuJoCo `size` (radii and half-lengths), as
+/// `mjCGeom::GetVolume` / `SetInertia`; `None` for types without a volume (plane, hfield, sdf, mesh).
+pub fn primitive(kind: &str, size: [f64; 3]) -> Option<Solid> {
+    use std::f64::consts::PI;
+    let [a, b, c] = size;
+    let (volume, diagonal) = match kind {
+        "sphere" => (4.0 / 3.0 * PI * a.powi(3), [0.4 * a * a; 3]),
+        "ellipsoid" => (
+            4.0 / 3.0 * PI * a * b * c,
+            [
+                (b * b + c * c) / 5.0,
+                (a * a + c * c) / 5.0,
+                (a * a + b * b) / 5.0,
+            ],
+        ),
+        "box" => (
+            8.0 * a * b * c,
+            [
+                (b * b + c * c) / 3.0,
+                (a * a + c * c) / 3.0,
+                (a * a + b * b) / 3.0,
+            ],
+        ),
+        "cylinder" => {
+            let (r, h) = (a, 2.0 * b);
+            let side = (3.0 * r * r + h * h) / 12.0;
+            (PI * r * r * h, [side, side, r * r / 2.0])
+        }
+        "capsule" => {
+            // The cylinder and the two half-spheres, each share of the mass by its volume.
+            let (r, h) = (a, 2.0 * b);
+            let cylinder = PI * r * r * h;
+            let sphere = 4.0 / 3.0 * PI * r.powi(3);
+            let volume = cylinder + sphere;
+            if volume <= 0.0 {
+                return Some(Solid {
+                    volume: 0.0,
+                    com: Vector3::zeros(),
+                    unit_inertia: Matrix3::zeros(),
+                });
+            }
+            let (cm, sm) = (cylinder / volume, sphere / volume);
+            let side = cm * (3.0 * r * r + h * h) / 12.0
+                + sm * (0.4 * r * r + h * h / 4.0 + 3.0 * h * r / 8.0);
+            let axial = cm * r * r / 2.0 + sm * 0.4 * r * r;
+            (volume, [side, side, axial])
+        }
+        _ => return None,
+    };
+    Some(Solid {
+        volume,
+        com: Vector3::zeros(),
+        unit_inertia: Matrix3::from_diagonal(&Vector3::from(diagonal)),
+    })
+}
+
+/// Below this a triangle has no area (MuJoCo's `mjMINVAL`).
+const MIN_VALUE: f64 = 1e-15;
+
+/// How a mesh's volume is summed (`<mesh inertia>`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshVolume {
+    /// `legacy` (MuJoCo's default): every pyramid from the centre to a triangle counts positive, so an
+    /// open or inward-wound surface still has a volume (more than it encloses when it is not convex).
+    Legacy,
+    /// `exact` (and `convex`, over the convex hull's triangles): signed pyramids, the volume the surface
+    /// encloses.
+    Exact,
+}
+
+/// The solid of a mesh surface (`vertices` already scaled, `triangles` indices into them) as MuJoCo's
+/// compiler computes it (`mjCMesh::Process`, MuJoCo 4.0): the centre of mass from pyramids with their apex at the area-weighted centroid of the
+/// triangles; then the volume and inertia from pyramids with their apex at that centre. `None` when
+/// the surface has no area or no volume (MuJoCo refuses such a mesh).
+pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> Option<Solid> {
+    let points: Vec<Vector3<f64>> = vertices.iter().map(|v| Vector3::from(*v)).collect();
+    let corners = |t: &[u32; 3]| -> Option<[Vector3<f64>; 3]> {
+        Some([
+            *points.get(t[0] as usize)?,
+            *points.get(t[1] as usize)?,
+            *points.get(t[2] as usize)?,
+        ])
+    };
+    let signed = |v: f64| match kind {
+        MeshVolume::Legacy => v.abs(),
+        MeshVolume::Exact => v,
+    };
+    let mut centroid = Vector3::zeros();
+    let mut area_sum = 0.0;
+    for t in triangles {
+        let (area, _, centre) = triangle(corners(t)?);
+        centroid += centre * area;
+        area_sum += area;
+    }
+    if area_sum < MIN_VALUE {
+        return None;
+    }
+    centroid /= area_sum;
+    let mut com = Vector3::zeros();
+    let mut volume = 0.0;
+    for t in triangles {
+        let (area, normal, centre) = triangle(corners(t)?);
+        let v = signed((centre - centroid).dot(&normal) * area / 3.0);
+        volume += v;
+        com += (centre * 0.75 + centroid * 0.25) * v;
+    }
+    if volume < MIN_VALUE {
+        return None;
+    }
+    com /= volume;
+    // Products ∫xᵢxⱼ over pyramids from the centre of mass (MuJoCo's `ComputeInertia`).
+    let mut products = Matrix3::<f64>::zeros();
+    let mut total = 0.0;
+    for t in triangles {
+        let [d, e, f] = corners(t)?.map(|p| p - com);
+        let (area, normal, centre) = triangle([d, e, f]);
+        let v = signed(centre.dot(&normal) * area / 3.0);
+        total += v;
+        for i in 0..3 {
+            for j in 0..3 {
+                products[(i, j)] += v / 20.0
+                    * (2.0 * (d[i] * d[j] + e[i] * e[j] + f[i] * f[j])
+                        + d[i] * e[j]
+                        + d[j] * e[i]
+                        + d[i] * f[j]
+                        + d[j] * f[i]
+                        + e[i] * f[j]
+                        + e[j] * f[i]);
+            }
+        }
+    }
+    if total < MIN_VALUE {
+        return None;
+    }
+    let inertia = Matrix3::identity() * products.trace() - products;
+    Some(Solid {
+        volume: total,
+        com,
+        unit_inertia: inertia / total,
+    })
+}
+
+/// A triangle's area, unit normal and centre (area 0 and no normal when degenerate), as MuJoCo's
+/// `triangle`.
+fn triangle([a, b, c]: [Vector3<f64>; 3]) -> (f64, Vector3<f64>, Vector3<f64>) {
+    let centre = (a + b + c) / 3.0;
+    let cross = (b - a).cross(&(c - a));
+    let length = cross.norm();
+    if length < MIN_VALUE {
+        return (0.0, Vector3::zeros(), centre);
+    }
+    (length / 2.0, cross / length, centre)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_capsule_is_a_cylinder_and_a_sphere_by_volume() {
+        let s = primitive("capsule", [0.1, 0.2, 0.0]).unwrap();
+        let pi = std::f64::consts::PI;
+        assert!((s.volume - (pi * 0.01 * 0.4 + 4.0 / 3.0 * pi * 0.001)).abs() < 1e-15);
+        // Long thin capsule → close to a rod's m L²/12 about its side.
+        let rod = primitive("capsule", [1e-4, 1.0, 0.0]).unwrap();
+        assert!((rod.unit_inertia[(0, 0)] - 4.0 / 12.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_cube_mesh_has_the_box_volume_and_inertia_and_legacy_counts_a_flipped_face_positive() {
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+            .collect();
+        let mut t: Vec<[u32; 3]> = vec![
+            [0, 2, 1],
+            [1, 2, 3],
+            [4, 5, 6],
+            [5, 7, 6],
+            [0, 1, 4],
+            [1, 5, 4],
+            [2, 6, 3],
+            [3, 6, 7],
+            [0, 4, 2],
+            [2, 4, 6],
+            [1, 3, 5],
+            [3, 7, 5],
+        ];
+        let exact = mesh(&v, &t, MeshVolume::Exact).unwrap();
+        let cube = primitive("box", [0.5; 3]).unwrap();
+        assert!((exact.volume - 1.0).abs() < 1e-12);
+        assert!((exact.com - Vector3::repeat(0.5)).norm() < 1e-12);
+        assert!((exact.unit_inertia - cube.unit_inertia).norm() < 1e-12);
+        t[0] = [0, 1, 2];
+        let legacy = mesh(&v, &t, MeshVolume::Legacy).unwrap();
+        assert!((legacy.volume - 1.0).abs() < 1e-12);
+        assert!(mesh(&v, &t, MeshVolume::Exact).unwrap().volume < 1.0 - 1e-3);
+    }
+
+    #[test]
+    fn two_point_masses_combine_about_their_centre() {
+        let a = MassProps {
+            mass: 1.0,
+            com: Vector3::new(1.0, 0.0, 0.0),
+            inertia: Matrix3::zeros(),
+        };
+        let b = MassProps {
+            com: Vector3::new(-1.0, 0.0, 0.0),
+            ..a
+        };
+        let both = a.plus(&b);
+        assert_eq!(both.mass, 2.0);
+        assert!(both.com.norm() < 1e-15);
+        assert!((both.inertia[(1, 1)] - 2.0).abs() < 1e-15);
+        assert!(both.inertia[(0, 0)].abs() < 1e-15);
+    }
+
+    #[test]
+    fn bounds_raise_the_mass_and_balance_evens_out_impossible_moments() {
+        let p = MassProps {
+            mass: 0.0,
+            com: Vector3::zeros(),
+            inertia: Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 5.0)),
+        };
+        let b = p.bounded(0.5, 0.0, true);
+        assert_eq!(b.mass, 0.5);
+        assert!((b.inertia[(2, 2)] - 7.0 / 3.0).abs() < 1e-12);
+        let unbalanced = p.bounded(0.0, 2.0, false);
+        assert!((unbalanced.inertia[(0, 0)] - 2.0).abs() < 1e-12);
+    }
+}

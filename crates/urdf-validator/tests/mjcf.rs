@@ -1,0 +1,393 @@
+//! The MJCF reader on its own: how it tells MJCF from URDF, how it names and chains what it reads, and bad
+//! input (include problems, unknown elements and classes, malformed values) as findings at the MJCF line,
+//! never a panic. Agreement with MuJoCo's numbers is `mjcf_golden.rs`.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
+
+use std::path::{Path, PathBuf};
+
+use urdf_validator::input::mesh::MeshCache;
+use urdf_validator::input::resolve::PackageResolver;
+use urdf_validator::input::sandbox::Sandbox;
+use urdf_validator::input::Loaded;
+use urdf_validator::report::FindingReport;
+use urdf_validator::urdf::robot::{JointKind, Robot};
+use urdf_validator::{validate, Options, Validation};
+
+/// A scratch folder removed at the end of the test.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir =
+            std::env::temp_dir().join(format!("urdf-validator-mjcf-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+
+    fn file(&self, name: &str, text: &str) -> PathBuf {
+        let path = self.0.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn options() -> Options {
+    let mut options = Options::default();
+    options.workspace.samples = 200;
+    options.deep.automatic = false;
+    options
+}
+
+fn run(path: &Path) -> Validation {
+    validate(path, &options()).unwrap()
+}
+
+fn robot(path: &Path) -> Robot {
+    let resolver = PackageResolver::default();
+    let loaded = Loaded::read(path, &[], &resolver).unwrap();
+    urdf_validator::mjcf::parse_mjcf(loaded.mjcf().unwrap(), &MeshCache::new(), &resolver).0
+}
+
+/// The findings of `rule`, as (file name, line, message).
+fn findings(v: &Validation, rule: &str) -> Vec<(String, u32, String)> {
+    v.report
+        .findings
+        .iter()
+        .filter(|f| f.rule == rule)
+        .map(|f: &FindingReport| {
+            let file = f.file.as_deref().unwrap_or("");
+            let name = Path::new(file)
+                .file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+            (name, f.line.unwrap_or(0), f.message.clone())
+        })
+        .collect()
+}
+
+fn has(v: &Validation, rule: &str, file: &str, line: u32, words: &str) {
+    let found = findings(v, rule);
+    assert!(
+        found
+            .iter()
+            .any(|(f, l, m)| f == file && *l == line && m.contains(words)),
+        "no {rule} at {file}:{line} saying '{words}': {:#?}",
+        v.report
+            .findings
+            .iter()
+            .map(|f| (&f.rule, &f.file, f.line, &f.message))
+            .collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn a_mujoco_root_is_mjcf_whatever_the_file_is_called() {
+    let dir = Scratch::new("root");
+    let path = dir.file(
+        "robot.urdf",
+        "<mujoco model=\"m\"><worldbody><body name=\"b\"><joint name=\"j\"/><geom size=\"0.1\"/></body></worldbody></mujoco>",
+    );
+    let v = run(&path);
+    assert!(findings(&v, "U001").is_empty());
+    let r = robot(&path);
+    assert_eq!(r.format, urdf_validator::input::Format::Mjcf);
+    assert_eq!(r.name.as_ref().unwrap().value, "m");
+    let names: Vec<&str> = r.links.iter().map(|l| l.name.value.as_str()).collect();
+    assert_eq!(names, ["world", "b"]);
+}
+
+#[test]
+fn joints_of_one_body_are_chained_through_massless_links_and_the_last_reaches_the_body() {
+    let dir = Scratch::new("chain");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <worldbody>
+    <body name="torso">
+      <joint name="rootx" type="slide" axis="1 0 0"/>
+      <joint name="rooty" axis="0 1 0" pos="0 0 0.3" range="-30 30"/>
+      <joint name="ball" type="ball"/>
+      <geom size="0.1"/>
+    </body>
+    <body name="prop" pos="1 0 0"><freejoint/><geom size="0.1"/></body>
+  </worldbody>
+</mujoco>"#,
+    );
+    let r = robot(&path);
+    let chain: Vec<(&str, &str, &str, JointKind)> = r
+        .joints
+        .iter()
+        .map(|j| {
+            (
+                j.name.value.as_str(),
+                j.parent.as_ref().unwrap().value.as_str(),
+                j.child.as_ref().unwrap().value.as_str(),
+                j.kind.as_ref().unwrap().value,
+            )
+        })
+        .collect();
+    assert_eq!(
+        chain,
+        [
+            ("rootx", "world", "torso:rootx", JointKind::Prismatic),
+            ("rooty", "torso:rootx", "torso:rooty", JointKind::Revolute),
+            (
+                "ball_x",
+                "torso:rooty",
+                "torso:ball_x",
+                JointKind::Continuous
+            ),
+            (
+                "ball_y",
+                "torso:ball_x",
+                "torso:ball_y",
+                JointKind::Continuous
+            ),
+            ("ball_z", "torso:ball_y", "torso", JointKind::Continuous),
+            ("joint#3", "world", "prop", JointKind::Floating),
+        ]
+    );
+    // The range is in degrees (the compiler's default) and the hinge turns about its pos.
+    let rooty = &r.joints[1];
+    let limit = rooty.limit.as_ref().unwrap();
+    assert!((limit.upper.as_ref().unwrap().value - 30f64.to_radians()).abs() < 1e-15);
+    assert!((rooty.origin.xyz[2] - 0.3).abs() < 1e-15);
+    let v = run(&path);
+    has(&v, "U033", "m.xml", 6, "three hinges");
+    // The chain's links are the reader's, not the author's: no missing-inertial warning on them, and
+    // [PHYSICS] counts them as frames (with the world), not as links whose mass is missing.
+    assert!(
+        findings(&v, "U201").is_empty(),
+        "{:?}",
+        findings(&v, "U201")
+    );
+    let physics = &v.report.physics;
+    assert_eq!(
+        (physics.frames, physics.mass_missing),
+        (5, 0),
+        "{physics:?}"
+    );
+}
+
+#[test]
+fn the_only_top_level_body_with_a_free_joint_is_the_root() {
+    let dir = Scratch::new("floating");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco><worldbody><body name="pelvis" pos="0 0 1"><freejoint/><geom size="0.1"/>
+<body name="leg"><joint name="hip"/><geom size="0.05" pos="0 0 -0.2"/></body></body></worldbody></mujoco>"#,
+    );
+    let r = robot(&path);
+    let names: Vec<&str> = r.links.iter().map(|l| l.name.value.as_str()).collect();
+    assert_eq!(names, ["pelvis", "leg"]);
+    // The root link's frame is the world frame at qpos0: the body's mass sits 1 m up.
+    let inertial = r.links[0].inertial.as_ref().unwrap();
+    assert!((inertial.origin.xyz[2] - 1.0).abs() < 1e-15);
+}
+
+#[test]
+fn include_problems_are_findings_at_the_include() {
+    let dir = Scratch::new("includes");
+    dir.file("loop.xml", "<mujoco><include file=\"loop.xml\"/></mujoco>");
+    dir.file("robot.urdf.xml", "<robot name=\"r\"/>");
+    dir.file("broken.xml", "<mujoco><default>");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <include file="missing.xml"/>
+  <include file="loop.xml"/>
+  <include file="robot.urdf.xml"/>
+  <include file="broken.xml"/>
+  <include/>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>"#,
+    );
+    let v = run(&path);
+    has(&v, "U031", "m.xml", 2, "no such file");
+    has(&v, "U031", "loop.xml", 1, "include cycle");
+    has(&v, "U031", "m.xml", 4, "not <mujoco>");
+    has(&v, "U031", "m.xml", 5, "not well-formed");
+    has(&v, "U031", "m.xml", 6, "no file attribute");
+    // The rest of the model is still read.
+    assert_eq!(v.report.statics.as_ref().unwrap().joints.len(), 1);
+}
+
+#[test]
+fn an_include_outside_the_sandbox_is_refused() {
+    let dir = Scratch::new("sandbox");
+    let outside = Scratch::new("sandbox-outside");
+    let secret = outside.file("secret.xml", "<mujoco><default/></mujoco>");
+    let path = dir.file(
+        "m.xml",
+        &format!(
+            "<mujoco>\n<include file=\"{}\"/>\n<worldbody/></mujoco>",
+            secret.display()
+        ),
+    );
+    let options = Options {
+        sandbox: Sandbox::untrusted(Vec::new(), Vec::new()),
+        ..options()
+    };
+    let v = validate(&path, &options).unwrap();
+    has(&v, "U031", "m.xml", 2, "refused");
+}
+
+#[test]
+fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line() {
+    let dir = Scratch::new("bad");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <compiler angle="gradians"/>
+  <worldbody>
+    <body name="a" pos="0 0 nan">
+      <joint name="j" axis="0 0 0"/>
+      <geom class="nope" size="0.1"/>
+      <geom type="mesh" mesh="ghost"/>
+      <geom size="0.1" quat="1 0 0 0" euler="0 0 1"/>
+      <widget/>
+      <body name="b"><freejoint/><geom size="0.1" pos="1 2"/></body>
+      <body name="c" childclass="missing"><joint/><geom size="0.1"/></body>
+    </body>
+  </worldbody>
+  <equality/>
+</mujoco>"#,
+    );
+    let v = run(&path);
+    has(&v, "U030", "m.xml", 11, "childclass 'missing'");
+    // The body's own elements still take the top-level defaults (a sphere of 0.1 m: 4.19 kg).
+    let c = robot(&path);
+    let mass = c
+        .links
+        .iter()
+        .find(|l| l.name.value == "c")
+        .unwrap()
+        .inertial
+        .as_ref()
+        .unwrap();
+    assert!((mass.mass.as_ref().unwrap().value - 4.0 / 3.0 * std::f64::consts::PI).abs() < 1e-12);
+    has(&v, "U032", "m.xml", 2, "angle");
+    has(&v, "U032", "m.xml", 4, "not finite");
+    has(&v, "U030", "m.xml", 5, "axis is zero");
+    has(&v, "U030", "m.xml", 6, "'nope'");
+    has(&v, "U030", "m.xml", 7, "'ghost'");
+    has(&v, "U030", "m.xml", 8, "more than one orientation");
+    has(&v, "U030", "m.xml", 9, "<widget>");
+    has(&v, "U030", "m.xml", 10, "only a body of the <worldbody>");
+    has(&v, "U032", "m.xml", 10, "3 numbers expected");
+    has(&v, "U033", "m.xml", 14, "equality");
+}
+
+#[test]
+fn hostile_values_never_panic() {
+    let hostile = ["", "nan", "1e400", "-1", "0 0 0 0 0 0 0", "x y z", "ghost"];
+    let dir = Scratch::new("hostile");
+    let text = r#"<mujoco model="m">
+  <compiler angle="radian" eulerseq="xyz" inertiafromgeom="auto" boundmass="0" settotalmass="-1"/>
+  <default><default class="c"><geom type="capsule" size="0.02"/><joint range="-1 1"/></default></default>
+  <asset><mesh name="n" file="none.stl" scale="1 1 1"/></asset>
+  <worldbody>
+    <body name="a" pos="0 0 1" quat="1 0 0 0" childclass="c">
+      <freejoint/>
+      <inertial pos="0 0 0" mass="1" diaginertia="0.1 0.1 0.1"/>
+      <frame pos="0.1 0 0" euler="0 0 0.5">
+        <body name="b" axisangle="0 0 1 0.3">
+          <joint name="h" type="hinge" axis="0 1 0" pos="0 0 0.1" ref="0.2" limited="true"/>
+          <joint name="s" type="slide" axis="1 0 0"/>
+          <geom fromto="0 0 0 0.2 0 0" mass="0.5"/>
+          <geom type="mesh" mesh="n" xyaxes="1 0 0 0 1 0"/>
+          <geom type="box" size="0.1 0.1 0.1" zaxis="0 0 1" group="2"/>
+        </body>
+      </frame>
+    </body>
+  </worldbody>
+</mujoco>"#;
+    let path = dir.file("m.xml", text);
+    let doc = roxmltree::Document::parse(text).unwrap();
+    let ranges: Vec<std::ops::Range<usize>> = doc
+        .descendants()
+        .flat_map(|n| n.attributes().map(|a| a.range_value()).collect::<Vec<_>>())
+        .collect();
+    let resolver = PackageResolver::default();
+    let meshes = MeshCache::new();
+    let mut variants = 0;
+    for range in ranges {
+        for value in hostile {
+            let mutated = format!("{}{value}{}", &text[..range.start], &text[range.end..]);
+            let files = urdf_validator::input::xml_files::XmlFiles::load(
+                &path,
+                mutated,
+                urdf_validator::input::xml_files::IncludeSyntax::Mjcf,
+                &resolver,
+            )
+            .unwrap();
+            let (robot, _) = urdf_validator::mjcf::parse_mjcf(&files, &meshes, &resolver);
+            let _ = urdf_validator::model::Model::build(&robot);
+            variants += 1;
+        }
+    }
+    assert!(variants > 250, "{variants}");
+}
+
+#[test]
+fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
+    let dir = Scratch::new("actuators");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <compiler angle="radian"/>
+  <default><motor ctrlrange="-1 1"/></default>
+  <worldbody>
+    <body name="arm">
+      <joint name="shoulder" axis="0 1 0" range="-1 1"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05" mass="2"/>
+    </body>
+    <body name="strong" pos="0 2 0">
+      <joint name="elbow" axis="0 1 0" actuatorfrcrange="-50 50"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+    <body name="swing" pos="0 1 0">
+      <joint name="passive" axis="0 1 0"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="shoulder" gear="10" forcerange="-0.3 0.3"/>
+    <position joint="elbow" kp="100" ctrlrange="-1 1"/>
+    <motor tendon="t"/>
+  </actuator>
+</mujoco>"#,
+    );
+    let r = robot(&path);
+    let effort = |name: &str| {
+        r.joints
+            .iter()
+            .find(|j| j.name.value == name)
+            .and_then(|j| j.limit.as_ref()?.effort.as_ref())
+            .map(|e| e.value)
+    };
+    // The motor's ctrlrange comes from the class default; its forcerange caps it: 0.3 N × gear 10.
+    assert_eq!(effort("shoulder"), Some(3.0));
+    // kp 100 over a ctrl range of 2: 200 N·m, capped by the joint's actuatorfrcrange.
+    assert_eq!(effort("elbow"), Some(50.0));
+    assert_eq!(effort("passive"), None);
+    let v = run(&path);
+    // 2 kg at 0.25 m needs 4.905 N·m: undersized, at the forcerange that limits it.
+    has(&v, "U701", "m.xml", 19, "shoulder");
+    assert!(
+        !findings(&v, "U701")
+            .iter()
+            .any(|(_, _, m)| m.contains("passive")),
+        "{:?}",
+        findings(&v, "U701")
+    );
+    has(&v, "U033", "m.xml", 21, "tendon");
+}
