@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Times one `urdf_validate` call over the whole example-robot-data corpus (69 URDFs), and over
-# ../shared/robots when present, with the release binary.
+# ../shared/robots when present, with the release binary; then the long-chain budget and the per-robot
+# budget (each corpus robot in <= 100 ms); exits 1 when a budget does not hold.
 #
 #   bash scripts/bench-corpus.sh
 #
@@ -124,7 +125,34 @@ ratio = long / short
 print(f"  chain 20,000 / 1,000 links: {ratio:.1f}x (budget 25x); 20,000 links {long:.0f} ms (budget 2000 ms)")
 sys.exit(0 if ratio <= 25 and long <= 2000 else 1)
 PY
+
+# Per robot (issue 26): every example-robot-data robot in <= 100 ms at default settings, wall time, median
+# of 3 runs after a warm-up, warm mesh cache. Prints the ten slowest and every robot over the budget.
+echo
+echo "== per robot: example-robot-data, median of 3 runs after a warm-up (budget 100 ms each)"
+python3 - "$bin" "$corpus" "$tmp/per-robot" <<'PY' || over_budget=1
+import pathlib, statistics, subprocess, sys, time
+binary, corpus, out = sys.argv[1], pathlib.Path(sys.argv[2]), sys.argv[3]
+times = {}
+for urdf in sorted(corpus.rglob("*.urdf")):
+    command = [binary, str(urdf), "--output-dir", out, "-q"]
+    runs = []
+    for i in range(4):
+        start = time.perf_counter()
+        status = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+        if i:
+            runs.append((time.perf_counter() - start) * 1000)
+        if status > 2 or status < 0:
+            sys.exit(f"bench-corpus: urdf_validate exited {status} on {urdf}")
+    times[urdf.relative_to(corpus)] = statistics.median(runs)
+ranked = sorted(times.items(), key=lambda item: -item[1])
+over = [name for name, ms in ranked if ms > 100]
+print(f"  {len(times)} robots: median {statistics.median(times.values()):.0f} ms; {len(over)} over 100 ms")
+for name, ms in ranked[:10]:
+    print(f"  {ms:7.1f} ms  {name}{'  OVER BUDGET' if ms > 100 else ''}")
+sys.exit(1 if over else 0)
+PY
 if ((over_budget)); then
-    echo "bench-corpus: the long-chain budget does not hold" >&2
+    echo "bench-corpus: a budget does not hold (the long chain's or the per-robot one, see above)" >&2
     exit 1
 fi

@@ -123,6 +123,10 @@ const SWEEP_FROM_PAIRS_PER_LINK: usize = 64;
 /// With the sweep, the first `SWEEP_AFTER_LINKS × links` pairs are still scanned one by one first.
 const SWEEP_AFTER_LINKS: usize = 4;
 
+/// With the rigid-group broad phase, the first `GROUPS_AFTER_LINKS × links` pairs are scanned one by one
+/// before the groups are tested.
+const GROUPS_AFTER_LINKS: usize = 1;
+
 /// Slack added to every sweep interval, metres: the sweep only preselects pairs (each is tested exactly
 /// afterwards), so a margin that is too large changes nothing but a little time.
 const SWEEP_SLACK: f64 = 1e-6;
@@ -760,19 +764,23 @@ impl CollisionModel {
             .as_ref()
             .filter(|_| held.is_some() && all_usable && pairs.sweep.is_none());
         if let Some(held_broad) = grouped {
+            // The first pairs (the largest links) one by one: a pose in contact usually stops there.
+            let first = (GROUPS_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len());
+            let going = self.scan(pairs, 0..first, placements, scratch, &mut state, on_contact);
             // The held links are where the first check left them, and each moving group keeps its
-            // shape: only the pairs behind spheres that meet can be within the margin.
-            let mut kept = std::mem::take(&mut scratch.held_candidates);
-            held_broad.candidates(placements, &mut scratch.held_spheres, margin, &mut kept);
-            self.scan(
-                pairs,
-                set_bits(&kept),
-                placements,
-                scratch,
-                &mut state,
-                on_contact,
-            );
-            scratch.held_candidates = kept;
+            // shape: of the rest, only the pairs behind spheres that meet can be within the margin.
+            if going {
+                let mut kept = std::mem::take(&mut scratch.held_candidates);
+                held_broad.candidates(
+                    placements,
+                    &mut scratch.held_spheres,
+                    state.margin,
+                    &mut kept,
+                );
+                let rest = set_bits(&kept).filter(|&index| index >= first);
+                self.scan(pairs, rest, placements, scratch, &mut state, on_contact);
+                scratch.held_candidates = kept;
+            }
             if !state.in_contact {
                 result.min_clearance = state.nearest;
             }
