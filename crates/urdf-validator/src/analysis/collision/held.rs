@@ -57,6 +57,8 @@ pub(super) struct HeldSpheres {
     /// The held slots' spheres (they stay where they are), [`LANES`] per block: x, y, z and radius of each
     /// (the padding of the last block is infinitely far).
     held: Vec<[[f64; LANES]; 4]>,
+    /// The held slots near one group (indices into `held`'s entries), refilled per group.
+    near: Vec<u32>,
 }
 
 impl HeldBroad {
@@ -242,29 +244,13 @@ impl HeldBroad {
         for (g, (centre, (_, radius))) in
             spheres.group_centre.iter().zip(&spheres.group).enumerate()
         {
-            let reach = radius + margin;
-            for (block, [x, y, z, held_radius]) in spheres.held.iter().enumerate() {
-                // Squared distance less squared reach, lane by lane: negative exactly when the distance
-                // is below the reach. NaN (a centre or radius that is not finite) keeps the pairs.
-                let mut excess = [0.0; LANES];
-                for lane in 0..LANES {
-                    let (dx, dy, dz) = (centre.x - x[lane], centre.y - y[lane], centre.z - z[lane]);
-                    let lane_reach = reach + held_radius[lane];
-                    excess[lane] = dx * dx + dy * dy + dz * dz - lane_reach * lane_reach;
-                }
-                let mut hits = 0u32;
-                for (lane, excess) in excess.iter().enumerate() {
-                    hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
-                }
-                while hits != 0 {
-                    let h = block * LANES + hits.trailing_zeros() as usize;
-                    hits &= hits - 1;
-                    if h < held_count {
-                        keep(
-                            &self.group_held_pairs
-                                [range(&self.group_held_offsets, g * held_count + h)],
-                        );
-                    }
+            held_near(centre, radius + margin, &spheres.held, &mut spheres.near);
+            for &h in &spheres.near {
+                let h = h as usize;
+                if h < held_count {
+                    keep(
+                        &self.group_held_pairs[range(&self.group_held_offsets, g * held_count + h)],
+                    );
                 }
             }
         }
@@ -274,6 +260,31 @@ impl HeldBroad {
             if near(one, other, one_radius + other_radius + margin) {
                 keep(&self.group_pairs[start as usize..end as usize]);
             }
+        }
+    }
+}
+
+/// Into `near`: the index of every held sphere (entry of `held`, [`LANES`] per block) within `reach` plus
+/// its radius of `centre` (and every one when a value is not finite: NaN keeps).
+fn held_near(centre: &Vector3<f64>, reach: f64, held: &[[[f64; LANES]; 4]], near: &mut Vec<u32>) {
+    near.clear();
+    let (cx, cy, cz) = (centre.x, centre.y, centre.z);
+    for (block, [x, y, z, radius]) in held.iter().enumerate() {
+        // Squared distance less squared reach, lane by lane: negative exactly when the distance is below
+        // the reach (a rounded difference keeps the sign of the exact one).
+        let mut excess = [0.0; LANES];
+        for lane in 0..LANES {
+            let (dx, dy, dz) = (cx - x[lane], cy - y[lane], cz - z[lane]);
+            let lane_reach = reach + radius[lane];
+            excess[lane] = dx * dx + dy * dy + dz * dz - lane_reach * lane_reach;
+        }
+        let mut hits = 0u32;
+        for (lane, excess) in excess.iter().enumerate() {
+            hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
+        }
+        while hits != 0 {
+            near.push((block * LANES) as u32 + hits.trailing_zeros());
+            hits &= hits - 1;
         }
     }
 }
