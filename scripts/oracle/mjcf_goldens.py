@@ -76,7 +76,7 @@ def configurations(model: mujoco.MjModel) -> list[tuple[str, np.ndarray]]:
     for k in range(RANDOM_CONFIGURATIONS):
         q = model.qpos0.copy()
         for j in range(model.njnt):
-            kind = model.jnt_type[j]
+            kind = int(model.jnt_type[j])  # a numpy integer is never `in` a tuple of mjtJoint members
             if kind not in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE):
                 continue
             lo, hi = model.jnt_range[j]
