@@ -81,6 +81,14 @@ MODELS = [
     Model("hand", "wonik_allegro", "right_hand.xml",
           "28ffb48b5c1d409a37fbfbb01c023c12e61cdefd", "dccf05b152d550b4a6d85addd584e373e119e764",
           refused=True),
+    Model("arm", "unitree_z1", "z1.xml",
+          "19b9576c9b7b982cd4863bc0c2aa7fde86771fc7", "19b9576c9b7b982cd4863bc0c2aa7fde86771fc7"),
+    Model("humanoid (biped)", "agility_cassie", "cassie.xml",
+          "1b428b08bb26ca6024e7b21e8ff21a59f847eb87", "1b93125c79bb95e4e55a1d6471adb2cd92c71feb"),
+    Model("arm", "kinova_gen3", "gen3.xml",
+          "39664247032283fc5cda18cf6ce2b28cdc84eb61", "af493511dbdfce2e046858a4d2f2955e063e17fd"),
+    Model("arm with gripper", "ufactory_xarm7", "xarm7.xml",
+          "4f04d622db52a300ef4986b5554bb98b2951898c", "dccf05b152d550b4a6d85addd584e373e119e764"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
