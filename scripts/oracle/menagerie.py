@@ -89,6 +89,10 @@ MODELS = [
           "39664247032283fc5cda18cf6ce2b28cdc84eb61", "af493511dbdfce2e046858a4d2f2955e063e17fd"),
     Model("arm with gripper", "ufactory_xarm7", "xarm7.xml",
           "4f04d622db52a300ef4986b5554bb98b2951898c", "dccf05b152d550b4a6d85addd584e373e119e764"),
+    Model("humanoid (legs)", "berkeley_humanoid", "berkeley_humanoid.xml",
+          "483d231bae9796dff9d25ef23039e5cbb0d55351", "d4da3fd332c491aa684bcca4f634592402c734f6"),
+    Model("quadrotor", "skydio_x2", "x2.xml",
+          "388eb4f8fb9ea5b38506da806416b5d798dfca4d", "388eb4f8fb9ea5b38506da806416b5d798dfca4d"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
