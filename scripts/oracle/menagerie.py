@@ -93,6 +93,8 @@ MODELS = [
           "483d231bae9796dff9d25ef23039e5cbb0d55351", "d4da3fd332c491aa684bcca4f634592402c734f6"),
     Model("quadrotor", "skydio_x2", "x2.xml",
           "388eb4f8fb9ea5b38506da806416b5d798dfca4d", "388eb4f8fb9ea5b38506da806416b5d798dfca4d"),
+    Model("mobile manipulator", "stanford_tidybot", "tidybot.xml",
+          "1aa4a8bb5c519aaabb27fbbde1d1452f63ceb778", "5d4b4c8b5b310be5cbf4fbc0ed14a1dd01ea60a8"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
