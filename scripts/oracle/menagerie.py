@@ -95,6 +95,8 @@ MODELS = [
           "388eb4f8fb9ea5b38506da806416b5d798dfca4d", "388eb4f8fb9ea5b38506da806416b5d798dfca4d"),
     Model("mobile manipulator", "stanford_tidybot", "tidybot.xml",
           "1aa4a8bb5c519aaabb27fbbde1d1452f63ceb778", "5d4b4c8b5b310be5cbf4fbc0ed14a1dd01ea60a8"),
+    Model("quadrotor", "bitcraze_crazyflie_2", "cf2.xml",
+          "24d7b69f71d0a93bb9f24f4c2245a12c49366f97", "64285db495f0a4195a00cc3936b2eff370b9745c"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
