@@ -97,6 +97,8 @@ MODELS = [
           "1aa4a8bb5c519aaabb27fbbde1d1452f63ceb778", "5d4b4c8b5b310be5cbf4fbc0ed14a1dd01ea60a8"),
     Model("quadrotor", "bitcraze_crazyflie_2", "cf2.xml",
           "24d7b69f71d0a93bb9f24f4c2245a12c49366f97", "64285db495f0a4195a00cc3936b2eff370b9745c"),
+    Model("arm with gripper", "arx_l5", "arx_l5.xml",
+          "0b56166037fc10bd4252879c3c3d3d8d2a74e064", "254b66e14a2145481a7276dc8ee1ca5d109cdd0c"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
