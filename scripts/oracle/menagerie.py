@@ -99,6 +99,8 @@ MODELS = [
           "24d7b69f71d0a93bb9f24f4c2245a12c49366f97", "64285db495f0a4195a00cc3936b2eff370b9745c"),
     Model("arm with gripper", "arx_l5", "arx_l5.xml",
           "0b56166037fc10bd4252879c3c3d3d8d2a74e064", "254b66e14a2145481a7276dc8ee1ca5d109cdd0c"),
+    Model("arm", "rethink_robotics_sawyer", "sawyer.xml",
+          "28ffb48b5c1d409a37fbfbb01c023c12e61cdefd", "dccf05b152d550b4a6d85addd584e373e119e764"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
