@@ -101,6 +101,8 @@ MODELS = [
           "0b56166037fc10bd4252879c3c3d3d8d2a74e064", "254b66e14a2145481a7276dc8ee1ca5d109cdd0c"),
     Model("arm", "rethink_robotics_sawyer", "sawyer.xml",
           "28ffb48b5c1d409a37fbfbb01c023c12e61cdefd", "dccf05b152d550b4a6d85addd584e373e119e764"),
+    Model("arm", "franka_fr3_v2", "fr3v2.xml",
+          "0059d4335f8156206f63a35662313385f7ad6d74", "f90a6fc75691c11fefaa8e7206f1260041a3b5eb"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
