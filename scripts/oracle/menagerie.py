@@ -103,6 +103,10 @@ MODELS = [
           "28ffb48b5c1d409a37fbfbb01c023c12e61cdefd", "dccf05b152d550b4a6d85addd584e373e119e764"),
     Model("arm", "franka_fr3_v2", "fr3v2.xml",
           "0059d4335f8156206f63a35662313385f7ad6d74", "f90a6fc75691c11fefaa8e7206f1260041a3b5eb"),
+    Model("arm", "doosan_robotics_m1013", "m1013.xml",
+          "4e5ae99f027b02d323e09e8a72a59af5966bf276", "166f33013bccb872781737b7d1dc303706b00370"),
+    Model("wheeled mobile base", "clearpath_jackal", "jackal.xml",
+          "e4fad8df9589f3f657503c821610b874bfa0bdfc", "e4fad8df9589f3f657503c821610b874bfa0bdfc"),
 ]
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
