@@ -25,8 +25,9 @@ with `--format json`. Compared, to 1e-9 relative with floors of 1e-12 kg, 1e-12 
 mass (sum of `body_mass`) with the report's `statics.total_mass`, the centre of mass (`subtree_com` of the
 world body) with `statics.full_body_com`, and each hinge/slide dof's `qfrc_bias` with the report's
 `statics.joints[].required_torque_gravity` (ball joints: dofs `NAME_x`, `NAME_y`, `NAME_z`). It prints one
-Markdown table row per model (the table of docs/menagerie.md) and exits 1 when a variant does not compile,
-does not agree, or (`--check`) is no longer what `--write` would make from the sources when they are here.
+Markdown table row per model (the table of docs/menagerie.md) and exits 1 when a variant does not compile
+(unless MODELS marks it `refused`), does not agree, or (`--check`) is no longer what `--write` would make
+from the sources when they are here; 2 when the binary or (`--write`) the sources are missing.
 
     .venv/bin/python scripts/oracle/menagerie.py --write    # make the variants from target/menagerie-src
     .venv/bin/python scripts/oracle/menagerie.py --check    # compare the committed variants (CI)
@@ -108,6 +109,9 @@ MODELS = [
     Model("wheeled mobile base", "clearpath_jackal", "jackal.xml",
           "e4fad8df9589f3f657503c821610b874bfa0bdfc", "e4fad8df9589f3f657503c821610b874bfa0bdfc"),
 ]
+
+LOST = "Bodies that lose mass (their mass came from a dropped geom): "
+"""The line of SOURCES.md that records the bodies a variant lost mass of (the table's last column)."""
 
 MESH_TYPES = {"mesh", "hfield", "sdf"}
 FILE_ASSETS = {"mesh", "hfield", "skin"}
@@ -263,7 +267,7 @@ def sources_md(model: Model, losing: list[str], dropped: int) -> str:
         f"`{model.file}` here is a mesh-free variant made by `scripts/oracle/menagerie.py` (the meshes are "
         f"not in this repository): {dropped} geoms using a mesh dropped with the `<mesh>` assets (and "
         f"texture files, height fields and skins, where any); the XML is re-indented and otherwise "
-        f"unchanged. Bodies that lose mass (their mass came from a dropped geom): {lost}.\n"
+        f"unchanged. {LOST}{lost}.\n"
     )
 
 
@@ -361,7 +365,7 @@ def row(model: Model, binary: Path) -> tuple[str, bool, list[str]]:
     does), and what disagrees."""
     path = DATA / model.folder / model.file
     sources = (DATA / model.folder / "SOURCES.md").read_text()
-    lost = sources.split("Bodies that lose mass (their mass came from a dropped geom): ", 1)[-1].strip()
+    lost = sources.split(LOST, 1)[-1].strip()
     lost = lost.removesuffix(".")
     code, report = our_report(binary, path)
     start = f"| {model.folder}/{model.file} | {model.kind} |"
@@ -403,6 +407,13 @@ def main() -> int:
     args = parser.parse_args()
     source = args.source.resolve()
     binary = args.binary.resolve()
+    if not binary.is_file():
+        print(f"{binary}: no urdf_validate binary here (build it with `cargo build --release`, or give "
+              "--binary PATH or $URDF_VALIDATE)", file=sys.stderr)
+        return 2
+    if args.write and not source.is_dir():
+        print(f"{source}: no hand-copied Menagerie originals to make the variants from", file=sys.stderr)
+        return 2
     # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory: not into the repository.
     os.chdir(tempfile.mkdtemp(prefix="menagerie-"))
     if args.write:
