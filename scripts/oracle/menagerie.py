@@ -108,6 +108,10 @@ MODELS = [
           "4e5ae99f027b02d323e09e8a72a59af5966bf276", "166f33013bccb872781737b7d1dc303706b00370"),
     Model("wheeled mobile base", "clearpath_jackal", "jackal.xml",
           "e4fad8df9589f3f657503c821610b874bfa0bdfc", "e4fad8df9589f3f657503c821610b874bfa0bdfc"),
+    Model("gripper (6 joints in one body)", "umi_gripper", "umi_gripper.xml",
+          "17c0268a48eea003f000a8ace844646a7f467e40", "32121e3808b991c27062a1e3e72b2c794126579e"),
+    Model("arm with gripper", "trossen_wxai", "wxai_follower.xml",
+          "191a7ba5e6d5ca0af05303bf725a644bcceffb0c", "5d5ed51fad1fb965613a70b1c6488aa5156c2dcf"),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
@@ -168,7 +172,7 @@ def geoms(root: ET.Element, classes: dict) -> list[Geom]:
                 attrs.update(child.attrib)
                 found.append(Geom(child, node, body, attrs))
             elif child.tag in ("body", "frame"):
-                name = child.get("name", "?") if child.tag == "body" else body
+                name = child.get("name", "(unnamed)") if child.tag == "body" else body
                 visit(child, name, child.get("childclass", childclass))
 
     for world in root.findall("worldbody"):
@@ -192,7 +196,7 @@ def counts_for_mass(geom: Geom, group_range: tuple[int, int]) -> bool:
 
 def bodies_with_inertial(root: ET.Element) -> set[str]:
     return {
-        body.get("name", "?")
+        body.get("name", "(unnamed)")
         for body in root.iter("body")
         if body.find("inertial") is not None
     }
