@@ -112,6 +112,8 @@ MODELS = [
           "17c0268a48eea003f000a8ace844646a7f467e40", "32121e3808b991c27062a1e3e72b2c794126579e"),
     Model("arm with gripper", "trossen_wxai", "wxai_follower.xml",
           "191a7ba5e6d5ca0af05303bf725a644bcceffb0c", "5d5ed51fad1fb965613a70b1c6488aa5156c2dcf"),
+    Model("hand", "leap_hand", "right_hand.xml",
+          "4035abd3637b5a3cdf038bc1b128852d96a1d19f", "f59b989dea80a523b0e0b0fbe550c664939c6376"),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
