@@ -114,6 +114,8 @@ MODELS = [
           "191a7ba5e6d5ca0af05303bf725a644bcceffb0c", "5d5ed51fad1fb965613a70b1c6488aa5156c2dcf"),
     Model("hand", "leap_hand", "right_hand.xml",
           "4035abd3637b5a3cdf038bc1b128852d96a1d19f", "f59b989dea80a523b0e0b0fbe550c664939c6376"),
+    Model("humanoid", "pndbotics_adam_lite", "adam_lite.xml",
+          "4f04d622db52a300ef4986b5554bb98b2951898c", "2a3595df363b0b4eb20bc8af5c014636f1e0a65b"),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
