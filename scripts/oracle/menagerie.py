@@ -10,7 +10,8 @@ without any asset file:
   or a height field (its own attributes or its default class's: `mesh=`, `type="mesh"`/`"hfield"`/`"sdf"`),
   with the `<contact>` pairs and sensors naming a dropped geom;
 - `<texture>`s with a file are dropped, and the `texture=` of materials that used them;
-- everything else is kept as it is, explicit `<inertial>`s included.
+- everything else is kept as it is, explicit `<inertial>`s included (the XML is re-serialised: indentation,
+  and an XML declaration or comments outside the root element are dropped).
 
 A body whose mass came from a dropped geom (no `<inertial>` and `inertiafromgeom` not false, or
 `inertiafromgeom="true"`; the geom's group in `inertiagrouprange`, its mass or density not 0) loses it: the
@@ -116,6 +117,8 @@ MODELS = [
           "4035abd3637b5a3cdf038bc1b128852d96a1d19f", "f59b989dea80a523b0e0b0fbe550c664939c6376"),
     Model("humanoid", "pndbotics_adam_lite", "adam_lite.xml",
           "4f04d622db52a300ef4986b5554bb98b2951898c", "2a3595df363b0b4eb20bc8af5c014636f1e0a65b"),
+    Model("arm (2 joints)", "dynamixel_2r", "dynamixel_2r.xml",
+          "18608e5872945ba51171a49cf5283dd13f1466ca", "ef0e2acef896ce38ec3ea179c64dae27460899b3"),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
@@ -274,8 +277,9 @@ def sources_md(model: Model, losing: list[str], dropped: int) -> str:
         f"- `LICENSE` at commit {model.license_commit} (unchanged)\n\n"
         f"`{model.file}` here is a mesh-free variant made by `scripts/oracle/menagerie.py` (the meshes are "
         f"not in this repository): {dropped} geoms using a mesh dropped with the `<mesh>` assets (and "
-        f"texture files, height fields and skins, where any); the XML is re-indented and otherwise "
-        f"unchanged. {LOST}{lost}.\n"
+        f"texture files, height fields and skins, where any); the XML is re-serialised (indentation; "
+        f"an XML declaration or comments outside the root element are dropped), otherwise unchanged. "
+        f"{LOST}{lost}.\n"
     )
 
 
