@@ -119,6 +119,8 @@ MODELS = [
           "4f04d622db52a300ef4986b5554bb98b2951898c", "2a3595df363b0b4eb20bc8af5c014636f1e0a65b"),
     Model("arm (2 joints)", "dynamixel_2r", "dynamixel_2r.xml",
           "18608e5872945ba51171a49cf5283dd13f1466ca", "ef0e2acef896ce38ec3ea179c64dae27460899b3"),
+    Model("humanoid (with a floor plane)", "bxi_elf2", "elf2_dof25.xml",
+          "bfe26f8168a757f460514ae10d0f1e888799aa70", "9f1725115564402a93b9fd2e2fa8eb17355de392"),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
