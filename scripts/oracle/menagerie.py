@@ -121,6 +121,9 @@ MODELS = [
           "18608e5872945ba51171a49cf5283dd13f1466ca", "ef0e2acef896ce38ec3ea179c64dae27460899b3"),
     Model("humanoid (with a floor plane)", "bxi_elf2", "elf2_dof25.xml",
           "bfe26f8168a757f460514ae10d0f1e888799aa70", "9f1725115564402a93b9fd2e2fa8eb17355de392"),
+    Model("mobile manipulator", "hello_robot_stretch", "stretch.xml",
+          "163a7e30f34ac1595161180dd7ed450e22145538", "dccf05b152d550b4a6d85addd584e373e119e764",
+          refused=True),
 ]
 
 LOST = "Bodies that lose mass (their mass came from a dropped geom): "
