@@ -22,9 +22,10 @@ Then, for every committed variant (`--check`, and after `--write`): MuJoCo compi
 `mujoco`), `mj_forward` with zero velocity (gravity on even where the model turns it off) at the statics
 pose of our report (`qpos0`, where a joint's `qpos0` is outside its range clamped into it, as the report's
 `statics.configuration` and notes say; q = qpos - qpos0), and the validator (`--binary`, default
-$URDF_VALIDATE or target/release/urdf_validate) runs on the SAME file with `--format json`. Compared,
-to 1e-9 relative with floors of 1e-12 kg, 1e-12 m and 1e-10 N·m: the total mass (sum of `body_mass`) with the report's `statics.total_mass`, the centre of mass (`subtree_com` of the
-world body) with `statics.full_body_com`, and each hinge/slide dof's `qfrc_bias` with the report's
+$URDF_VALIDATE or target/release/urdf_validate) runs on the SAME file with `--format json`. Compared, to
+1e-9 relative with floors of 1e-12 kg, 1e-12 m and 1e-10 N·m: the total mass (sum of `body_mass`) with the
+report's `statics.total_mass`, the centre of mass (`subtree_com` of the world body) with
+`statics.full_body_com`, and each hinge/slide dof's `qfrc_bias` with the report's
 `statics.joints[].required_torque_gravity` (ball joints: dofs `NAME_x`, `NAME_y`, `NAME_z`). It prints one
 Markdown table row per model (the table of docs/menagerie.md) and exits 1 when a variant does not compile
 (unless MODELS marks it `refused`), does not agree, or (`--check`) is no longer what `--write` would make
