@@ -391,3 +391,25 @@ fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
     );
     has(&v, "U033", "m.xml", 21, "tendon");
 }
+
+/// An unlimited slide (tidybot's base in MuJoCo Menagerie) moves freely: no U305 "lower == upper == 0: it
+/// cannot move", which is URDF's reading of a prismatic joint without limits (failed before: U305 on `x`).
+#[test]
+fn an_unlimited_slide_is_free_not_stuck_at_zero() {
+    let dir = Scratch::new("slide");
+    let path = dir.file(
+        "cart.xml",
+        "<mujoco model=\"cart\"><worldbody><body name=\"base\"><joint name=\"x\" type=\"slide\" axis=\"1 0 0\"/>\
+         <geom type=\"box\" size=\"0.1 0.1 0.1\"/><body name=\"arm\" pos=\"0 0 0.2\">\
+         <joint name=\"lift\" type=\"slide\" axis=\"0 0 1\" limited=\"true\" range=\"0 0\"/>\
+         <geom type=\"box\" size=\"0.05 0.05 0.05\"/></body></body></worldbody></mujoco>",
+    );
+    let v = run(&path);
+    let stuck = findings(&v, "U305");
+    assert_eq!(
+        stuck.len(),
+        1,
+        "only the slide limited to [0, 0] is stuck: {stuck:?}"
+    );
+    assert!(stuck[0].2.contains("lift"), "{stuck:?}");
+}

@@ -28,6 +28,9 @@ use crate::urdf::robot::{
     Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose, Robot, Shape,
 };
 
+/// The limits of a slide joint without a range: SDFormat's "unlimited" (the samplers and checks read a
+/// range this wide as no limit, see `model::kinematics::MAX_PRISMATIC_TRAVEL`).
+const UNLIMITED_SLIDE: f64 = 1e16;
 /// The actuator elements, which share one default per class.
 const ACTUATOR_KINDS: [&str; 10] = [
     "general",
@@ -862,16 +865,22 @@ impl<'a, 'r> Builder<'a, 'r> {
             (false, _) => JointKind::Prismatic,
         };
         let limit_span = range.map_or(span, |r| r.span);
+        // An unlimited slide moves freely: as SDFormat writes it, ±1e16 (no travel, not "both limits 0").
+        let (lower, upper) = if limited {
+            (to_q(bounds[0]) - reference, to_q(bounds[1]) - reference)
+        } else {
+            (-UNLIMITED_SLIDE, UNLIMITED_SLIDE)
+        };
+        let bound = |value: f64| {
+            (limited || !hinge).then_some(Spanned {
+                value,
+                span: limit_span,
+            })
+        };
         spec.limit = Some(Limit {
             span: limit_span,
-            lower: limited.then(|| Spanned {
-                value: to_q(bounds[0]) - reference,
-                span: limit_span,
-            }),
-            upper: limited.then(|| Spanned {
-                value: to_q(bounds[1]) - reference,
-                span: limit_span,
-            }),
+            lower: bound(lower),
+            upper: bound(upper),
             effort: None,
             velocity: None,
         });
