@@ -391,3 +391,82 @@ fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
     );
     has(&v, "U033", "m.xml", 21, "tendon");
 }
+
+/// The 1-based line of the first line of `text` holding `needle`.
+fn line_of(text: &str, needle: &str) -> u32 {
+    let index = text
+        .lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("'{needle}' is not in the model"));
+    u32::try_from(index + 1).unwrap()
+}
+
+/// Each MJCF-only rule fires once, at the line to edit.
+const MJCF_RULES: &str = r#"<mujoco>
+  <compiler angle="degree" autolimits="true" balanceinertia="true" boundinertia="1e-6"/>
+  <worldbody>
+    <body name="arm">
+      <joint name="shoulder" axis="0 1 0" range="-90 90"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05" mass="2"/>
+      <body name="fore" pos="0.5 0 0">
+        <joint name="elbow" axis="0 1 0" range="-90 90" armature="0.1"/>
+        <inertial pos="0.2 0 0" mass="1" diaginertia="0.01 0.01 0.05"/>
+        <body name="rod" pos="0.4 0 0">
+          <joint name="wrist" axis="0 1 0" range="-90 90" damping="1"/>
+          <inertial pos="0.1 0 0" mass="0.5" diaginertia="0 0.001 0.001"/>
+        </body>
+        <body name="wheel" pos="0 0.2 0">
+          <joint name="spin" axis="0 1 0" damping="1"/>
+          <geom type="sphere" size="0.05" pos="0.1 0 0" mass="0.5"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="shoulder" gear="50" ctrlrange="-1 1"/>
+    <position joint="elbow" kp="100" ctrlrange="-1 1"/>
+    <position joint="wrist" kp="10" ctrlrange="-1.6 1.6" forcerange="-5 5"/>
+    <motor name="spinner" joint="spin"/>
+  </actuator>
+</mujoco>"#;
+
+#[test]
+fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() {
+    let dir = Scratch::new("rules");
+    let path = dir.file("m.xml", MJCF_RULES);
+    let v = run(&path);
+    let at = |needle| line_of(MJCF_RULES, needle);
+    // A position servo's ctrlrange is in radians whatever <compiler angle> says: ±1 rad < ±90°.
+    has(&v, "U034", "m.xml", at("kp=\"100\""), "elbow");
+    assert_eq!(findings(&v, "U034").len(), 1, "{:?}", findings(&v, "U034"));
+    // No forcerange, no ctrlrange, no actuatorfrcrange: at the actuator.
+    has(&v, "U035", "m.xml", at("spinner"), "spin");
+    assert_eq!(findings(&v, "U035").len(), 1, "{:?}", findings(&v, "U035"));
+    // Gear 50 on a joint with neither armature nor damping: at the joint (elbow has armature, wrist
+    // damping, and their actuators no gear).
+    has(&v, "U036", "m.xml", at("name=\"shoulder\""), "reflected");
+    assert_eq!(findings(&v, "U036").len(), 1, "{:?}", findings(&v, "U036"));
+    // 0.01 + 0.01 < 0.05, and a zero moment: at each <inertial>.
+    has(&v, "U037", "m.xml", at("0.01 0.01 0.05"), "balanceinertia");
+    has(&v, "U037", "m.xml", at("0 0.001 0.001"), "boundinertia");
+    assert_eq!(findings(&v, "U037").len(), 2, "{:?}", findings(&v, "U037"));
+
+    let repaired = MJCF_RULES
+        .replace("range=\"-90 90\"/>", "range=\"-90 90\" armature=\"0.01\"/>")
+        .replace(
+            "kp=\"100\" ctrlrange=\"-1 1\"",
+            "kp=\"100\" ctrlrange=\"-1.6 1.6\"",
+        )
+        .replace("0.01 0.01 0.05", "0.03 0.03 0.05")
+        .replace("0 0.001 0.001", "0.0001 0.001 0.001")
+        .replace("joint=\"spin\"/>", "joint=\"spin\" ctrlrange=\"-1 1\"/>");
+    let clean = dir.file("clean.xml", &repaired);
+    let v = run(&clean);
+    for rule in ["U034", "U035", "U036", "U037"] {
+        assert!(
+            findings(&v, rule).is_empty(),
+            "{rule}: {:?}",
+            findings(&v, rule)
+        );
+    }
+}

@@ -120,6 +120,8 @@ pub struct Builder<'a, 'r> {
     joint_ids: usize,
     /// Each hinge and slide joint's `actuatorfrcrange` when it is limited, with its span.
     actuator_force: HashMap<String, ((f64, f64), Span)>,
+    /// What the actuator rules need to know of each hinge and slide joint, by name.
+    joint_facts: HashMap<String, actuators::JointFacts>,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -153,6 +155,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             bodies: 0,
             joint_ids: 0,
             actuator_force: HashMap::new(),
+            joint_facts: HashMap::new(),
         };
         for section in sections {
             match section.tag() {
@@ -879,6 +882,15 @@ impl<'a, 'r> Builder<'a, 'r> {
             self.actuator_force.insert(name.clone(), range);
         }
         let damping = self.scalar(el, class, "damping", 0.0);
+        let armature = self.scalar(el, class, "armature", 0.0);
+        self.joint_facts.insert(
+            name.clone(),
+            actuators::JointFacts {
+                range: limited.then(|| (to_q(bounds[0]), to_q(bounds[1]))),
+                span,
+                still: damping == 0.0 && armature == 0.0,
+            },
+        );
         let friction = self.scalar(el, class, "frictionloss", 0.0);
         spec.dynamics = Some(Dynamics {
             damping: Some(damping),
@@ -1086,6 +1098,7 @@ impl<'a, 'r> Builder<'a, 'r> {
     }
 
     /// `boundmass`, `boundinertia`, `balanceinertia` and `settotalmass` applied to every body's mass.
+    /// A body whose inertia only a compiler setting makes acceptable is a U037.
     fn finish_masses(&mut self) {
         let c = &self.compiler;
         let bounded: Vec<(usize, MassProps)> = self
@@ -1098,6 +1111,22 @@ impl<'a, 'r> Builder<'a, 'r> {
                 )
             })
             .collect();
+        let rescued: Vec<(usize, &'static str)> = self
+            .masses
+            .iter()
+            .filter_map(|(i, p)| Some((*i, p.rescued_by(c.bound_inertia, c.balance_inertia)?)))
+            .collect();
+        for (i, setting) in rescued {
+            if let Some(link) = self.links.get(i) {
+                let span = link.inertial.as_ref().map_or(link.span, |m| m.span);
+                let message = format!(
+                    "body '{}': MuJoCo accepts its inertia only thanks to <compiler {setting}>; the inertia simulated is the compiler's, not the one written",
+                    link.name.value
+                );
+                self.reader
+                    .report(&rules::MJCF_INERTIA_RESCUED, span, message);
+            }
+        }
         let total: f64 = bounded.iter().map(|(_, p)| p.mass).sum();
         let factor = match c.set_total_mass {
             Some(target) if total > 0.0 => target / total,
