@@ -470,3 +470,87 @@ fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() 
         );
     }
 }
+
+/// Two sibling links overlapping at qpos0, and an arm (so that self-collision is assessed) with a bracket
+/// welded to its forearm overlapping the upper arm the forearm hangs from; `CONTACT` is replaced by each test's filter.
+const OVERLAPPING: &str = r#"<mujoco>
+  <worldbody>
+    <body name="base">
+      <geom type="box" size="0.1 0.1 0.05"/>
+      <body name="left" pos="0 0.04 0.3">
+        <joint name="l" axis="1 0 0"/>
+        <geom name="left_geom" type="box" size="0.05 0.05 0.1"/>
+      </body>
+      <body name="right" pos="0 -0.04 0.3">
+        <joint name="r" axis="1 0 0"/>
+        <geom type="box" size="0.05 0.05 0.1"/>
+      </body>
+      <body name="upper" pos="1 0 0.3">
+        <joint name="shoulder" axis="0 1 0"/>
+        <geom type="box" size="0.05 0.05 0.1"/>
+        <body name="fore" pos="0 0 0.3">
+          <joint name="elbow" axis="0 1 0"/>
+          <geom type="box" size="0.05 0.05 0.1"/>
+          <body name="bracket" pos="0 0 -0.2">
+            <geom type="box" size="0.02 0.02 0.02"/>
+          </body>
+          <body name="hand" pos="0 0 0.3">
+            <joint name="wrist" axis="0 1 0"/>
+            <geom type="box" size="0.03 0.03 0.05"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  CONTACT
+</mujoco>"#;
+
+/// The link pairs of U601 (in contact at the zero pose, so left out of self-collision sampling).
+fn touching(dir: &Scratch, name: &str, contact: &str, replace: (&str, &str)) -> Vec<String> {
+    let text = OVERLAPPING
+        .replace("CONTACT", contact)
+        .replace(replace.0, replace.1);
+    let v = run(&dir.file(name, &text));
+    let mut pairs: Vec<String> = findings(&v, "U601")
+        .into_iter()
+        .map(|(_, _, m)| m.split(" have").next().unwrap_or("").to_string())
+        .collect();
+    pairs.sort();
+    pairs
+}
+
+#[test]
+fn self_collision_pairs_follow_mujocos_contact_filter() {
+    let dir = Scratch::new("contacts");
+    let none = ("", "");
+    // Unfiltered, the siblings touch; the bracket welded to 'fore' is filtered against 'upper', the body
+    // 'fore' hangs from (MuJoCo's parent filter), so it is not a contact.
+    assert_eq!(
+        touching(&dir, "plain.xml", "", none),
+        ["Links 'left' and 'right'"]
+    );
+    // An exclusion.
+    let exclude = r#"<contact><exclude body1="right" body2="left"/></contact>"#;
+    assert!(touching(&dir, "exclude.xml", exclude, none).is_empty());
+    // contype 2 / conaffinity 2 against 1 / 1: (2 & 1) | (1 & 2) = 0.
+    let bits = (
+        r#"name="left_geom""#,
+        r#"name="left_geom" contype="2" conaffinity="2""#,
+    );
+    assert!(touching(&dir, "bits.xml", "", bits).is_empty());
+    // contype 3 meets conaffinity 1: they collide again.
+    let overlap = (
+        r#"name="left_geom""#,
+        r#"name="left_geom" contype="3" conaffinity="2""#,
+    );
+    assert_eq!(
+        touching(&dir, "overlap.xml", "", overlap),
+        ["Links 'left' and 'right'"]
+    );
+    // Without MuJoCo's parent filter the bracket touches the upper arm.
+    let no_parent = r#"<option><flag filterparent="disable"/></option>"#;
+    assert_eq!(
+        touching(&dir, "noparent.xml", no_parent, none),
+        ["Links 'left' and 'right'", "Links 'upper' and 'bracket'"]
+    );
+}
