@@ -554,3 +554,20 @@ fn self_collision_pairs_follow_mujocos_contact_filter() {
         ["Links 'left' and 'right'", "Links 'upper' and 'bracket'"]
     );
 }
+
+#[test]
+fn an_include_problem_inside_a_section_is_reported_once() {
+    let dir = Scratch::new("include-once");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <worldbody><include file="missing.xml"/><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+  <contact><include file="gone.xml"/></contact>
+</mujoco>"#,
+    );
+    let v = run(&path);
+    let found = findings(&v, "U031");
+    assert_eq!(found.len(), 2, "{found:?}");
+    has(&v, "U031", "m.xml", 2, "no such file");
+    has(&v, "U031", "m.xml", 3, "no such file");
+}

@@ -39,7 +39,11 @@ impl<'a> Builder<'a, '_> {
             }
         };
         let mut filter_parent = true;
-        for section in sections {
+        // Only these two sections: expanding another's includes again would repeat their U031s.
+        for section in sections
+            .iter()
+            .filter(|s| matches!(s.tag(), "contact" | "option"))
+        {
             for el in self.reader.children(*section) {
                 match (section.tag(), el.tag()) {
                     ("contact", "exclude") => {
