@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Creates (once) the Python test environment `.venv` in the repo root and installs the pinned test data,
-# and unpacks dm_control's suite models (MJCF) into target/dm-control.
+# and unpacks the MJCF test models (dm_control's suite, gymnasium's MuJoCo environments) into target/.
 #
 #   bash scripts/setup-test-env.sh        # prints the example-robot-data corpus path on stdout
 #
@@ -46,29 +46,37 @@ find_corpus() {
     fi
 }
 
-# dm_control's suite models (MJCF, with their includes and the dog's meshes): the MJCF reader's MuJoCo
-# oracle corpus (crates/urdf-validator/tests/mjcf_golden.rs, scripts/oracle/mjcf_goldens.py). Only the
-# wheel's dm_control/suite files that are not Python are unpacked; dm_control is never installed.
-DM_CONTROL="dm-control==1.0.50"
-dm_control_dir="$repo_root/target/dm-control"
-
-# Unpack the dm_control suite into target/dm-control once (the wheel is downloaded with the venv's pip).
-ensure_dm_control() {
-    [[ -f "$dm_control_dir/dm_control/suite/dog.xml" ]] && return 0
-    log "downloading $DM_CONTROL (the MJCF test corpus) into $dm_control_dir"
-    mkdir -p "$dm_control_dir"
+# Download a wheel with the venv's pip (no dependencies, nothing installed) into DIR and unzip its files
+# under PREFIX that are not Python, once: `unpack_wheel SPEC DIR PREFIX SENTINEL` (SENTINEL: a file, relative
+# to DIR, whose presence means it is done).
+unpack_wheel() {
+    local spec="$1" dir="$2" prefix="$3" sentinel="$4"
+    [[ -f "$dir/$sentinel" ]] && return 0
+    log "downloading $spec (MJCF test models) into $dir"
+    mkdir -p "$dir"
     "$venv/bin/python" -m pip download --quiet --disable-pip-version-check --no-input --no-deps \
-        "$DM_CONTROL" -d "$dm_control_dir" >&2 ||
-        die "pip download $DM_CONTROL failed (is PyPI reachable?)"
-    "$venv/bin/python" - "$dm_control_dir" <<'PY' || die "cannot unpack the $DM_CONTROL wheel"
+        "$spec" -d "$dir" >&2 ||
+        die "pip download $spec failed (is PyPI reachable?)"
+    "$venv/bin/python" - "$dir" "${spec%%==*}" "$prefix" <<'PY' || die "cannot unpack the $spec wheel"
 import pathlib, sys, zipfile
-root = pathlib.Path(sys.argv[1])
-wheel = next(root.glob("dm_control-*.whl"))
+root, name, prefix = pathlib.Path(sys.argv[1]), sys.argv[2].replace("-", "_"), sys.argv[3]
+wheel = next(root.glob(f"{name}-*.whl"))
 with zipfile.ZipFile(wheel) as z:
-    for name in z.namelist():
-        if name.startswith("dm_control/suite/") and not name.endswith(".py"):
-            z.extract(name, root)
+    for member in z.namelist():
+        if member.startswith(prefix) and not member.endswith(".py"):
+            z.extract(member, root)
 PY
+}
+
+# The MJCF reader's MuJoCo oracle corpora (crates/urdf-validator/tests/mjcf_golden.rs,
+# scripts/oracle/mjcf_goldens.py): dm_control's suite models (with their includes and the dog's meshes) in
+# target/dm-control, and gymnasium's MuJoCo environments (ant, half_cheetah, hopper, humanoid, ...: motor
+# gears and ctrlranges) in target/gymnasium. Neither package is installed.
+ensure_mjcf_corpora() {
+    unpack_wheel "dm-control==1.0.50" "$repo_root/target/dm-control" "dm_control/suite/" \
+        "dm_control/suite/dog.xml"
+    unpack_wheel "gymnasium==1.2.2" "$repo_root/target/gymnasium" "gymnasium/envs/mujoco/assets/" \
+        "gymnasium/envs/mujoco/assets/walker2d_v5.xml"
 }
 
 wanted="$(printf '%s\n' "${TEST_PACKAGES[@]}")"
@@ -78,7 +86,7 @@ if [[ -x "$venv/bin/python" ]] && "$venv/bin/python" -c '' 2>/dev/null &&
     [[ -f "$stamp" ]] && [[ "$(cat "$stamp")" == "$wanted" ]]; then
     corpus="$(find_corpus)"
     if [[ -n "$corpus" ]]; then
-        ensure_dm_control
+        ensure_mjcf_corpora
         printf '%s\n' "$corpus"
         exit 0
     fi
@@ -122,7 +130,7 @@ corpus="$(find_corpus)"
 [[ -n "$corpus" ]] ||
     die "example-robot-data installed, but no corpus at $venv/lib/python3.*/site-packages/cmeel.prefix/share/example-robot-data/robots"
 
-ensure_dm_control
+ensure_mjcf_corpora
 printf '%s\n' "$wanted" >"$stamp"
 log "corpus: $(find "$corpus" -name '*.urdf' | wc -l) URDF files"
 printf '%s\n' "$corpus"

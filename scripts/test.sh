@@ -30,6 +30,9 @@ fi
 # dm_control's suite models, unpacked by setup-test-env.sh: the MJCF reader's MuJoCo oracle corpus.
 export URDF_VALIDATOR_MJCF_CORPUS="$repo_root/target/dm-control/dm_control/suite"
 echo "test.sh: URDF_VALIDATOR_MJCF_CORPUS=$URDF_VALIDATOR_MJCF_CORPUS" >&2
+# gymnasium's MuJoCo environments, unpacked by setup-test-env.sh: the second MJCF oracle corpus.
+export URDF_VALIDATOR_GYMNASIUM_CORPUS="$repo_root/target/gymnasium/gymnasium/envs/mujoco/assets"
+echo "test.sh: URDF_VALIDATOR_GYMNASIUM_CORPUS=$URDF_VALIDATOR_GYMNASIUM_CORPUS" >&2
 
 # The CLI keeps mesh hulls between runs; the tests keep theirs under target/, not in the user's cache.
 export URDF_VALIDATOR_CACHE_DIR="$repo_root/target/mesh-cache"

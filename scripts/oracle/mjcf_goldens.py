@@ -5,13 +5,19 @@ For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) wri
 body's mass and principal moments of inertia (`body_mass`, `body_inertia`) and, at
 `qpos0` and at two seeded random configurations: per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
-forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, with
-gravity on even where the model turns it off (`<flag gravity="disable"/>`, recorded as
-`gravity_disabled`: the validator's statics are about the robot under gravity); and per
+forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, under
+standard gravity (0, 0, -9.81) whatever the model says: on even where the model turns it off
+(`<flag gravity="disable"/>`, recorded as `gravity_disabled`), and standard where `<option gravity>` is
+another (gymnasium's pusher has none, its inverted double pendulum a tilt of 1e-5; recorded as
+`model_gravity`): the validator's statics are about the robot under standard gravity; and per
 actuator the fields that bound its force (`gear`, `ctrlrange`, `forcerange`, `gainprm`, `biasprm`, the
 joint's `actfrcrange`).
 
     python scripts/oracle/mjcf_goldens.py [--models DIR] [--out DIR] [--check]
+
+The committed goldens: `tests/golden/mujoco` (dm_control's suite, the default) and `tests/golden/gymnasium`
+(`--models target/gymnasium/gymnasium/envs/mujoco/assets --out crates/urdf-validator/tests/golden/gymnasium`,
+the `gymnasium==1.2.2` wheel's models, unpacked by scripts/setup-test-env.sh).
 
 Without --models, the dm_control suite models are read from the `dm-control==1.0.50` wheel (downloaded
 with `pip download --no-deps` into target/dm-control and unzipped: the wheel's `dm_control/suite/` folder,
@@ -38,6 +44,7 @@ REPO = Path(__file__).resolve().parents[2]
 DM_CONTROL = "dm-control==1.0.50"
 SEED = 7
 RANDOM_CONFIGURATIONS = 2
+STANDARD_GRAVITY = (0.0, 0.0, -9.81)
 
 
 def dm_control_suite() -> Path:
@@ -92,6 +99,8 @@ def golden(path: Path, root: Path) -> dict:
     gravity_bit = int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
     gravity_disabled = bool(model.opt.disableflags & gravity_bit)
     model.opt.disableflags &= ~gravity_bit
+    model_gravity = model.opt.gravity.tolist()
+    model.opt.gravity[:] = STANDARD_GRAVITY
     data = mujoco.MjData(model)
     bodies = [name_of(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(model.nbody)]
     joints = []
@@ -150,6 +159,7 @@ def golden(path: Path, root: Path) -> dict:
         "mujoco_version": mujoco.__version__,
         "gravity": model.opt.gravity.tolist(),
         "gravity_disabled": gravity_disabled,
+        "model_gravity": model_gravity,
         "total_mass": float(sum(model.body_mass)),
         "bodies": [
             {

@@ -413,3 +413,183 @@ fn an_unlimited_slide_is_free_not_stuck_at_zero() {
     );
     assert!(stuck[0].2.contains("lift"), "{stuck:?}");
 }
+
+/// The 1-based line of the first line of `text` holding `needle`.
+fn line_of(text: &str, needle: &str) -> u32 {
+    let index = text
+        .lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("'{needle}' is not in the model"));
+    u32::try_from(index + 1).unwrap()
+}
+
+/// Each MJCF-only rule fires once, at the line to edit.
+const MJCF_RULES: &str = r#"<mujoco>
+  <compiler angle="degree" autolimits="true" balanceinertia="true" boundinertia="1e-6"/>
+  <worldbody>
+    <body name="arm">
+      <joint name="shoulder" axis="0 1 0" range="-90 90"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05" mass="2"/>
+      <body name="fore" pos="0.5 0 0">
+        <joint name="elbow" axis="0 1 0" range="-90 90" armature="0.1"/>
+        <inertial pos="0.2 0 0" mass="1" diaginertia="0.01 0.01 0.05"/>
+        <body name="rod" pos="0.4 0 0">
+          <joint name="wrist" axis="0 1 0" range="-90 90" damping="1"/>
+          <inertial pos="0.1 0 0" mass="0.5" diaginertia="0 0.001 0.001"/>
+        </body>
+        <body name="wheel" pos="0 0.2 0">
+          <joint name="spin" axis="0 1 0" damping="1"/>
+          <geom type="sphere" size="0.05" pos="0.1 0 0" mass="0.5"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="shoulder" gear="50" ctrlrange="-1 1"/>
+    <position joint="elbow" kp="100" ctrlrange="-1 1"/>
+    <position joint="wrist" kp="10" ctrlrange="-1.6 1.6" forcerange="-5 5"/>
+    <motor name="spinner" joint="spin"/>
+  </actuator>
+</mujoco>"#;
+
+#[test]
+fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() {
+    let dir = Scratch::new("rules");
+    let path = dir.file("m.xml", MJCF_RULES);
+    let v = run(&path);
+    let at = |needle| line_of(MJCF_RULES, needle);
+    // A position servo's ctrlrange is in radians whatever <compiler angle> says: ±1 rad < ±90°.
+    has(&v, "U034", "m.xml", at("kp=\"100\""), "elbow");
+    assert_eq!(findings(&v, "U034").len(), 1, "{:?}", findings(&v, "U034"));
+    // No forcerange, no ctrlrange, no actuatorfrcrange: at the actuator.
+    has(&v, "U035", "m.xml", at("spinner"), "spin");
+    assert_eq!(findings(&v, "U035").len(), 1, "{:?}", findings(&v, "U035"));
+    // Gear 50 on a joint with neither armature nor damping: at the joint (elbow has armature, wrist
+    // damping, and their actuators no gear).
+    has(&v, "U036", "m.xml", at("name=\"shoulder\""), "reflected");
+    assert_eq!(findings(&v, "U036").len(), 1, "{:?}", findings(&v, "U036"));
+    // 0.01 + 0.01 < 0.05, and a zero moment: at each <inertial>.
+    has(&v, "U037", "m.xml", at("0.01 0.01 0.05"), "balanceinertia");
+    has(&v, "U037", "m.xml", at("0 0.001 0.001"), "boundinertia");
+    assert_eq!(findings(&v, "U037").len(), 2, "{:?}", findings(&v, "U037"));
+
+    let repaired = MJCF_RULES
+        .replace("range=\"-90 90\"/>", "range=\"-90 90\" armature=\"0.01\"/>")
+        .replace(
+            "kp=\"100\" ctrlrange=\"-1 1\"",
+            "kp=\"100\" ctrlrange=\"-1.6 1.6\"",
+        )
+        .replace("0.01 0.01 0.05", "0.03 0.03 0.05")
+        .replace("0 0.001 0.001", "0.0001 0.001 0.001")
+        .replace("joint=\"spin\"/>", "joint=\"spin\" ctrlrange=\"-1 1\"/>");
+    let clean = dir.file("clean.xml", &repaired);
+    let v = run(&clean);
+    for rule in ["U034", "U035", "U036", "U037"] {
+        assert!(
+            findings(&v, rule).is_empty(),
+            "{rule}: {:?}",
+            findings(&v, rule)
+        );
+    }
+}
+
+/// Two sibling links overlapping at qpos0, and an arm (so that self-collision is assessed) with a bracket
+/// welded to its forearm overlapping the upper arm the forearm hangs from; `CONTACT` is replaced by each test's filter.
+const OVERLAPPING: &str = r#"<mujoco>
+  <worldbody>
+    <body name="base">
+      <geom type="box" size="0.1 0.1 0.05"/>
+      <body name="left" pos="0 0.04 0.3">
+        <joint name="l" axis="1 0 0"/>
+        <geom name="left_geom" type="box" size="0.05 0.05 0.1"/>
+      </body>
+      <body name="right" pos="0 -0.04 0.3">
+        <joint name="r" axis="1 0 0"/>
+        <geom type="box" size="0.05 0.05 0.1"/>
+      </body>
+      <body name="upper" pos="1 0 0.3">
+        <joint name="shoulder" axis="0 1 0"/>
+        <geom type="box" size="0.05 0.05 0.1"/>
+        <body name="fore" pos="0 0 0.3">
+          <joint name="elbow" axis="0 1 0"/>
+          <geom type="box" size="0.05 0.05 0.1"/>
+          <body name="bracket" pos="0 0 -0.2">
+            <geom type="box" size="0.02 0.02 0.02"/>
+          </body>
+          <body name="hand" pos="0 0 0.3">
+            <joint name="wrist" axis="0 1 0"/>
+            <geom type="box" size="0.03 0.03 0.05"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  CONTACT
+</mujoco>"#;
+
+/// The link pairs of U601 (in contact at the zero pose, so left out of self-collision sampling).
+fn touching(dir: &Scratch, name: &str, contact: &str, replace: (&str, &str)) -> Vec<String> {
+    let text = OVERLAPPING
+        .replace("CONTACT", contact)
+        .replace(replace.0, replace.1);
+    let v = run(&dir.file(name, &text));
+    let mut pairs: Vec<String> = findings(&v, "U601")
+        .into_iter()
+        .map(|(_, _, m)| m.split(" have").next().unwrap_or("").to_string())
+        .collect();
+    pairs.sort();
+    pairs
+}
+
+#[test]
+fn self_collision_pairs_follow_mujocos_contact_filter() {
+    let dir = Scratch::new("contacts");
+    let none = ("", "");
+    // Unfiltered, the siblings touch; the bracket welded to 'fore' is filtered against 'upper', the body
+    // 'fore' hangs from (MuJoCo's parent filter), so it is not a contact.
+    assert_eq!(
+        touching(&dir, "plain.xml", "", none),
+        ["Links 'left' and 'right'"]
+    );
+    // An exclusion.
+    let exclude = r#"<contact><exclude body1="right" body2="left"/></contact>"#;
+    assert!(touching(&dir, "exclude.xml", exclude, none).is_empty());
+    // contype 2 / conaffinity 2 against 1 / 1: (2 & 1) | (1 & 2) = 0.
+    let bits = (
+        r#"name="left_geom""#,
+        r#"name="left_geom" contype="2" conaffinity="2""#,
+    );
+    assert!(touching(&dir, "bits.xml", "", bits).is_empty());
+    // contype 3 meets conaffinity 1: they collide again.
+    let overlap = (
+        r#"name="left_geom""#,
+        r#"name="left_geom" contype="3" conaffinity="2""#,
+    );
+    assert_eq!(
+        touching(&dir, "overlap.xml", "", overlap),
+        ["Links 'left' and 'right'"]
+    );
+    // Without MuJoCo's parent filter the bracket touches the upper arm.
+    let no_parent = r#"<option><flag filterparent="disable"/></option>"#;
+    assert_eq!(
+        touching(&dir, "noparent.xml", no_parent, none),
+        ["Links 'left' and 'right'", "Links 'upper' and 'bracket'"]
+    );
+}
+
+#[test]
+fn an_include_problem_inside_a_section_is_reported_once() {
+    let dir = Scratch::new("include-once");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <worldbody><include file="missing.xml"/><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+  <contact><include file="gone.xml"/></contact>
+</mujoco>"#,
+    );
+    let v = run(&path);
+    let found = findings(&v, "U031");
+    assert_eq!(found.len(), 2, "{found:?}");
+    has(&v, "U031", "m.xml", 2, "no such file");
+    has(&v, "U031", "m.xml", 3, "no such file");
+}

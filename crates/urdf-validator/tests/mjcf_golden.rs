@@ -1,15 +1,17 @@
-//! The MJCF reader against MuJoCo itself: for every dm_control suite model MuJoCo compiles, our total mass,
-//! per-body mass, world centres of mass and gravity torques (statics at the same joint values) agree with
-//! MuJoCo's (`tests/golden/mujoco/*.json`, written by `scripts/oracle/mjcf_goldens.py` with MuJoCo 4.0.0:
-//! `body_mass`, `xipos`, `subtree_com` of the world, `qfrc_bias` at zero velocity, gravity on even where
-//! the model turns it off) at `qpos0` and at two seeded random configurations.
+//! The MJCF reader against MuJoCo itself: for every model of two corpora MuJoCo compiles (dm_control's
+//! suite, `tests/golden/mujoco/*.json`; gymnasium's MuJoCo environments, `tests/golden/gymnasium/*.json`),
+//! our total mass, per-body mass, world centres of mass and gravity torques (statics at the same joint
+//! values) agree with MuJoCo's (written by `scripts/oracle/mjcf_goldens.py` with MuJoCo 4.0.0:
+//! `body_mass`, `xipos`, `subtree_com` of the world, `qfrc_bias` at zero velocity, under standard gravity
+//! whatever the model sets) at `qpos0` and at two seeded random configurations.
 //!
 //! Agreement: |ours − MuJoCo's| ≤ 1e-9 · max(|ours|, |MuJoCo's|) + floor, with floors of 1e-12 kg for
 //! masses, 1e-12 m for positions and 1e-10 N·m (N) for torques (forces); each body's principal moments of
 //! inertia (`body_inertia`) to 1e-7 (see [`INERTIA_RELATIVE`]): values near zero (a COM on an
 //! axis, a torque about a vertical axis) are rounding noise in both. The models come from the
-//! `dm-control==1.0.50` wheel (`URDF_VALIDATOR_MJCF_CORPUS`, the wheel's `dm_control/suite` folder;
-//! `scripts/setup-test-env.sh` unpacks it); under `CI=true` a missing corpus fails.
+//! `dm-control==1.0.50` wheel (`URDF_VALIDATOR_MJCF_CORPUS`, the wheel's `dm_control/suite` folder) and
+//! the `gymnasium==1.2.2` wheel (`URDF_VALIDATOR_GYMNASIUM_CORPUS`, its `gymnasium/envs/mujoco/assets`);
+//! `scripts/setup-test-env.sh` unpacks both; under `CI=true` a missing corpus fails.
 //!
 //! A second test writes models that use what the suite does not (nested classes and childclass,
 //! `<frame>`, every orientation form, `eulerseq`, several joints in one body, `ref`, ball and free joints,
@@ -32,9 +34,6 @@ use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::Loaded;
 use urdf_validator::model::{LinkMass, Model};
 
-/// Models compared with MuJoCo but not expected to agree, with the reason. None today.
-const EXCLUDED: [(&str, &str); 0] = [];
-
 const RELATIVE: f64 = 1e-9;
 const MASS_FLOOR: f64 = 1e-12;
 const POSITION_FLOOR: f64 = 1e-12;
@@ -45,24 +44,104 @@ const TORQUE_FLOOR: f64 = 1e-10;
 const INERTIA_RELATIVE: f64 = 1e-7;
 const INERTIA_FLOOR: f64 = 1e-12;
 
-fn goldens() -> Vec<PathBuf> {
-    let dir = common::repo_root().join("crates/urdf-validator/tests/golden/mujoco");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("the MuJoCo goldens are committed")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .collect();
-    files.sort();
-    files
+/// A folder of MJCF models and the goldens `scripts/oracle/mjcf_goldens.py --models` wrote for it.
+struct Corpus {
+    /// What the models are (for messages).
+    what: &'static str,
+    /// The environment variable naming the models' folder.
+    var: &'static str,
+    /// Where `scripts/setup-test-env.sh` unpacks the models, relative to the repository.
+    default: &'static str,
+    /// The goldens' folder, relative to the repository.
+    goldens: &'static str,
+    /// How many goldens there are at least (a lost folder is a failure, not a vacuous pass).
+    at_least: usize,
+    /// Models compared with MuJoCo but not expected to agree, with the reason.
+    excluded: &'static [(&'static str, &'static str)],
 }
 
-fn corpus() -> Option<PathBuf> {
-    let default = common::repo_root().join("target/dm-control/dm_control/suite");
-    common::data_dir(
-        "URDF_VALIDATOR_MJCF_CORPUS",
-        Some(default),
-        "the dm_control suite models (dm-control==1.0.50 wheel)",
-    )
+/// dm_control's suite (`dm-control==1.0.50`): `tests/golden/mujoco`.
+const DM_CONTROL: Corpus = Corpus {
+    what: "the dm_control suite models (dm-control==1.0.50 wheel)",
+    var: "URDF_VALIDATOR_MJCF_CORPUS",
+    default: "target/dm-control/dm_control/suite",
+    goldens: "crates/urdf-validator/tests/golden/mujoco",
+    at_least: 19,
+    excluded: &[],
+};
+
+/// gymnasium's MuJoCo environments (`gymnasium==1.2.2`): `tests/golden/gymnasium`.
+const GYMNASIUM: Corpus = Corpus {
+    what: "gymnasium's MuJoCo models (gymnasium==1.2.2 wheel)",
+    var: "URDF_VALIDATOR_GYMNASIUM_CORPUS",
+    default: "target/gymnasium/gymnasium/envs/mujoco/assets",
+    goldens: "crates/urdf-validator/tests/golden/gymnasium",
+    at_least: 14,
+    excluded: &[],
+};
+
+impl Corpus {
+    fn goldens(&self) -> Vec<PathBuf> {
+        let dir = common::repo_root().join(self.goldens);
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .expect("the MuJoCo goldens are committed")
+            .map(|e| e.expect("entry").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "json"))
+            .collect();
+        files.sort();
+        files
+    }
+
+    fn models(&self) -> Option<PathBuf> {
+        common::data_dir(
+            self.var,
+            Some(common::repo_root().join(self.default)),
+            self.what,
+        )
+    }
+
+    /// Every golden's model agrees with MuJoCo, but the excluded ones (which must still differ).
+    fn check(&self) {
+        let Some(models) = self.models() else { return };
+        let goldens = self.goldens();
+        assert!(
+            goldens.len() >= self.at_least,
+            "expected {} goldens in {}, found {}",
+            self.at_least,
+            self.goldens,
+            goldens.len()
+        );
+        let mut failures = Vec::new();
+        let mut compared = 0;
+        for golden_path in goldens {
+            let golden: Value =
+                serde_json::from_str(&std::fs::read_to_string(&golden_path).expect("read"))
+                    .expect("json");
+            let source = golden["source"].as_str().expect("source");
+            let stem = golden_path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .expect("stem");
+            let model_path = models.join(source);
+            assert!(model_path.is_file(), "{} is missing", model_path.display());
+            let differences = compare(&model_path, &golden);
+            let excluded = self.excluded.iter().find(|(name, _)| *name == stem);
+            match (excluded, differences.is_empty()) {
+                (None, true) => compared += 1,
+                (None, false) => failures.push(format!(
+                    "{stem}: {} difference(s):\n  {}",
+                    differences.len(),
+                    differences.join("\n  ")
+                )),
+                (Some((_, why)), true) => failures.push(format!(
+                    "{stem} is excluded ({why}) but agrees now: take it off the list"
+                )),
+                (Some(_), false) => {}
+            }
+        }
+        assert!(failures.is_empty(), "{}", failures.join("\n"));
+        eprintln!("{compared} models of {} agree with MuJoCo", self.what);
+    }
 }
 
 /// Our name of a MuJoCo body or joint (MuJoCo's `#N` for an unnamed one is our `body#N` / `joint#N`).
@@ -315,43 +394,12 @@ fn expected_efforts(golden: &Value) -> Vec<(String, Option<f64>)> {
 
 #[test]
 fn every_dm_control_model_agrees_with_mujoco() {
-    let Some(corpus) = corpus() else { return };
-    let goldens = goldens();
-    assert!(
-        goldens.len() >= 18,
-        "expected the dm_control suite goldens, found {}",
-        goldens.len()
-    );
-    let mut failures = Vec::new();
-    let mut compared = 0;
-    for golden_path in goldens {
-        let golden: Value =
-            serde_json::from_str(&std::fs::read_to_string(&golden_path).expect("read"))
-                .expect("json");
-        let source = golden["source"].as_str().expect("source");
-        let stem = golden_path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .expect("stem");
-        let model_path = corpus.join(source);
-        assert!(model_path.is_file(), "{} is missing", model_path.display());
-        let differences = compare(&model_path, &golden);
-        let excluded = EXCLUDED.iter().find(|(name, _)| *name == stem);
-        match (excluded, differences.is_empty()) {
-            (None, true) => compared += 1,
-            (None, false) => failures.push(format!(
-                "{stem}: {} difference(s):\n  {}",
-                differences.len(),
-                differences.join("\n  ")
-            )),
-            (Some((_, why)), true) => failures.push(format!(
-                "{stem} is excluded ({why}) but agrees now: take it off the list"
-            )),
-            (Some(_), false) => {}
-        }
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
-    eprintln!("{compared} models agree with MuJoCo");
+    DM_CONTROL.check();
+}
+
+#[test]
+fn every_gymnasium_model_agrees_with_mujoco() {
+    GYMNASIUM.check();
 }
 
 /// A binary STL of `triangles`.

@@ -178,6 +178,26 @@ rules! {
         why: "What it describes is left out of the analyses (or, for a ball joint, analysed as three single-axis joints whose gravity torques are MuJoCo's three ball dofs at the pose analysed).",
         fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
     }
+    MJCF_CTRLRANGE_SHORT = "U034" "mjcf-ctrlrange-short" Warn {
+        what: "A position servo's `ctrlrange`, divided by its `gear`, does not cover its joint's `range`: some joint positions inside the limits cannot be commanded.",
+        why: "MuJoCo clamps the control to `ctrlrange` silently: a policy or controller asking for the rest of the range gets the nearest reachable target instead. A `ctrlrange` is never converted by `<compiler angle=\"degree\">` (the joint's `range` is), a frequent cause.",
+        fix: "Widen the `ctrlrange` to the joint's range times the gear (in radians for a hinge), or narrow the joint's `range` to what the servo can command.",
+    }
+    MJCF_ACTUATOR_UNBOUNDED = "U035" "mjcf-actuator-unbounded" Warn {
+        what: "An actuated hinge or slide joint whose actuators have no bound at all: no `forcerange`, an unlimited `ctrlrange`, and no `actuatorfrcrange` on the joint.",
+        why: "MuJoCo lets the actuator apply any force it is asked for, so the model holds any load in simulation that no real motor does, and the statics check has no torque limit to judge the joint by.",
+        fix: "Give the actuator a `ctrlrange` (and `ctrllimited`, or `<compiler autolimits=\"true\">`) or a `forcerange`, or the joint an `actuatorfrcrange`, from the motor's datasheet.",
+    }
+    MJCF_GEARED_JOINT_WITHOUT_ARMATURE = "U036" "mjcf-geared-joint-without-armature" Warn {
+        what: "A joint driven through a `gear` of magnitude above 1 has neither `armature` nor `damping`.",
+        why: "A geared motor's rotor inertia appears at the joint multiplied by the gear ratio squared (its reflected inertia, what MuJoCo's `armature` models), and a gearbox dissipates: without either, the simulated joint is lighter and livelier than the real one, and an explicit integrator can go unstable at high gains.",
+        fix: "Set the joint's `armature` to the rotor inertia times the gear ratio squared (and a `damping` from the datasheet or identification).",
+    }
+    MJCF_INERTIA_RESCUED = "U037" "mjcf-inertia-rescued" Warn {
+        what: "A body whose inertia MuJoCo accepts only thanks to `<compiler balanceinertia>` (its principal moments break the triangle inequality A + B ≥ C) or `boundinertia` (a principal moment is zero).",
+        why: "Without the compiler setting MuJoCo refuses the model; with it, the body's inertia is not the one written but one the compiler made up (the mean of the moments, or the bound), so the body's dynamics are not the real part's.",
+        fix: "Write the body's real inertia (from CAD, or from its geoms); a physical inertia satisfies the triangle inequality and has no zero moment.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

@@ -9,6 +9,7 @@
 //! `qpos0` (a joint's q is MuJoCo's `qpos − ref`, its limits shifted by `ref` too).
 
 mod actuators;
+mod contacts;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -123,6 +124,10 @@ pub struct Builder<'a, 'r> {
     joint_ids: usize,
     /// Each hinge and slide joint's `actuatorfrcrange` when it is limited, with its span.
     actuator_force: HashMap<String, ((f64, f64), Span)>,
+    /// What the actuator rules need to know of each hinge and slide joint, by name.
+    joint_facts: HashMap<String, actuators::JointFacts>,
+    /// What the contact filter needs to know of each body, in document order.
+    body_contacts: Vec<contacts::BodyContacts>,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -156,6 +161,8 @@ impl<'a, 'r> Builder<'a, 'r> {
             bodies: 0,
             joint_ids: 0,
             actuator_force: HashMap::new(),
+            joint_facts: HashMap::new(),
+            body_contacts: Vec::new(),
         };
         for section in sections {
             match section.tag() {
@@ -219,6 +226,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         }
         self.finish_masses();
         self.set_efforts(sections);
+        let collision_filtered = self.filtered_pairs(sections);
         let span = self.reader.span(root);
         Robot {
             name: root.attr("model").map(|m| Spanned {
@@ -229,6 +237,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             links: self.links,
             joints: self.joints,
             format: crate::input::Format::Mjcf,
+            collision_filtered,
             ..Robot::default()
         }
     }
@@ -707,14 +716,17 @@ impl<'a, 'r> Builder<'a, 'r> {
             collisions: Vec::new(),
         };
         let mut from_geoms = None;
+        let mut filters = Vec::new();
         for (geom_el, geom_class, geom_frame) in &contents.geoms {
             let (shape, collides, mass) =
                 self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
             if let Some(shape) = shape {
-                if collides {
-                    link.collisions.push(shape);
-                } else {
-                    link.visuals.push(shape);
+                match collides {
+                    Some(filter) => {
+                        link.collisions.push(shape);
+                        filters.push(filter);
+                    }
+                    None => link.visuals.push(shape),
                 }
             }
             if let Some(mass) = mass {
@@ -753,6 +765,12 @@ impl<'a, 'r> Builder<'a, 'r> {
             // Geoms that count for no mass: MuJoCo's body is massless, not of unknown mass.
             link.inertial = Some(inertial_of(&MassProps::zero(), self.reader.span(el)));
         }
+        self.body_contacts.push(contacts::BodyContacts {
+            link: name.clone(),
+            parent: parent.link.clone(),
+            moving: count > 0,
+            geoms: filters,
+        });
         self.links.push(link);
         let here = Parent {
             link: name,
@@ -888,6 +906,15 @@ impl<'a, 'r> Builder<'a, 'r> {
             self.actuator_force.insert(name.clone(), range);
         }
         let damping = self.scalar(el, class, "damping", 0.0);
+        let armature = self.scalar(el, class, "armature", 0.0);
+        self.joint_facts.insert(
+            name.clone(),
+            actuators::JointFacts {
+                range: limited.then(|| (to_q(bounds[0]), to_q(bounds[1]))),
+                span,
+                still: damping == 0.0 && armature == 0.0,
+            },
+        );
         let friction = self.scalar(el, class, "frictionloss", 0.0);
         spec.dynamics = Some(Dynamics {
             damping: Some(damping),
@@ -924,14 +951,15 @@ impl<'a, 'r> Builder<'a, 'r> {
         .placed(&placement)
     }
 
-    /// A geom's shape (in the link frame: `frame` places the geom's written frame there), whether it
-    /// collides, and its mass properties when it counts for the body's mass.
+    /// A geom's shape (in the link frame: `frame` places the geom's written frame there), its `contype`
+    /// and `conaffinity` when it collides (not both 0), and its mass properties when it counts for the
+    /// body's mass.
     fn geom(
         &mut self,
         el: El<'a>,
         class: &str,
         frame: &Isometry3<f64>,
-    ) -> (Option<Shape>, bool, Option<MassProps>) {
+    ) -> (Option<Shape>, Option<(u32, u32)>, Option<MassProps>) {
         let kind = self.word(
             el,
             class,
@@ -978,7 +1006,9 @@ impl<'a, 'r> Builder<'a, 'r> {
         let at = frame * placement;
         let contype = self.scalar(el, class, "contype", 1.0);
         let conaffinity = self.scalar(el, class, "conaffinity", 1.0);
-        let collides = contype != 0.0 || conaffinity != 0.0;
+        // Bit masks: MuJoCo reads them as integers.
+        let (contype, conaffinity) = (contype.max(0.0) as u32, conaffinity.max(0.0) as u32);
+        let collides = (contype != 0 || conaffinity != 0).then_some((contype, conaffinity));
         let group = self.scalar(el, class, "group", 0.0);
         let (lo, hi) = self.compiler.inertia_groups;
         let counts = group >= lo as f64 && group <= hi as f64;
@@ -1095,6 +1125,7 @@ impl<'a, 'r> Builder<'a, 'r> {
     }
 
     /// `boundmass`, `boundinertia`, `balanceinertia` and `settotalmass` applied to every body's mass.
+    /// A body whose inertia only a compiler setting makes acceptable is a U037.
     fn finish_masses(&mut self) {
         let c = &self.compiler;
         let bounded: Vec<(usize, MassProps)> = self
@@ -1107,6 +1138,22 @@ impl<'a, 'r> Builder<'a, 'r> {
                 )
             })
             .collect();
+        let rescued: Vec<(usize, &'static str)> = self
+            .masses
+            .iter()
+            .filter_map(|(i, p)| Some((*i, p.rescued_by(c.bound_inertia, c.balance_inertia)?)))
+            .collect();
+        for (i, setting) in rescued {
+            if let Some(link) = self.links.get(i) {
+                let span = link.inertial.as_ref().map_or(link.span, |m| m.span);
+                let message = format!(
+                    "body '{}': MuJoCo accepts its inertia only thanks to <compiler {setting}>; the inertia simulated is the compiler's, not the one written",
+                    link.name.value
+                );
+                self.reader
+                    .report(&rules::MJCF_INERTIA_RESCUED, span, message);
+            }
+        }
         let total: f64 = bounded.iter().map(|(_, p)| p.mass).sum();
         let factor = match c.set_total_mass {
             Some(target) if total > 0.0 => target / total,

@@ -65,6 +65,24 @@ impl MassProps {
         }
     }
 
+    /// The compiler setting (`balanceinertia` or `boundinertia`, as it is written) without which MuJoCo
+    /// would refuse this body's inertia, when one is on and needed: a body with mass whose principal
+    /// moments break the triangle inequality (beyond rounding), or one of which is zero (below MuJoCo's
+    /// `mjMINVAL`, 1e-15), that the setting repairs.
+    pub fn rescued_by(&self, bound_inertia: f64, balance: bool) -> Option<&'static str> {
+        if self.mass <= 0.0 {
+            return None;
+        }
+        let moments = SymmetricEigen::new(self.inertia).eigenvalues;
+        if bound_inertia > MIN_VALUE && moments.iter().any(|&m| m < MIN_VALUE) {
+            return Some("boundinertia");
+        }
+        let (a, b, c) = (moments[0], moments[1], moments[2]);
+        let slack = 1e-9 * (a.abs() + b.abs() + c.abs());
+        (balance && (a + b < c - slack || a + c < b - slack || b + c < a - slack))
+            .then_some("balanceinertia")
+    }
+
     /// `boundmass`, `boundinertia` and `balanceinertia` applied (to the principal moments).
     pub fn bounded(&self, bound_mass: f64, bound_inertia: f64, balance: bool) -> Self {
         let mass = self.mass.max(bound_mass);
@@ -162,7 +180,7 @@ pub fn primitive(kind: &str, size: [f64; 3]) -> Option<Solid> {
     })
 }
 
-/// Below this a triangle has no area (MuJoCo's `mjMINVAL`).
+/// MuJoCo's `mjMINVAL`: below it a triangle has no area, a principal moment is zero.
 const MIN_VALUE: f64 = 1e-15;
 
 /// How a mesh's volume is summed (`<mesh inertia>`).

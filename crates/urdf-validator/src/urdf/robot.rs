@@ -26,6 +26,10 @@ pub struct Robot {
     pub ros2_control: Vec<Ros2Control>,
     /// The format it was read from: SDFormat leaves effort and velocity limits optional, URDF does not.
     pub format: crate::input::Format,
+    /// Link pairs the file itself never lets collide (MJCF: `<contact><exclude>`, pairs no two of whose
+    /// geoms pass `contype`/`conaffinity`, MuJoCo's parent filter), by link name: the self-collision
+    /// check allows them as it allows an SRDF's `disable_collisions`.
+    pub collision_filtered: Vec<(String, String)>,
 }
 
 /// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians), or `xyz` + `quat_xyzw` (URDF 1.1).

@@ -134,7 +134,9 @@ pub struct CollisionSetup {
 }
 
 impl CollisionSetup {
-    /// Build the collision model and exclude what is in contact at the reference placements.
+    /// Build the collision model, allow the pairs the robot file itself filters out
+    /// ([`Robot::collision_filtered`]) and what the SRDF allows, and exclude what is in contact at the
+    /// reference placements.
     pub fn new(
         robot: &Robot,
         model: &Model,
@@ -143,6 +145,12 @@ impl CollisionSetup {
         srdf: &SrdfCollisions,
     ) -> CollisionSetup {
         let mut collision = CollisionModel::build(robot, model, supports);
+        let filtered: Vec<(LinkId, LinkId)> = robot
+            .collision_filtered
+            .iter()
+            .filter_map(|(a, b)| Some((model.link(a)?, model.link(b)?)))
+            .collect();
+        collision.allow(&filtered, Allowed::Disabled);
         let before = collision.all_pairs().len();
         let unknown_srdf_links = collision.allow_srdf(model, srdf);
         let srdf_disabled = before - collision.all_pairs().len();

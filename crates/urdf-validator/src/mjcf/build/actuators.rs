@@ -9,11 +9,35 @@
 //! bounds it; a joint without actuator is passive, its effort undeclared too (statics: UNKNOWN). The effort's span is the attribute that bounds it (`forcerange`,
 //! `ctrlrange` or `actuatorfrcrange`): where U701/U702 point.
 
+//!
+//! The MJCF-only actuator rules are checked here too: a position servo whose `ctrlrange` cannot command
+//! its joint's whole range (U034), an actuated joint without any bound (U035), a joint geared above 1
+//! without `armature` or `damping` (U036).
+
 use std::collections::HashMap;
 
 use super::{Builder, MAIN};
+use crate::diagnostics::rules;
 use crate::input::source::{Span, Spanned};
 use crate::mjcf::xml::El;
+
+/// What the actuator rules need to know of a hinge or slide joint.
+pub(super) struct JointFacts {
+    /// Its `range` in MuJoCo's qpos units (radians, metres) when it is limited.
+    pub range: Option<(f64, f64)>,
+    /// The joint element.
+    pub span: Span,
+    /// Both `armature` and `damping` are zero.
+    pub still: bool,
+}
+
+/// An actuator read: the joint it drives, the effort it can apply there (`None`: unbounded) and its
+/// element.
+struct Drive {
+    joint: String,
+    effort: Option<Spanned<f64>>,
+    span: Span,
+}
 
 /// The actuator elements read; the others are U033.
 const READ: [&str; 4] = ["motor", "position", "velocity", "general"];
@@ -23,11 +47,21 @@ impl<'a> Builder<'a, '_> {
     pub(super) fn set_efforts(&mut self, sections: &[El<'a>]) {
         // Per joint: the sum of its actuators' efforts, `None` once one of them is unbounded.
         let mut efforts: HashMap<String, Option<Spanned<f64>>> = HashMap::new();
+        // Per joint, the first actuator without any bound (U035 points at it).
+        let mut unbounded: HashMap<String, Span> = HashMap::new();
         for section in sections.iter().filter(|s| s.tag() == "actuator") {
             for el in self.reader.children(*section) {
-                let Some((joint, effort)) = self.actuator(el) else {
+                let Some(Drive {
+                    joint,
+                    effort,
+                    span,
+                }) = self.actuator(el)
+                else {
                     continue;
                 };
+                if effort.is_none() {
+                    unbounded.entry(joint.clone()).or_insert(span);
+                }
                 let sum = match efforts.remove(&joint) {
                     None => effort,
                     Some(Some(s)) => effort.map(|e| Spanned {
@@ -39,6 +73,7 @@ impl<'a> Builder<'a, '_> {
                 efforts.insert(joint, sum);
             }
         }
+        let mut findings = Vec::new();
         for joint in &mut self.joints {
             let Some(limit) = joint.limit.as_mut() else {
                 continue;
@@ -55,12 +90,57 @@ impl<'a> Builder<'a, '_> {
                 (Some(_), Some((most, span))) => Some(Spanned { value: most, span }),
                 (Some(sum), None) => sum,
             };
+            if let (None, Some(&span)) = (&limit.effort, unbounded.get(name)) {
+                findings.push((span, format!("joint '{name}' is actuated without any bound: no forcerange, no ctrlrange and no actuatorfrcrange, so MuJoCo applies whatever force is asked and the statics check has no limit to judge it by")));
+            }
+        }
+        for (span, message) in findings {
+            self.reader
+                .report(&rules::MJCF_ACTUATOR_UNBOUNDED, span, message);
         }
     }
 
-    /// The joint an actuator drives and the effort it can apply there (`None`: unbounded); `None` (with a
-    /// U033) when it drives no joint or is of a kind not read.
-    fn actuator(&mut self, el: El<'a>) -> Option<(String, Option<Spanned<f64>>)> {
+    /// U034 when the position servo `name` (gear `gear`, control range `ctrl`) cannot command all of
+    /// `joint`'s range: its targets in joint units are `ctrl / gear`.
+    fn check_servo_reach(&mut self, name: &str, joint: &str, gear: f64, ctrl: ((f64, f64), Span)) {
+        let Some((lo, hi)) = self.joint_facts.get(joint).and_then(|f| f.range) else {
+            return;
+        };
+        if gear == 0.0 {
+            return;
+        }
+        let ((c_lo, c_hi), span) = ctrl;
+        let (a, b) = (c_lo / gear, c_hi / gear);
+        let (reach_lo, reach_hi) = (a.min(b), a.max(b));
+        let slack = 1e-9 * (lo.abs().max(hi.abs()) + 1.0);
+        if reach_lo > lo + slack || reach_hi < hi - slack {
+            let message = format!(
+                "position actuator '{name}' commands joint '{joint}' only within [{reach_lo:.6}, {reach_hi:.6}] (ctrlrange / gear {gear}), not its whole range [{lo:.6}, {hi:.6}] (radians or metres: a ctrlrange is not converted from degrees)"
+            );
+            self.reader
+                .report(&rules::MJCF_CTRLRANGE_SHORT, span, message);
+        }
+    }
+
+    /// U036 when actuator `name`'s `gear` is above 1 in magnitude and `joint` has neither armature nor
+    /// damping.
+    fn check_geared_joint(&mut self, name: &str, joint: &str, gear: f64) {
+        let Some(facts) = self.joint_facts.get(joint) else {
+            return;
+        };
+        if gear.abs() > 1.0 && facts.still {
+            let span = facts.span;
+            let message = format!(
+                "joint '{joint}' is driven through gear {gear} by actuator '{name}' but has neither armature nor damping: a geared motor's rotor inertia is reflected to the joint times the gear ratio squared (armature), and a gearbox dissipates"
+            );
+            self.reader
+                .report(&rules::MJCF_GEARED_JOINT_WITHOUT_ARMATURE, span, message);
+        }
+    }
+
+    /// The joint an actuator drives and the effort it can apply there; `None` (with a U033) when it
+    /// drives no joint or is of a kind not read. Checks U034 and U036 on the way.
+    fn actuator(&mut self, el: El<'a>) -> Option<Drive> {
         let tag = el.tag();
         let name = el.attr("name").unwrap_or("(unnamed)");
         if !READ.contains(&tag) {
@@ -103,6 +183,10 @@ impl<'a> Builder<'a, '_> {
                 (gain, affine && position_term)
             }
         };
+        if let (true, Some(ctrl)) = (position_like, ctrl) {
+            self.check_servo_reach(name, joint, gear, ctrl);
+        }
+        self.check_geared_joint(name, joint, gear);
         let from_ctrl = ctrl.map(|((lo, hi), span)| {
             let reach = if position_like {
                 hi - lo
@@ -117,12 +201,13 @@ impl<'a> Builder<'a, '_> {
             (_, Some(f)) => Some(f),
             (c, None) => c,
         };
-        Some((
-            joint.to_string(),
-            bound.map(|(most, span)| Spanned {
+        Some(Drive {
+            joint: joint.to_string(),
+            effort: bound.map(|(most, span)| Spanned {
                 value: gear.abs() * most,
                 span,
             }),
-        ))
+            span: self.reader.span(el),
+        })
     }
 }

@@ -1,0 +1,101 @@
+//! Which body pairs MuJoCo never lets collide, as link pairs for the self-collision check: a
+//! `<contact><exclude body1 body2>`, a pair none of whose geoms pass MuJoCo's filter (two geoms collide
+//! only when `contype1 & conaffinity2` or `contype2 & conaffinity1` is not 0), and MuJoCo's parent filter
+//! bodies welded together (to the same moving body, or to the world) never collide, and (unless
+//! `<option><flag filterparent="disable">`) nor does a body with the body its own weld hangs from, the
+//! world excepted (MuJoCo's `body_weldid` rule).
+
+use std::collections::{HashMap, HashSet};
+
+use super::Builder;
+use crate::mjcf::xml::El;
+
+/// What the contact filter needs to know of a body.
+pub(super) struct BodyContacts {
+    /// Its link.
+    pub link: String,
+    /// Its parent body's link (`world` for a top-level body).
+    pub parent: String,
+    /// It has a joint (is not welded to its parent).
+    pub moving: bool,
+    /// `(contype, conaffinity)` of each of its collision geoms.
+    pub geoms: Vec<(u32, u32)>,
+}
+
+/// Whether two geoms may collide by their `(contype, conaffinity)`.
+fn compatible(a: (u32, u32), b: (u32, u32)) -> bool {
+    a.0 & b.1 != 0 || b.0 & a.1 != 0
+}
+
+impl<'a> Builder<'a, '_> {
+    /// The link pairs MuJoCo never lets collide, given the `<contact>` and `<option>` sections among
+    /// `sections`; each pair once, sorted.
+    pub(super) fn filtered_pairs(&mut self, sections: &[El<'a>]) -> Vec<(String, String)> {
+        let mut pairs: HashSet<(String, String)> = HashSet::new();
+        let mut add = |a: &str, b: &str| {
+            if a != b {
+                let (a, b) = if a < b { (a, b) } else { (b, a) };
+                pairs.insert((a.to_string(), b.to_string()));
+            }
+        };
+        let mut filter_parent = true;
+        // Only these two sections: expanding another's includes again would repeat their U031s.
+        for section in sections
+            .iter()
+            .filter(|s| matches!(s.tag(), "contact" | "option"))
+        {
+            for el in self.reader.children(*section) {
+                match (section.tag(), el.tag()) {
+                    ("contact", "exclude") => {
+                        if let (Some(a), Some(b)) = (el.attr("body1"), el.attr("body2")) {
+                            add(a, b);
+                        }
+                    }
+                    ("option", "flag") if el.attr("filterparent") == Some("disable") => {
+                        filter_parent = false;
+                    }
+                    _ => {}
+                }
+            }
+        }
+        let bodies = &self.body_contacts;
+        // Each body's weld root: itself when it moves, else its parent's (the world for none).
+        let by_link: HashMap<&str, &BodyContacts> =
+            bodies.iter().map(|b| (b.link.as_str(), b)).collect();
+        let weld_root = |link: &str| -> String {
+            let mut at = link;
+            while let Some(body) = by_link.get(at).filter(|b| !b.moving) {
+                at = &body.parent;
+            }
+            at.to_string()
+        };
+        let roots: Vec<String> = bodies.iter().map(|b| weld_root(&b.link)).collect();
+        let parent_roots: Vec<Option<String>> = roots
+            .iter()
+            .map(|r| by_link.get(r.as_str()).map(|b| weld_root(&b.parent)))
+            .collect();
+        for (i, a) in bodies.iter().enumerate() {
+            for (j, b) in bodies.iter().enumerate().skip(i + 1) {
+                if a.geoms.is_empty() || b.geoms.is_empty() {
+                    continue;
+                }
+                let never = !a
+                    .geoms
+                    .iter()
+                    .any(|&g| b.geoms.iter().any(|&h| compatible(g, h)));
+                let world = roots[i] == "world" || roots[j] == "world";
+                let family = roots[i] == roots[j]
+                    || (filter_parent
+                        && !world
+                        && (parent_roots[i].as_deref() == Some(roots[j].as_str())
+                            || parent_roots[j].as_deref() == Some(roots[i].as_str())));
+                if never || family {
+                    add(&a.link, &b.link);
+                }
+            }
+        }
+        let mut pairs: Vec<(String, String)> = pairs.into_iter().collect();
+        pairs.sort();
+        pairs
+    }
+}
