@@ -205,17 +205,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             _ => false,
         };
         if !floating_root {
-            let span = self.reader.span(root);
-            self.links.push(Link {
-                name: Spanned {
-                    value: "world".to_string(),
-                    span,
-                },
-                span,
-                inertial: None,
-                visuals: Vec::new(),
-                collisions: Vec::new(),
-            });
+            self.links.push(Link::world(self.reader.span(root)));
         }
         let world = Parent {
             link: "world".to_string(),

@@ -96,7 +96,7 @@ pub fn robot(scene: &Scene, sink: &mut Sink) -> Robot {
     let to_world = resolved.iter().any(|j| j.parent == "world");
     let mut robot_links = Vec::new();
     if to_world || scene.is_static || off_origin || roots.len() > 1 {
-        robot_links.push(world_link(scene.span));
+        robot_links.push(Link::world(scene.span));
         for (i, root) in roots.iter().enumerate() {
             if !scene.is_static && (to_world || i > 0) {
                 sink.report(
@@ -178,19 +178,6 @@ fn resolve<'d, 'a>(
         child,
         frame,
     })
-}
-
-fn world_link(span: Span) -> Link {
-    Link {
-        name: Spanned {
-            value: "world".to_string(),
-            span,
-        },
-        span,
-        inertial: None,
-        visuals: Vec::new(),
-        collisions: Vec::new(),
-    }
 }
 
 /// The fixed joint holding root link `root` at `at` in the world.

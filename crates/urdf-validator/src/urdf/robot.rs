@@ -75,6 +75,20 @@ pub struct Link {
 }
 
 impl Link {
+    /// The `world` link SDFormat and MJCF models hang from (no mass, no geometry), spanning `span`.
+    pub fn world(span: Span) -> Link {
+        Link {
+            name: Spanned {
+                value: "world".to_string(),
+                span,
+            },
+            span,
+            inertial: None,
+            visuals: Vec::new(),
+            collisions: Vec::new(),
+        }
+    }
+
     /// True when the link carries neither mass nor geometry: a coordinate frame.
     pub fn is_bare(&self) -> bool {
         self.inertial.is_none() && self.visuals.is_empty() && self.collisions.is_empty()
