@@ -593,3 +593,27 @@ fn an_include_problem_inside_a_section_is_reported_once() {
     has(&v, "U031", "m.xml", 2, "no such file");
     has(&v, "U031", "m.xml", 3, "no such file");
 }
+
+/// A moving body that has, with the bodies welded to it, no mass is U030 at the body: MuJoCo 4.0 refuses
+/// these models ("mass and inertia of moving bodies must be larger than mjMINVAL"), and accepts a massless
+/// moving body whose welded child carries mass. (Failed before: no U030.)
+#[test]
+fn a_moving_body_without_mass_is_refused_as_mujoco_refuses_it() {
+    let dir = Scratch::new("massless");
+    let refused = dir.file(
+        "refused.xml",
+        "<mujoco>\n<worldbody>\n<body name=\"upper\">\n<joint name=\"a\"/>\n\
+         <body name=\"lower\" pos=\"1 0 0\">\n<joint name=\"b\"/>\n<geom size=\"0.1\" mass=\"0\"/>\n\
+         <body name=\"tip\"><geom size=\"0.1\"/></body>\n</body>\n</body>\n</worldbody>\n</mujoco>",
+    );
+    let v = run(&refused);
+    let found = findings(&v, "U030");
+    assert_eq!(found.len(), 1, "{found:?}");
+    has(&v, "U030", "refused.xml", 3, "body 'upper' moves");
+    let accepted = dir.file(
+        "accepted.xml",
+        "<mujoco>\n<worldbody>\n<body name=\"upper\">\n<joint name=\"a\"/>\n\
+         <body name=\"bracket\" pos=\"1 0 0\">\n<geom size=\"0.1\"/>\n</body>\n</body>\n</worldbody>\n</mujoco>",
+    );
+    assert!(findings(&run(&accepted), "U030").is_empty());
+}

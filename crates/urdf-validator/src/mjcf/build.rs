@@ -215,6 +215,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             self.body(el, &class, &world, frame, true, floating_root);
         }
         self.finish_masses();
+        self.refuse_massless_moving_bodies();
         self.set_efforts(sections);
         let collision_filtered = self.filtered_pairs(sections);
         let span = self.reader.span(root);
@@ -1155,6 +1156,45 @@ impl<'a, 'r> Builder<'a, 'r> {
                 let span = link.inertial.as_ref().map_or(link.span, |m| m.span);
                 link.inertial = Some(inertial_of(&props, span));
             }
+        }
+    }
+}
+
+impl Builder<'_, '_> {
+    /// U030 for each moving body that has, with the bodies welded to it, no mass: MuJoCo refuses such a
+    /// model ("mass and inertia of moving bodies must be larger than mjMINVAL"). Only the mass is checked.
+    fn refuse_massless_moving_bodies(&mut self) {
+        let mass_of = |link: &str| {
+            self.links
+                .iter()
+                .find(|l| l.name.value == link)
+                .and_then(|l| l.inertial.as_ref()?.mass.as_ref())
+                .map_or(0.0, |m| m.value)
+        };
+        let by_link = contacts::by_link(&self.body_contacts);
+        let mut composite: HashMap<String, f64> = HashMap::new();
+        for body in &self.body_contacts {
+            *composite
+                .entry(contacts::weld_root(&by_link, &body.link))
+                .or_default() += mass_of(&body.link);
+        }
+        let refused: Vec<(Span, String)> = self
+            .body_contacts
+            .iter()
+            .filter(|b| b.moving && composite.get(&b.link).copied().unwrap_or(0.0) < mass::MIN_VALUE)
+            .filter_map(|b| {
+                let link = self.links.iter().find(|l| l.name.value == b.link)?;
+                Some((
+                    link.span,
+                    format!(
+                        "body '{}' moves (it has a joint) but it and the bodies welded to it have no mass: MuJoCo refuses the model (\"mass and inertia of moving bodies must be larger than mjMINVAL\")",
+                        b.link
+                    ),
+                ))
+            })
+            .collect();
+        for (span, message) in refused {
+            self.reader.report(&rules::MJCF_STRUCTURE, span, message);
         }
     }
 }

@@ -180,8 +180,8 @@ pub fn primitive(kind: &str, size: [f64; 3]) -> Option<Solid> {
     })
 }
 
-/// MuJoCo's `mjMINVAL`: below it a triangle has no area, a principal moment is zero.
-const MIN_VALUE: f64 = 1e-15;
+/// MuJoCo's `mjMINVAL`: below it a triangle has no area, a principal moment or a mass is zero.
+pub(super) const MIN_VALUE: f64 = 1e-15;
 
 /// How a mesh's volume is summed (`<mesh inertia>`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

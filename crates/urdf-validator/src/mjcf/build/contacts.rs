@@ -22,6 +22,21 @@ pub(super) struct BodyContacts {
     pub geoms: Vec<(u32, u32)>,
 }
 
+/// The bodies by their link's name.
+pub(super) fn by_link(bodies: &[BodyContacts]) -> HashMap<&str, &BodyContacts> {
+    bodies.iter().map(|b| (b.link.as_str(), b)).collect()
+}
+
+/// The weld root of the body whose link is `link`: itself when it moves, else its parent's (the world's
+/// link name for none): MuJoCo's `body_weldid`.
+pub(super) fn weld_root(by_link: &HashMap<&str, &BodyContacts>, link: &str) -> String {
+    let mut at = link;
+    while let Some(body) = by_link.get(at).filter(|b| !b.moving) {
+        at = &body.parent;
+    }
+    at.to_string()
+}
+
 /// Whether two geoms may collide by their `(contype, conaffinity)`.
 fn compatible(a: (u32, u32), b: (u32, u32)) -> bool {
     a.0 & b.1 != 0 || b.0 & a.1 != 0
@@ -59,16 +74,8 @@ impl<'a> Builder<'a, '_> {
             }
         }
         let bodies = &self.body_contacts;
-        // Each body's weld root: itself when it moves, else its parent's (the world for none).
-        let by_link: HashMap<&str, &BodyContacts> =
-            bodies.iter().map(|b| (b.link.as_str(), b)).collect();
-        let weld_root = |link: &str| -> String {
-            let mut at = link;
-            while let Some(body) = by_link.get(at).filter(|b| !b.moving) {
-                at = &body.parent;
-            }
-            at.to_string()
-        };
+        let by_link = by_link(bodies);
+        let weld_root = |link: &str| weld_root(&by_link, link);
         let roots: Vec<String> = bodies.iter().map(|b| weld_root(&b.link)).collect();
         let parent_roots: Vec<Option<String>> = roots
             .iter()
