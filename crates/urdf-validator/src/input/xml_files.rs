@@ -317,6 +317,15 @@ impl XmlFiles {
         )
     }
 
+    /// The span of attribute `name`'s value on `node` of file `index`, or the element's when it is not
+    /// written.
+    pub fn attr_span(&self, index: usize, node: roxmltree::Node<'_, '_>, name: &str) -> Span {
+        node.attribute_node(name).map_or_else(
+            || self.span(index, node.range()),
+            |a| self.span(index, a.range_value()),
+        )
+    }
+
     /// What the `<include>` element at `span` (shared span space) resolved to.
     pub fn include(&self, span: Span) -> Option<&IncludeTarget> {
         self.includes.get(&span.start)

@@ -73,10 +73,7 @@ impl<'a> Reader<'a> {
 
     /// The span of attribute `name`'s value, or the element's when it is not written.
     pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
-        el.node.attribute_node(name).map_or_else(
-            || self.span(el),
-            |a| self.files.span(el.file, a.range_value()),
-        )
+        self.files.attr_span(el.file, el.node, name)
     }
 
     /// Record a finding.

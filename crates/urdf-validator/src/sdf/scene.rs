@@ -242,10 +242,7 @@ impl<'a> Sink<'a> {
 
     /// The span of attribute `name` of `el` (its value), or the element's.
     pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
-        el.node.attribute_node(name).map_or_else(
-            || self.span(el),
-            |a| self.files.span(el.file, a.range_value()),
-        )
+        self.files.attr_span(el.file, el.node, name)
     }
 
     /// Record a finding.
