@@ -55,9 +55,15 @@ pub(super) struct HeldSpheres {
     /// Per group: its sphere's centre in the current pose.
     group_centre: Vec<Vector3<f64>>,
     /// The held slots' spheres (they stay where they are), [`LANES`] per block: x, y, z and radius of each
-    /// (the padding of the last block is infinitely far).
+    /// (the padding of the last block is infinitely far). Blocks gather nearby spheres (see
+    /// [`spatial_order`]), so most blocks are far from a group as a whole.
     held: Vec<[[f64; LANES]; 4]>,
-    /// The held slots near one group (indices into `held`'s entries), refilled per group.
+    /// Per lane of `held` (block by block): the index of its held slot in [`HeldBroad`]'s `held`.
+    held_index: Vec<u32>,
+    /// Per block of `held`: a sphere around its spheres (centre, radius; infinite when a lane is not
+    /// finite), tested before its lanes.
+    block: Vec<(Vector3<f64>, f64)>,
+    /// The held slots near one group (indices into [`HeldBroad`]'s `held`), refilled per group.
     near: Vec<u32>,
 }
 
@@ -158,17 +164,24 @@ impl HeldBroad {
                 radius.get(slot).copied().unwrap_or(f64::NAN),
             )
         };
+        let held: Vec<(Vector3<f64>, f64)> = self.held.iter().map(|&slot| sphere(slot)).collect();
+        into.held_index.clear();
+        into.held_index
+            .extend(spatial_order(&held).into_iter().map(|h| h as u32));
         into.held.clear();
-        into.held.extend(self.held.chunks(LANES).map(|slots| {
-            let mut block = [[f64::INFINITY; LANES]; 4];
-            block[3] = [0.0; LANES];
-            for (lane, &slot) in slots.iter().enumerate() {
-                let (c, r) = sphere(slot);
-                (block[0][lane], block[1][lane], block[2][lane]) = (c.x, c.y, c.z);
-                block[3][lane] = r;
+        into.block.clear();
+        for indices in into.held_index.chunks(LANES) {
+            let mut lanes = [[f64::INFINITY; LANES]; 4];
+            lanes[3] = [0.0; LANES];
+            for (lane, &h) in indices.iter().enumerate() {
+                let (c, r) = held[h as usize];
+                (lanes[0][lane], lanes[1][lane], lanes[2][lane]) = (c.x, c.y, c.z);
+                lanes[3][lane] = r;
             }
-            block
-        }));
+            into.held.push(lanes);
+            into.block
+                .push(enclosing(indices.iter().map(|&h| held[h as usize])));
+        }
         into.group.clear();
         into.group.extend(
             self.group_root
@@ -178,25 +191,11 @@ impl HeldBroad {
                     let Some(root) = placements.get(root.0) else {
                         return (Point3::origin(), f64::INFINITY);
                     };
-                    let local: Vec<(Point3<f64>, f64)> = members
-                        .iter()
-                        .map(|&slot| {
-                            let (c, r) = sphere(slot);
-                            (root.inverse_transform_point(&Point3::from(c)), r)
-                        })
-                        .collect();
-                    let mean = local.iter().map(|(c, _)| c.coords).sum::<Vector3<f64>>()
-                        / local.len().max(1) as f64;
-                    let reach = local
-                        .iter()
-                        .map(|(c, r)| (c.coords - mean).norm() + r)
-                        .fold(0.0, f64::max);
-                    let radius = reach + SLACK + 1e-9 * (mean.norm() + reach);
-                    if radius.is_finite() && mean.iter().all(|v| v.is_finite()) {
-                        (Point3::from(mean), radius)
-                    } else {
-                        (Point3::origin(), f64::INFINITY)
-                    }
+                    let (centre, radius) = enclosing(members.iter().map(|&slot| {
+                        let (c, r) = sphere(slot);
+                        (root.inverse_transform_point(&Point3::from(c)).coords, r)
+                    }));
+                    (Point3::from(centre), radius)
                 }),
         );
     }
@@ -241,11 +240,12 @@ impl HeldBroad {
             offsets.get(i).copied().unwrap_or_default() as usize
                 ..offsets.get(i + 1).copied().unwrap_or_default() as usize
         };
+        let mut near_held = std::mem::take(&mut spheres.near);
         for (g, (centre, (_, radius))) in
             spheres.group_centre.iter().zip(&spheres.group).enumerate()
         {
-            held_near(centre, radius + margin, &spheres.held, &mut spheres.near);
-            for &h in &spheres.near {
+            held_near(centre, radius + margin, spheres, &mut near_held);
+            for &h in &near_held {
                 let h = h as usize;
                 if h < held_count {
                     keep(
@@ -254,6 +254,7 @@ impl HeldBroad {
                 }
             }
         }
+        spheres.near = near_held;
         for &(g, k, start, end) in &self.group_links {
             let [(one, (_, one_radius)), (other, (_, other_radius))] =
                 [g, k].map(|g| (&spheres.group_centre[g as usize], spheres.group[g as usize]));
@@ -264,12 +265,20 @@ impl HeldBroad {
     }
 }
 
-/// Into `near`: the index of every held sphere (entry of `held`, [`LANES`] per block) within `reach` plus
+/// Into `near`: the index (in [`HeldBroad`]'s `held`) of every held sphere of `spheres` within `reach` plus
 /// its radius of `centre` (and every one when a value is not finite: NaN keeps).
-fn held_near(centre: &Vector3<f64>, reach: f64, held: &[[[f64; LANES]; 4]], near: &mut Vec<u32>) {
+fn held_near(centre: &Vector3<f64>, reach: f64, spheres: &HeldSpheres, near: &mut Vec<u32>) {
     near.clear();
     let (cx, cy, cz) = (centre.x, centre.y, centre.z);
-    for (block, [x, y, z, radius]) in held.iter().enumerate() {
+    for (block, ([x, y, z, radius], (block_centre, block_radius))) in
+        spheres.held.iter().zip(&spheres.block).enumerate()
+    {
+        // A block whose enclosing sphere is beyond the reach holds no sphere within it (the enclosing
+        // radius has slack for rounding); NaN and infinite radii fail this test, so their lanes decide.
+        let far = block_radius + reach;
+        if (block_centre - centre).norm_squared() >= far * far {
+            continue;
+        }
         // Squared distance less squared reach, lane by lane: negative exactly when the distance is below
         // the reach (a rounded difference keeps the sign of the exact one).
         let mut excess = [0.0; LANES];
@@ -283,10 +292,71 @@ fn held_near(centre: &Vector3<f64>, reach: f64, held: &[[[f64; LANES]; 4]], near
             hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
         }
         while hits != 0 {
-            near.push((block * LANES) as u32 + hits.trailing_zeros());
+            let lane = block * LANES + hits.trailing_zeros() as usize;
+            near.extend(spheres.held_index.get(lane));
             hits &= hits - 1;
         }
     }
+}
+
+/// A sphere around `spheres` (centre, radius), with [`SLACK`] and a relative 1e-9 added for rounding;
+/// infinitely large when a centre or radius is not finite.
+fn enclosing(spheres: impl Iterator<Item = (Vector3<f64>, f64)> + Clone) -> (Vector3<f64>, f64) {
+    let count = spheres.clone().count().max(1) as f64;
+    let mean = spheres.clone().map(|(c, _)| c).sum::<Vector3<f64>>() / count;
+    let reach = spheres
+        .map(|(c, r)| (c - mean).norm() + r)
+        .fold(
+            0.0,
+            |a: f64, b| if b.is_nan() { f64::NAN } else { a.max(b) },
+        );
+    let radius = reach + SLACK + 1e-9 * (mean.norm() + reach);
+    if radius.is_finite() && mean.iter().all(|v| v.is_finite()) {
+        (mean, radius)
+    } else {
+        (Vector3::zeros(), f64::INFINITY)
+    }
+}
+
+/// An order of `spheres` (centre, radius) in which each run of [`LANES`] lies close together: split in
+/// two at a multiple of [`LANES`] across the widest extent of the centres, recursively. Spheres with a
+/// centre that is not finite come last.
+fn spatial_order(spheres: &[(Vector3<f64>, f64)]) -> Vec<usize> {
+    let (mut order, not_finite): (Vec<usize>, Vec<usize>) =
+        (0..spheres.len()).partition(|&i| spheres[i].0.iter().all(|v| v.is_finite()));
+    split_widest(&mut order, spheres);
+    order.extend(not_finite);
+    order
+}
+
+/// [`spatial_order`] of the finite spheres at `order`, in place.
+fn split_widest(order: &mut [usize], spheres: &[(Vector3<f64>, f64)]) {
+    if order.len() <= LANES {
+        return;
+    }
+    let extent = |axis: usize| {
+        let values = order.iter().map(|&i| spheres[i].0[axis]);
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        hi - lo
+    };
+    let axis = (1..3).fold(0, |best, axis| {
+        if extent(axis) > extent(best) {
+            axis
+        } else {
+            best
+        }
+    });
+    order.sort_by(|&a, &b| {
+        spheres[a].0[axis]
+            .total_cmp(&spheres[b].0[axis])
+            .then(a.cmp(&b))
+    });
+    let half = (order.len() / 2).div_ceil(LANES) * LANES;
+    let (left, right) = order.split_at_mut(half.min(order.len()));
+    split_widest(left, spheres);
+    split_widest(right, spheres);
 }
 
 /// Lists as one array and the offsets of each list's start (and of the end).
@@ -364,6 +434,58 @@ mod tests {
         }
         grouping.candidates(&moved, &mut spheres, 0.0, &mut bits);
         assert_eq!(set_bits(&bits).collect::<Vec<_>>(), vec![2, 3]);
+    }
+
+    /// The block spheres only skip what the lanes would reject: over random held spheres (some not
+    /// finite) and query spheres, the held spheres found are those a test of every sphere finds.
+    #[test]
+    fn blocks_skip_only_spheres_out_of_reach() {
+        let mut rng = crate::rng::SplitMix64::new(7);
+        for count in [1, 7, 8, 9, 30, 64, 100] {
+            let mut held: Vec<(Vector3<f64>, f64)> = (0..count)
+                .map(|_| {
+                    let c = Vector3::from_fn(|_, _| rng.uniform(-1.0, 1.0));
+                    (c, rng.uniform(0.0, 0.2))
+                })
+                .collect();
+            if count > 8 {
+                held[3].0.x = f64::NAN;
+            }
+            let mut spheres = HeldSpheres::default();
+            let order = spatial_order(&held);
+            let mut sorted = order.clone();
+            sorted.sort_unstable();
+            assert_eq!(sorted, (0..count).collect::<Vec<_>>(), "a permutation");
+            spheres.held_index = order.iter().map(|&h| h as u32).collect();
+            for indices in spheres.held_index.chunks(LANES) {
+                let mut lanes = [[f64::INFINITY; LANES]; 4];
+                lanes[3] = [0.0; LANES];
+                for (lane, &h) in indices.iter().enumerate() {
+                    let (c, r) = held[h as usize];
+                    (lanes[0][lane], lanes[1][lane], lanes[2][lane]) = (c.x, c.y, c.z);
+                    lanes[3][lane] = r;
+                }
+                spheres.held.push(lanes);
+                spheres
+                    .block
+                    .push(enclosing(indices.iter().map(|&h| held[h as usize])));
+            }
+            let mut near = Vec::new();
+            for _ in 0..500 {
+                let centre = Vector3::from_fn(|_, _| rng.uniform(-1.5, 1.5));
+                let reach = rng.uniform(0.0, 0.5);
+                held_near(&centre, reach, &spheres, &mut near);
+                near.sort_unstable();
+                let every: Vec<u32> = (0..count as u32)
+                    .filter(|&h| {
+                        let (c, r) = held[h as usize];
+                        let excess = (centre - c).norm_squared() - (reach + r) * (reach + r);
+                        excess < 0.0 || excess.is_nan()
+                    })
+                    .collect();
+                assert_eq!(near, every, "{count} held spheres, reach {reach}");
+            }
+        }
     }
 
     #[test]

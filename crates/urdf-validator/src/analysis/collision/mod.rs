@@ -211,6 +211,11 @@ struct SweepScratch {
 }
 
 impl PairSet {
+    /// Every link of the set's pairs, once, sorted.
+    pub fn links(&self) -> &[LinkId] {
+        &self.links
+    }
+
     /// The pairs, each with the lower link index first.
     pub fn pairs(&self) -> &[(LinkId, LinkId)] {
         &self.pairs

@@ -173,6 +173,10 @@ struct ArmJob<'a> {
     approach_source: &'static str,
     /// Links whose placement changes with the arm's joints (parents first).
     moving_links: Vec<LinkId>,
+    /// Of those, the ones self-collision reads: the links of `pairs` and the moving links above them
+    /// (parents first). A moved link that no pair reaches (a tool frame, a finger without geometry) is
+    /// never placed.
+    placed_links: Vec<LinkId>,
     pairs: Option<PairSet>,
 }
 
@@ -362,7 +366,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                     q_full[joint.0] = *value;
                 }
                 scene.model.apply_mimic(q_full);
-                forward_kinematics_links(scene.model, q_full, &job.moving_links, data);
+                forward_kinematics_links(scene.model, q_full, &job.placed_links, data);
                 let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
                 let check = model.check(pairs, &data.link_placement, cutoff, scratch);
                 free = check.is_free();
@@ -412,6 +416,25 @@ fn moved_links(model: &Model, motion: &Motion) -> Vec<LinkId> {
         .iter()
         .copied()
         .filter(|l| motion.links[l.0])
+        .collect()
+}
+
+/// Of the `moving` links (parents first), those `pairs` reads: its links and the moving links above them.
+fn links_to_place(model: &Model, moving: &[LinkId], pairs: &PairSet) -> Vec<LinkId> {
+    let mut needed = vec![false; model.parent_joint.len()];
+    for &link in pairs.links() {
+        let mut at = Some(link);
+        while let Some(link) = at.filter(|l| needed.get(l.0) == Some(&false)) {
+            needed[link.0] = true;
+            at = model.parent_joint[link.0]
+                .and_then(|joint| model.joint_links[joint.0])
+                .map(|(parent, _)| parent);
+        }
+    }
+    moving
+        .iter()
+        .copied()
+        .filter(|l| needed.get(l.0) == Some(&true))
         .collect()
 }
 
@@ -521,12 +544,17 @@ pub fn analyse(
             let motion = model.motion_of(&sampled);
             let moving_links = moved_links(model, &motion);
             let pairs = collision.map(|c| c.model.pairs_moved_by(&motion));
+            let placed_links = pairs
+                .as_ref()
+                .map(|pairs| links_to_place(model, &moving_links, pairs))
+                .unwrap_or_default();
             Some(ArmJob {
                 arm,
                 chain,
                 approach,
                 approach_source,
                 moving_links,
+                placed_links,
                 pairs,
             })
         })
