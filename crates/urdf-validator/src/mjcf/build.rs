@@ -11,7 +11,7 @@
 mod actuators;
 mod contacts;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -1161,33 +1161,44 @@ impl<'a, 'r> Builder<'a, 'r> {
 }
 
 impl Builder<'_, '_> {
-    /// U030 for each moving body that has, with the bodies welded to it, no mass: MuJoCo refuses such a
-    /// model ("mass and inertia of moving bodies must be larger than mjMINVAL"). Only the mass is checked.
+    /// U030 for each moving body MuJoCo refuses ("mass and inertia of moving bodies must be larger than
+    /// mjMINVAL"): one none of whose weld group (itself and the bodies welded to it) has, on its own, a
+    /// mass and all three principal moments of inertia of at least `mjMINVAL`. Not the group's combined
+    /// mass or inertia: MuJoCo 4.0 refuses a body of 1 kg with moments (1, 10⁻²⁰, 1) welded to one with
+    /// (1, 1, 10⁻²⁰), and three welded point masses (checked in tests/mjcf_mjminval.rs).
     fn refuse_massless_moving_bodies(&mut self) {
-        let mass_of = |link: &str| {
+        let enough = |link: &str| {
             self.links
                 .iter()
                 .find(|l| l.name.value == link)
-                .and_then(|l| l.inertial.as_ref()?.mass.as_ref())
-                .map_or(0.0, |m| m.value)
+                .and_then(|l| l.inertial.as_ref())
+                .is_some_and(|inertial| {
+                    let mass = inertial.mass.as_ref().map_or(0.0, |m| m.value);
+                    let least = inertial
+                        .inertia
+                        .as_ref()
+                        .and_then(|i| i.principal_moments())
+                        .map_or(0.0, |[a, _, _]| a);
+                    mass >= mass::MIN_VALUE && least >= mass::MIN_VALUE
+                })
         };
         let by_link = contacts::by_link(&self.body_contacts);
-        let mut composite: HashMap<String, f64> = HashMap::new();
+        let mut accepted: HashSet<String> = HashSet::new();
         for body in &self.body_contacts {
-            *composite
-                .entry(contacts::weld_root(&by_link, &body.link))
-                .or_default() += mass_of(&body.link);
+            if enough(&body.link) {
+                accepted.insert(contacts::weld_root(&by_link, &body.link));
+            }
         }
         let refused: Vec<(Span, String)> = self
             .body_contacts
             .iter()
-            .filter(|b| b.moving && composite.get(&b.link).copied().unwrap_or(0.0) < mass::MIN_VALUE)
+            .filter(|b| b.moving && !accepted.contains(&b.link))
             .filter_map(|b| {
                 let link = self.links.iter().find(|l| l.name.value == b.link)?;
                 Some((
                     link.span,
                     format!(
-                        "body '{}' moves (it has a joint) but it and the bodies welded to it have no mass: MuJoCo refuses the model (\"mass and inertia of moving bodies must be larger than mjMINVAL\")",
+                        "body '{}' moves (it has a joint) but neither it nor a body welded to it has a mass and three principal moments of inertia of at least 1e-15 (mjMINVAL): MuJoCo refuses the model (\"mass and inertia of moving bodies must be larger than mjMINVAL\")",
                         b.link
                     ),
                 ))
