@@ -100,6 +100,9 @@ struct Contents<'a> {
     bodies: Vec<(El<'a>, String, Isometry3<f64>)>,
 }
 
+/// A world plane tilted by more than this (degrees) is a slope the stability analysis does not model.
+const PLANE_TILT_DEG: f64 = 0.01;
+
 /// Where a body hangs: the URDF link of its parent body, and the parent body's frame seen from it.
 #[derive(Clone)]
 struct Parent {
@@ -187,6 +190,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mut top: Vec<(El<'a>, String, Isometry3<f64>)> = Vec::new();
         for world in sections.iter().filter(|s| s.tag() == "worldbody") {
             let contents = self.contents(*world, MAIN, Isometry3::identity(), true);
+            self.note_tilted_planes(&contents.geoms);
             top.extend(contents.bodies);
         }
         let floating_root = match top.as_slice() {
@@ -230,6 +234,26 @@ impl<'a, 'r> Builder<'a, 'r> {
             format: crate::input::Format::Mjcf,
             collision_filtered,
             ..Robot::default()
+        }
+    }
+
+    /// U033 for each plane of the world (the ground) that is not horizontal: the stability analysis
+    /// stands a floating robot on horizontal ground under its lowest point, which a horizontal plane's
+    /// height does not change (the robot settles onto it), but a slope would.
+    fn note_tilted_planes(&mut self, geoms: &[(El<'a>, String, Isometry3<f64>)]) {
+        for (el, class, frame) in geoms {
+            if self.value(*el, class, "type").map(|v| v.text.trim()) != Some("plane") {
+                continue;
+            }
+            let normal = (frame * self.placement(*el, class)) * Vector3::z();
+            let tilt = normal.z.clamp(-1.0, 1.0).acos().to_degrees();
+            if tilt > PLANE_TILT_DEG {
+                let name = el.attr("name").map_or(String::new(), |n| format!(" '{n}'"));
+                self.note(
+                    *el,
+                    format!("world plane{name} is tilted by {tilt:.1}°: the stability analysis assumes horizontal ground and does not use the tilt (--deep's drop test does)"),
+                );
+            }
         }
     }
 
