@@ -38,7 +38,7 @@ pub mod timings;
 pub mod urdf;
 pub mod value_overrides;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use analysis::workspace::WorkspaceOptions;
 use analysis::{statics::StaticsOptions, Overrides};
@@ -171,6 +171,40 @@ pub fn validate_unsaved(
     run(loaded, options, &resolver, clock)
 }
 
+/// The MJCF file's absolute path for `--deep` to hand MuJoCo (`Err`: why MuJoCo cannot be given it);
+/// looked at only for MJCF input when the pass may run.
+fn mjcf_on_disk(loaded: &Loaded, options: &Options) -> Result<PathBuf, String> {
+    if loaded.mjcf().is_none() || !(options.deep.requested || options.deep.automatic) {
+        return Err("not an MJCF file".to_string()); // (never shown: the pass does not run on it)
+    }
+    if options.sandbox.is_untrusted() {
+        return Err("MuJoCo reads the files an MJCF file names (includes, meshes, textures) itself, outside the --untrusted sandbox".to_string());
+    }
+    let path = std::path::absolute(&loaded.path).map_err(|e| e.to_string())?;
+    // MuJoCo reads the saved file: an editor's unsaved buffer is another model.
+    match std::fs::read_to_string(&path) {
+        Ok(saved) if saved == loaded.text() => Ok(path),
+        _ => Err(
+            "MuJoCo loads the file as saved, and the text validated differs from it (unsaved)"
+                .to_string(),
+        ),
+    }
+}
+
+/// What `--deep` hands MuJoCo: the URDF text, the MJCF file (or why not), nothing for SDFormat.
+fn deep_source<'a>(
+    loaded: &'a Loaded,
+    mjcf: &'a Result<PathBuf, String>,
+) -> analysis::deep::DeepSource<'a> {
+    use analysis::deep::DeepSource;
+    match (loaded.format(), loaded.mjcf(), mjcf) {
+        (input::Format::Urdf, _, _) => DeepSource::Urdf(loaded.text()),
+        (_, Some(_), Ok(path)) => DeepSource::Mjcf(path),
+        (_, Some(_), Err(why)) => DeepSource::Withheld(why),
+        _ => DeepSource::Sdf,
+    }
+}
+
 /// The pipeline: parse → model → assets → checks → analyses → report.
 /// `resolver` is the run's, checking against this file's sandbox.
 fn run(
@@ -264,9 +298,10 @@ fn run(
                 ),
             });
             }
+            let mjcf_on_disk = mjcf_on_disk(&loaded, options);
             let deep = (!turned).then(|| {
                 analysis::deep::run(&analysis::deep::DeepInput {
-                    urdf_text: (loaded.format() == input::Format::Urdf).then(|| loaded.text()),
+                    source: deep_source(&loaded, &mjcf_on_disk),
                     robot: &robot,
                     model: &model,
                     assets: &assets,

@@ -11,7 +11,7 @@
 mod actuators;
 mod contacts;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -100,6 +100,9 @@ struct Contents<'a> {
     bodies: Vec<(El<'a>, String, Isometry3<f64>)>,
 }
 
+/// A world plane tilted by more than this (degrees) is a slope the stability analysis does not model.
+const PLANE_TILT_DEG: f64 = 0.01;
+
 /// Where a body hangs: the URDF link of its parent body, and the parent body's frame seen from it.
 #[derive(Clone)]
 struct Parent {
@@ -187,6 +190,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mut top: Vec<(El<'a>, String, Isometry3<f64>)> = Vec::new();
         for world in sections.iter().filter(|s| s.tag() == "worldbody") {
             let contents = self.contents(*world, MAIN, Isometry3::identity(), true);
+            self.note_tilted_planes(&contents.geoms);
             top.extend(contents.bodies);
         }
         let floating_root = match top.as_slice() {
@@ -230,6 +234,26 @@ impl<'a, 'r> Builder<'a, 'r> {
             format: crate::input::Format::Mjcf,
             collision_filtered,
             ..Robot::default()
+        }
+    }
+
+    /// U033 for each plane of the world (the ground) that is not horizontal: the stability analysis
+    /// stands a floating robot on horizontal ground under its lowest point, which a horizontal plane's
+    /// height does not change (the robot settles onto it), but a slope would.
+    fn note_tilted_planes(&mut self, geoms: &[(El<'a>, String, Isometry3<f64>)]) {
+        for (el, class, frame) in geoms {
+            if self.value(*el, class, "type").map(|v| v.text.trim()) != Some("plane") {
+                continue;
+            }
+            let normal = (frame * self.placement(*el, class)) * Vector3::z();
+            let tilt = normal.z.clamp(-1.0, 1.0).acos().to_degrees();
+            if tilt > PLANE_TILT_DEG {
+                let name = el.attr("name").map_or(String::new(), |n| format!(" '{n}'"));
+                self.note(
+                    *el,
+                    format!("world plane{name} is tilted by {tilt:.1}°: the stability analysis assumes horizontal ground and does not use the tilt (--deep's drop test does)"),
+                );
+            }
         }
     }
 
@@ -1161,33 +1185,44 @@ impl<'a, 'r> Builder<'a, 'r> {
 }
 
 impl Builder<'_, '_> {
-    /// U030 for each moving body that has, with the bodies welded to it, no mass: MuJoCo refuses such a
-    /// model ("mass and inertia of moving bodies must be larger than mjMINVAL"). Only the mass is checked.
+    /// U030 for each moving body MuJoCo refuses ("mass and inertia of moving bodies must be larger than
+    /// mjMINVAL"): one none of whose weld group (itself and the bodies welded to it) has, on its own, a
+    /// mass and all three principal moments of inertia of at least `mjMINVAL`. Not the group's combined
+    /// mass or inertia: MuJoCo 4.0 refuses a body of 1 kg with moments (1, 10⁻²⁰, 1) welded to one with
+    /// (1, 1, 10⁻²⁰), and three welded point masses (checked in tests/mjcf_mjminval.rs).
     fn refuse_massless_moving_bodies(&mut self) {
-        let mass_of = |link: &str| {
+        let enough = |link: &str| {
             self.links
                 .iter()
                 .find(|l| l.name.value == link)
-                .and_then(|l| l.inertial.as_ref()?.mass.as_ref())
-                .map_or(0.0, |m| m.value)
+                .and_then(|l| l.inertial.as_ref())
+                .is_some_and(|inertial| {
+                    let mass = inertial.mass.as_ref().map_or(0.0, |m| m.value);
+                    let least = inertial
+                        .inertia
+                        .as_ref()
+                        .and_then(|i| i.principal_moments())
+                        .map_or(0.0, |[a, _, _]| a);
+                    mass >= mass::MIN_VALUE && least >= mass::MIN_VALUE
+                })
         };
         let by_link = contacts::by_link(&self.body_contacts);
-        let mut composite: HashMap<String, f64> = HashMap::new();
+        let mut accepted: HashSet<String> = HashSet::new();
         for body in &self.body_contacts {
-            *composite
-                .entry(contacts::weld_root(&by_link, &body.link))
-                .or_default() += mass_of(&body.link);
+            if enough(&body.link) {
+                accepted.insert(contacts::weld_root(&by_link, &body.link));
+            }
         }
         let refused: Vec<(Span, String)> = self
             .body_contacts
             .iter()
-            .filter(|b| b.moving && composite.get(&b.link).copied().unwrap_or(0.0) < mass::MIN_VALUE)
+            .filter(|b| b.moving && !accepted.contains(&b.link))
             .filter_map(|b| {
                 let link = self.links.iter().find(|l| l.name.value == b.link)?;
                 Some((
                     link.span,
                     format!(
-                        "body '{}' moves (it has a joint) but it and the bodies welded to it have no mass: MuJoCo refuses the model (\"mass and inertia of moving bodies must be larger than mjMINVAL\")",
+                        "body '{}' moves (it has a joint) but neither it nor a body welded to it has a mass and three principal moments of inertia of at least 1e-15 (mjMINVAL): MuJoCo refuses the model (\"mass and inertia of moving bodies must be larger than mjMINVAL\")",
                         b.link
                     ),
                 ))

@@ -48,6 +48,8 @@ pub enum BridgeError {
     Crashed(String),
     /// The input is SDFormat: the pass hands MuJoCo URDF text, which there is none of.
     NotUrdf,
+    /// An MJCF file MuJoCo is not given (why).
+    Withheld(String),
 }
 
 impl BridgeError {
@@ -66,6 +68,7 @@ impl BridgeError {
             ),
             BridgeError::Cancelled => "the MuJoCo pass was cancelled".to_string(),
             BridgeError::Crashed(why) => format!("the MuJoCo pass failed: {why}"),
+            BridgeError::Withheld(why) => format!("the MuJoCo pass does not load this MJCF file: {why}"),
             BridgeError::NotUrdf => "the MuJoCo pass does not run on SDFormat input yet (it hands MuJoCo the URDF text); validate the URDF the SDF was made from, or load the SDF in Gazebo".to_string(),
         }
     }

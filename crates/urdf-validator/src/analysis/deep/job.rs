@@ -1,7 +1,8 @@
 //! The job handed to MuJoCo: the URDF text itself with every mesh filename rewritten to a file MuJoCo can
 //! read (COLLADA and ASCII STL as the convex hulls already loaded; missing meshes left out), the smallest
-//! inertia changes to apply if MuJoCo refuses A + B < C, `<mimic>` as equality constraints, the
-//! configurations to compare and the drop test's servos.
+//! inertia changes to apply if MuJoCo refuses A + B < C, `<mimic>` as equality constraints; or an MJCF
+//! file's path, which MuJoCo loads itself as it is (no fallback: what it refuses, the user's MuJoCo
+//! refuses too). Then the configurations to compare and the drop test's servos.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -75,12 +76,23 @@ pub struct Job {
     pub inertia_fixes: Vec<InertiaFix>,
     /// The mesh asset names (without extension) MuJoCo may name in an error, with a span for each.
     pub mesh_spans: HashMap<String, Span>,
+    /// MuJoCo loads the MJCF file itself: what it compiles is the user's model, not a URDF import.
+    pub mjcf: bool,
+}
+
+/// The file MuJoCo loads.
+#[derive(Clone, Copy, Debug)]
+pub enum JobSource<'a> {
+    /// The URDF text the robot was parsed from (spans point into it), handed over with its meshes.
+    Urdf(&'a str),
+    /// An MJCF file, loaded by MuJoCo from its path (includes, `meshdir`, defaults as MuJoCo reads them).
+    Mjcf(&'a Path),
 }
 
 /// What the job is built from.
 pub struct JobInput<'a> {
-    /// The text the robot was parsed from (spans point into it).
-    pub text: &'a str,
+    /// The file.
+    pub source: JobSource<'a>,
     /// The robot.
     pub robot: &'a Robot,
     /// Its tree.
@@ -99,13 +111,75 @@ pub struct JobInput<'a> {
 
 /// Build the job.
 pub fn build(input: &JobInput) -> Option<Job> {
+    let root = input.model.root?;
+    let mut job = match input.source {
+        JobSource::Urdf(text) => urdf_job(input, text),
+        JobSource::Mjcf(path) => Job {
+            json: json!({"mjcf": path, "assets": [], "fallbacks": [], "mimic": []}),
+            prepared: Vec::new(),
+            inertia_fixes: Vec::new(),
+            mesh_spans: HashMap::new(),
+            mjcf: true,
+        },
+    };
+    let (robot, model) = (input.robot, input.model);
+    let joint_name = |j: usize| robot.joints[j].name.value.as_str();
+    let in_tree = |j: usize| model.joint_links[j].is_some() && model.joint_data[j].is_actuated();
+    let named = |q: &[f64]| -> serde_json::Map<String, Value> {
+        (0..robot.joints.len())
+            .filter(|&j| in_tree(j))
+            .filter_map(|j| Some((joint_name(j).to_string(), json!(finite(*q.get(j)?)?))))
+            .collect()
+    };
+    let servos: Vec<Value> = (0..robot.joints.len())
+        .filter(|&j| in_tree(j) && model.mimic[j].is_none())
+        .map(|j| {
+            let effort = model.joint_data[j].effort.filter(|e| *e > 0.0);
+            json!({"joint": joint_name(j), "effort": effort})
+        })
+        .collect();
+    let configurations: Vec<Value> = input
+        .configurations
+        .iter()
+        .map(|(label, q)| json!({"label": label, "q": named(q)}))
+        .collect();
+    if let Value::Object(fields) = &mut job.json {
+        fields.extend(
+            json!({
+                "root": robot.links[root.0].name.value,
+                "fixed_base": input.fixed_base,
+                "payload": input.payload.map(|(link, mass)| json!({"link": robot.links[link.0].name.value, "mass": mass})),
+                "configurations": configurations,
+                "drop": {
+                    "duration": DROP_DURATION_S,
+                    "timestep": DROP_TIMESTEP_S,
+                    "height": DROP_HEIGHT_M,
+                    "omega_dt": SERVO_OMEGA_DT,
+                    "saturation": SERVO_SATURATION,
+                    "integral_rate": SERVO_INTEGRAL_RATE,
+                    "q": named(input.drop_q),
+                    "servos": servos,
+                    "trace_points": TILT_TRACE_POINTS,
+                },
+            })
+            .as_object()
+            .into_iter()
+            .flatten()
+            .map(|(k, v)| (k.clone(), v.clone())),
+        );
+    }
+    Some(job)
+}
+
+/// A URDF's part of the job: its text with meshes MuJoCo can read, the inertia and mass fallbacks, the
+/// mimic equalities.
+fn urdf_job(input: &JobInput, text: &str) -> Job {
     let JobInput {
         robot,
         model,
         assets,
         ..
     } = *input;
-    let root = model.root?;
     let mut edits: Vec<(Span, String)> = Vec::new();
     let mut prepared = Vec::new();
     let mut asset_list: Vec<Value> = Vec::new();
@@ -212,51 +286,18 @@ pub fn build(input: &JobInput) -> Option<Job> {
             })
         })
         .collect();
-    let named = |q: &[f64]| -> serde_json::Map<String, Value> {
-        (0..robot.joints.len())
-            .filter(|&j| in_tree(j))
-            .filter_map(|j| Some((joint_name(j).to_string(), json!(finite(*q.get(j)?)?))))
-            .collect()
-    };
-    let servos: Vec<Value> = (0..robot.joints.len())
-        .filter(|&j| in_tree(j) && model.mimic[j].is_none())
-        .map(|j| {
-            let effort = model.joint_data[j].effort.filter(|e| *e > 0.0);
-            json!({"joint": joint_name(j), "effort": effort})
-        })
-        .collect();
-    let configurations: Vec<Value> = input
-        .configurations
-        .iter()
-        .map(|(label, q)| json!({"label": label, "q": named(q)}))
-        .collect();
-    let json = json!({
-        "urdf": rewrite(input.text, edits),
-        "assets": asset_list,
-        "fallbacks": fallbacks,
-        "mimic": mimic,
-        "root": robot.links[root.0].name.value,
-        "fixed_base": input.fixed_base,
-        "payload": input.payload.map(|(link, mass)| json!({"link": robot.links[link.0].name.value, "mass": mass})),
-        "configurations": configurations,
-        "drop": {
-            "duration": DROP_DURATION_S,
-            "timestep": DROP_TIMESTEP_S,
-            "height": DROP_HEIGHT_M,
-            "omega_dt": SERVO_OMEGA_DT,
-            "saturation": SERVO_SATURATION,
-            "integral_rate": SERVO_INTEGRAL_RATE,
-            "q": named(input.drop_q),
-            "servos": servos,
-            "trace_points": TILT_TRACE_POINTS,
-        },
-    });
-    Some(Job {
-        json,
+    Job {
+        json: json!({
+            "urdf": rewrite(text, edits),
+            "assets": asset_list,
+            "fallbacks": fallbacks,
+            "mimic": mimic,
+        }),
         prepared,
         inertia_fixes,
         mesh_spans,
-    })
+        mjcf: false,
+    }
 }
 
 fn finite(v: f64) -> Option<f64> {

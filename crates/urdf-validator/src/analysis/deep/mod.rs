@@ -57,10 +57,23 @@ impl Default for DeepOptions {
     }
 }
 
+/// The file the deep pass hands MuJoCo.
+#[derive(Clone, Copy, Debug)]
+pub enum DeepSource<'a> {
+    /// The URDF text the robot was parsed from.
+    Urdf(&'a str),
+    /// The MJCF file, which MuJoCo loads itself.
+    Mjcf(&'a std::path::Path),
+    /// SDFormat input, which the pass does not read yet.
+    Sdf,
+    /// An MJCF file MuJoCo cannot be given (under `--untrusted`, or unsaved): why.
+    Withheld(&'a str),
+}
+
 /// What the deep pass reads.
 pub struct DeepInput<'a> {
-    /// The URDF text the robot was parsed from; `None` for SDFormat input, which the pass does not read yet.
-    pub urdf_text: Option<&'a str>,
+    /// The file MuJoCo loads.
+    pub source: DeepSource<'a>,
     /// The robot.
     pub robot: &'a Robot,
     /// Its tree.
@@ -89,16 +102,21 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
         return None;
     }
     let trigger = if automatic { "automatic" } else { "requested" };
-    let Some(text) = input.urdf_text else {
-        // MuJoCo is handed URDF text; for SDFormat input there is none (yet): say so when asked.
-        return input.options.requested.then(|| {
-            not_run(
-                input,
-                trigger,
-                std::path::Path::new(""),
-                &BridgeError::NotUrdf,
-            )
-        });
+    let source = match input.source {
+        DeepSource::Urdf(text) => job::JobSource::Urdf(text),
+        DeepSource::Mjcf(path) => job::JobSource::Mjcf(path),
+        DeepSource::Sdf | DeepSource::Withheld(_) => {
+            // For SDFormat there is no text MuJoCo reads (yet), an MJCF file may be withheld: say so
+            // when asked.
+            let why = match input.source {
+                DeepSource::Withheld(why) => BridgeError::Withheld(why.to_string()),
+                _ => BridgeError::NotUrdf,
+            };
+            return input
+                .options
+                .requested
+                .then(|| not_run(input, trigger, std::path::Path::new(""), &why));
+        }
     };
     let model = input.model;
     let q = &physics.q;
@@ -117,7 +135,7 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
             .root
             .is_some_and(|r| input.robot.links[r.0].name.value == "world");
     let job = job::build(&job::JobInput {
-        text,
+        source,
         robot: input.robot,
         model,
         assets: input.assets,
@@ -187,7 +205,7 @@ fn not_run(
     };
     let (python, version) = match error {
         BridgeError::NoMujoco { python, .. } => (Some(python.clone()), None),
-        BridgeError::NotUrdf => (None, None),
+        BridgeError::NotUrdf | BridgeError::Withheld(_) => (None, None),
         _ => (Some(interpreter.display().to_string()), None),
     };
     let section = DeepSection {

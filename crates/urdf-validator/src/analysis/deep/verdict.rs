@@ -254,9 +254,11 @@ fn refusals(cx: &Context, changes: &mut Changes) {
 }
 
 /// The compiled model against ours: fused links, dropped visuals, mimic, limits, efforts, masses, frames,
-/// convex hulls.
+/// convex hulls. What MuJoCo's URDF importer changes (fusing, visuals, mimic, efforts, hulls) is not said
+/// of an MJCF model, which MuJoCo loads as the user does.
 fn compare_model(cx: &Context, changes: &mut Changes) {
     let (robot, model) = (cx.robot, cx.model);
+    let urdf = !cx.job.mjcf;
     let model_json = &cx.reply["model"];
     let empty = Vec::new();
     let bodies = model_json["bodies"].as_array().unwrap_or(&empty);
@@ -279,7 +281,10 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
     for &link in &model.topological_order {
         let l = &robot.links[link.0];
         let name = l.name.value.as_str();
-        if let Some(body) = body_of[link.0].filter(|b| *b != link) {
+        // (An MJCF body's joints after its first are massless links without shape: not bodies.)
+        let chain_link =
+            !urdf && l.inertial.is_none() && l.visuals.is_empty() && l.collisions.is_empty();
+        if let Some(body) = body_of[link.0].filter(|b| *b != link && !chain_link) {
             changes.push(
                 &rules::SIMULATOR_CHANGES_MODEL,
                 "fused",
@@ -291,7 +296,7 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
                 ),
             );
         }
-        if !l.visuals.is_empty() && l.collisions.is_empty() {
+        if urdf && !l.visuals.is_empty() && l.collisions.is_empty() {
             changes.push(
                 &rules::SIMULATOR_CHANGES_MODEL,
                 "visual_dropped",
@@ -365,7 +370,12 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
     // Frames at the analysed pose.
     let mut data = Data::new(model);
     forward_kinematics(model, &cx.physics.q, &mut data);
-    if let Some(positions) = cx.reply["crosscheck"][0]["body_pos"].as_object() {
+    // (An MJCF body's link frame is at its joint's anchor, its floating root's at the world origin: the
+    // forces and centre of mass compare its placement.)
+    let positions = cx.reply["crosscheck"][0]["body_pos"]
+        .as_object()
+        .filter(|_| urdf);
+    if let Some(positions) = positions {
         for &link in &model.topological_order {
             let name = robot.links[link.0].name.value.as_str();
             let Some(p) = positions.get(name).and_then(vec3) else {
@@ -377,13 +387,18 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
                     .sqrt();
             if diff > MODEL_TOLERANCE * ours.norm().max(1.0) {
                 changes.physics_changed.insert(link);
+                let why = if urdf {
+                    " (MuJoCo's URDF importer reads `rpy` only, not URDF 1.1's `quat_xyzw`)"
+                } else {
+                    ""
+                };
                 changes.push(
                     &rules::SIMULATOR_CHANGES_PHYSICS,
                     "frame",
                     name,
                     robot.links[link.0].span,
                     format!(
-                        "MuJoCo places link '{name}' {:.3} mm from where the file puts it at the analysed pose (MuJoCo's URDF importer reads `rpy` only, not URDF 1.1's `quat_xyzw`)",
+                        "MuJoCo places link '{name}' {:.3} mm from where the file puts it at the analysed pose{why}",
                         diff * 1000.0
                     ),
                 );
@@ -403,7 +418,7 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
         if model.joint_links[j].is_none() || !info.is_actuated() {
             continue;
         }
-        if let (Some(mimic), Some(link)) = (&joint.mimic, model.mimic[j]) {
+        if let (Some(mimic), Some(link), true) = (&joint.mimic, model.mimic[j], urdf) {
             changes.push(
                 &rules::SIMULATOR_CHANGES_MODEL,
                 "mimic",
@@ -430,17 +445,24 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
                     "MuJoCo enforces lower/upper on continuous joint '{name}', which URDF (urdfdom) ignores: the joint stops at its limits in MuJoCo only"
                 ),
             ),
-            JointKind::Revolute | JointKind::Prismatic if info.range().is_some() && !limited => changes.push(
+            // (A URDF prismatic joint always has limits, an MJCF slide joint may have none.)
+            JointKind::Revolute | JointKind::Prismatic
+                if info.range().is_some()
+                    && !limited
+                    && (urdf || info.kind == JointKind::Revolute) =>
+            {
+                changes.push(
                 &rules::SIMULATOR_CHANGES_PHYSICS,
                 "limits",
                 name,
                 limit_span,
                 format!("MuJoCo does not enforce the limits of joint '{name}'"),
-            ),
+            )
+            }
             _ => {}
         }
         let force_limited = compiled["force_limited"].as_bool().unwrap_or(false);
-        if !force_limited && model.mimic[j].is_none() {
+        if urdf && !force_limited && model.mimic[j].is_none() {
             changes.push(
                 &rules::SIMULATOR_CHANGES_MODEL,
                 "effort",
@@ -465,7 +487,7 @@ fn compare_model(cx: &Context, changes: &mut Changes) {
         })
         .map(|l| l.name.value.as_str())
         .collect();
-    if let Some(first) = robot.links.iter().find_map(|l| {
+    if let Some(first) = robot.links.iter().filter(|_| urdf).find_map(|l| {
         l.collisions.iter().find_map(|c| match c.geometry.as_ref() {
             Some(g) if matches!(g.value, Geometry::Mesh { .. }) => Some(g.span),
             _ => None,
@@ -774,7 +796,11 @@ fn drop_test(cx: &Context, findings: &mut Vec<Finding>) -> DropTest {
     }
     if !cx.fixed_base && test.ground_links.is_empty() && test.status != Status::Unknown {
         // Nothing landed: MuJoCo has no shape of the robot to collide (URDF visuals are dropped).
-        let why = "nothing of the robot touches the ground at the end: MuJoCo has no collision geometry of it to land on (it drops URDF visuals), so it falls through the floor";
+        let why = if cx.job.mjcf {
+            "nothing of the robot touches the ground at the end: none of its geoms collides with the model's ground (contype/conaffinity), so it falls through"
+        } else {
+            "nothing of the robot touches the ground at the end: MuJoCo has no collision geometry of it to land on (it drops URDF visuals), so it falls through the floor"
+        };
         test.status = Status::Unknown;
         reasons.push(why.to_string());
         findings.push(Finding::new(
