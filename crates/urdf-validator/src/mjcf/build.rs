@@ -630,9 +630,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             if kind == "free" && floating_root {
                 // The root of a floating-base robot: its link frame is the world frame at qpos0.
                 body_in_link = at;
-                let name = joint_el
-                    .attr("name")
-                    .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string);
+                let name = self.joint_name(*joint_el);
                 self.qpos.push(keyframes::QposJoint::free(name, &at));
                 self.joint_ids += 1;
                 continue;
@@ -787,6 +785,12 @@ impl<'a, 'r> Builder<'a, 'r> {
         }
     }
 
+    /// The name of joint `el`: its `name`, else `joint#N` (N its MuJoCo joint id).
+    fn joint_name(&self, el: El<'a>) -> String {
+        el.attr("name")
+            .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string)
+    }
+
     /// A joint's numbers (three hinges for a ball joint).
     fn joint(
         &mut self,
@@ -796,9 +800,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         kind: &str,
         top_level: bool,
     ) -> JointSpec {
-        let name = el
-            .attr("name")
-            .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string);
+        let name = self.joint_name(el);
         self.joint_ids += 1;
         let span = self.reader.span(el);
         let name_span = self.reader.attr_span(el, "name");

@@ -18,7 +18,8 @@ use crate::input::source::Spanned;
 use crate::mjcf::compiler::boolean;
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
-use crate::urdf::robot::{JointKind, Mimic, Pose};
+use crate::model::kinematics::pose_isometry;
+use crate::urdf::robot::{JointKind, Mimic};
 
 impl<'a> Builder<'a, '_> {
     /// Read the `<equality>` sections among `sections` into the joints built.
@@ -132,7 +133,7 @@ impl<'a> Builder<'a, '_> {
                 UnitQuaternion::from_axis_angle(&axis, q),
             ),
         };
-        joint.origin = pose(&(isometry(&joint.origin) * motion));
+        joint.origin = pose(&(pose_isometry(&joint.origin) * motion));
         if let Some(kind) = joint.kind.as_mut() {
             kind.value = JointKind::Fixed;
         }
@@ -154,13 +155,4 @@ impl<'a> Builder<'a, '_> {
         );
         self.problem(&rules::MJCF_CLOSED_LOOP, el, message);
     }
-}
-
-/// A URDF pose (as the reader writes them: translation and quaternion) as a transform.
-fn isometry(pose: &Pose) -> Isometry3<f64> {
-    let [x, y, z, w] = pose.quat_xyzw.unwrap_or([0.0, 0.0, 0.0, 1.0]);
-    Isometry3::from_parts(
-        Translation3::from(Vector3::from(pose.xyz)),
-        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)),
-    )
 }
