@@ -800,6 +800,9 @@ const EQUALITY: &str = r#"<mujoco>
     <motor joint="left_finger" ctrlrange="-10 10"/>
     <motor joint="crank_joint" ctrlrange="-10 10"/>
   </actuator>
+  <keyframe>
+    <key name="k" qpos="0.05 0.02 0.03 0.3 -0.15 0.5"/>
+  </keyframe>
 </mujoco>"#;
 
 #[test]
@@ -869,4 +872,16 @@ fn equality_constraints_are_couplings_held_joints_and_reported_loops() {
         findings(&v, "U770")
     );
     assert!(!statics.joints.iter().any(|j| j.name == "locked"));
+
+    // A keyframe sets the leaders; followers follow them, the held joint stays held.
+    let v = at_pose(&path, PoseKind::Key("k".to_string())).unwrap();
+    let q = configuration(&v);
+    assert_eq!(
+        (q["lift"], q["left_finger"], q["crank_joint"]),
+        (0.05, 0.02, 0.3)
+    );
+    assert!(
+        !q.contains_key("locked") && !q.contains_key("right_finger"),
+        "{q:?}"
+    );
 }

@@ -248,8 +248,8 @@ fn keyframe<'r>(robot: &'r Robot, name: &str) -> Result<&'r Keyframe, String> {
     ))
 }
 
-/// Set the joints `key` sets (a mimic follower follows its leader instead, as in MuJoCo, whose equality
-/// constraint pulls it there).
+/// Set the joints `key` sets: a mimic follower follows its leader instead (as in MuJoCo, whose equality
+/// constraint pulls it there), and a joint held fixed (an MJCF joint equality without joint2) stays.
 fn set_keyframe(
     robot: &Robot,
     model: &Model,
@@ -259,10 +259,10 @@ fn set_keyframe(
 ) -> Result<(), String> {
     notes.extend(key.notes.iter().cloned());
     for (name, value) in &key.joints {
-        if model
-            .joint(name)
-            .is_some_and(|j| model.mimic[j.0].is_some())
-        {
+        let Some(JointId(j)) = model.joint(name) else {
+            continue;
+        };
+        if model.mimic[j].is_some() || !model.joint_data[j].is_actuated() {
             continue;
         }
         set_joint(robot, model, q, name, *value, notes)?;
