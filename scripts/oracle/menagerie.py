@@ -26,7 +26,9 @@ $URDF_VALIDATE or target/release/urdf_validate) runs on the SAME file with `--fo
 1e-9 relative with floors of 1e-12 kg, 1e-12 m and 1e-10 N·m: the total mass (sum of `body_mass`) with the
 report's `statics.total_mass`, the centre of mass (`subtree_com` of the world body) with
 `statics.full_body_com`, and each hinge/slide dof's `qfrc_bias` with the report's
-`statics.joints[].required_torque_gravity` (ball joints: dofs `NAME_x`, `NAME_y`, `NAME_z`). It prints one
+`statics.joints[].required_torque_gravity` (ball joints: dofs `NAME_x`, `NAME_y`, `NAME_z`; a joint that
+another follows through an `<equality><joint>` adds the follower's times the coupling's `a1`, as the
+report folds a mimic follower into its leader). It prints one
 Markdown table row per model (the table of docs/menagerie.md) and exits 1 when a variant does not compile
 (unless MODELS marks it `refused`), does not agree, or (`--check`) is no longer what `--write` would make
 from the sources when they are here; 2 when the binary or (`--write`) the sources are missing.
@@ -327,6 +329,7 @@ def mujoco_values(path: Path, configuration: dict[str, float]) -> dict:
                 forces[f"{name}_{axis}"] = float(data.qfrc_bias[dof + k])
         else:
             forces[name] = float(data.qfrc_bias[dof])
+    fold_couplings(model, forces)
     return {
         "mass": float(sum(model.body_mass)),
         "com": [float(x) for x in data.subtree_com[0]],
@@ -334,6 +337,35 @@ def mujoco_values(path: Path, configuration: dict[str, float]) -> dict:
         "unnamed": unnamed,
         "gravity": [float(x) for x in model.opt.gravity],
     }
+
+
+def fold_couplings(model: mujoco.MjModel, forces: dict[str, float]) -> None:
+    """Each active joint equality `q1 = a0 + a1·q2 + ...` couples joint1 to joint2, as the validator's mimic
+    does: what holds the pair is joint2's drive, so the torque it must give is joint2's own plus a1 times
+    joint1's (virtual work through the linear part), followed along chains of couplings. joint1 keeps its
+    own torque (the report's `required_torque_gravity` of a mimic follower); a joint equality without
+    joint2 holds joint1 fixed, out of the report."""
+    leader: dict[str, tuple[str, float]] = {}
+    held = []
+    for e in range(model.neq):
+        if int(model.eq_type[e]) != int(mujoco.mjtEq.mjEQ_JOINT) or not model.eq_active0[e]:
+            continue
+        first = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.eq_obj1id[e]) or ""
+        if model.eq_obj2id[e] < 0:
+            held.append(first)
+            continue
+        second = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.eq_obj2id[e]) or ""
+        leader.setdefault(first, (second, float(model.eq_data[e][1])))
+    own = dict(forces)
+    for name, force in own.items():
+        at, factor = name, 1.0
+        while at in leader and factor != 0.0:
+            at, multiplier = leader[at]
+            factor *= multiplier
+            if at in forces:
+                forces[at] += factor * force
+    for name in held:
+        forces.pop(name, None)
 
 
 def our_report(binary: Path, path: Path) -> tuple[int, dict | None]:

@@ -3,7 +3,8 @@
 
 For every model (an `.xml` file with a `<mujoco>` root that MuJoCo compiles) writes `<stem>.json` with each
 body's mass and principal moments of inertia (`body_mass`, `body_inertia`) and, at
-`qpos0` and at two seeded random configurations: per-body mass and world centre of mass (`body_mass`,
+`qpos0`, at two seeded random configurations and at each keyframe (`key:NAME`: the key's qpos, free joints
+left at qpos0 as `--pose key:NAME` leaves the base): per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
 forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, under
 standard gravity (0, 0, -9.81) whatever the model says: on even where the model turns it off
@@ -77,7 +78,8 @@ def name_of(model: mujoco.MjModel, kind: mujoco.mjtObj, index: int) -> str:
 
 def configurations(model: mujoco.MjModel) -> list[tuple[str, np.ndarray]]:
     """qpos0, then random configurations: hinge/slide joints uniform in their range when limited, else in
-    [-π, π] (hinge) or [-0.1, 0.1] m (slide); ball and free joints held at qpos0."""
+    [-π, π] (hinge) or [-0.1, 0.1] m (slide); ball and free joints held at qpos0; then each keyframe
+    (`key:NAME`, an unnamed one `key:INDEX`) with its free joints at qpos0."""
     rng = np.random.default_rng(SEED)
     found = [("qpos0", model.qpos0.copy())]
     for k in range(RANDOM_CONFIGURATIONS):
@@ -91,6 +93,14 @@ def configurations(model: mujoco.MjModel) -> list[tuple[str, np.ndarray]]:
                 lo, hi = (-math.pi, math.pi) if kind == mujoco.mjtJoint.mjJNT_HINGE else (-0.1, 0.1)
             q[model.jnt_qposadr[j]] = rng.uniform(lo, hi)
         found.append((f"random_{k}", q))
+    for k in range(model.nkey):
+        # A keyframe as `--pose key:NAME` analyses it: free joints stay at qpos0 (the base is not moved).
+        q = model.key_qpos[k].copy()
+        for j in range(model.njnt):
+            if int(model.jnt_type[j]) == mujoco.mjtJoint.mjJNT_FREE:
+                a = model.jnt_qposadr[j]
+                q[a : a + 7] = model.qpos0[a : a + 7]
+        found.append((f"key:{mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_KEY, k) or k}", q))
     return found
 
 

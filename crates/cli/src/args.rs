@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
+use urdf_validator::analysis::pose::PoseKind;
 
 /// Physics-aware URDF validator: structure, inertia and references, with file:line:col for every finding.
 ///
@@ -69,9 +70,10 @@ pub struct Args {
     pub allow_env: Vec<String>,
 
     /// Joint configuration for statics: zero (clamped into limits), limits (upper limits), custom
-    /// (--joint-angles), home (SRDF group_state), worst (largest torque per joint over seeded samples).
-    #[arg(long, value_enum, default_value_t = PoseArg::Zero)]
-    pub pose: PoseArg,
+    /// (--joint-angles), home (SRDF group_state; without an SRDF, an MJCF model's keyframe of that --state name),
+    /// worst (largest torque per joint over seeded samples), key:NAME (an MJCF model's <key name>).
+    #[arg(long, value_name = "POSE", default_value = "zero", value_parser = PoseKind::parse)]
+    pub pose: PoseKind,
 
     /// Joint values for --pose custom: "j1=0.5,j2=30deg" (radians or metres; `deg` for degrees).
     #[arg(long, value_name = "ANGLES")]
@@ -335,34 +337,6 @@ impl From<SimulatorArg> for urdf_validator::analysis::profiles::Simulator {
             SimulatorArg::Pybullet => Simulator::Pybullet,
             SimulatorArg::Drake => Simulator::Drake,
             SimulatorArg::Isaac => Simulator::Isaac,
-        }
-    }
-}
-
-/// `--pose` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PoseArg {
-    /// Every joint at 0 (clamped into its limits).
-    Zero,
-    /// Every limited joint at its upper limit.
-    Limits,
-    /// The values of --joint-angles.
-    Custom,
-    /// A group_state of an SRDF (zero when none is found).
-    Home,
-    /// Per joint, the largest gravity torque over seeded samples within the limits.
-    Worst,
-}
-
-impl From<PoseArg> for urdf_validator::analysis::pose::PoseKind {
-    fn from(pose: PoseArg) -> Self {
-        use urdf_validator::analysis::pose::PoseKind;
-        match pose {
-            PoseArg::Zero => PoseKind::Zero,
-            PoseArg::Limits => PoseKind::Limits,
-            PoseArg::Custom => PoseKind::Custom,
-            PoseArg::Home => PoseKind::Home,
-            PoseArg::Worst => PoseKind::Worst,
         }
     }
 }

@@ -552,7 +552,7 @@ fn options_for(
         sandbox,
         statics: StaticsOptions {
             pose: PoseOptions {
-                kind: args.pose.into(),
+                kind: args.pose.clone(),
                 joint_angles: args.joint_angles.clone(),
                 srdf: args.srdf.clone(),
                 state: args.state.clone(),

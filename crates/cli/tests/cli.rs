@@ -661,3 +661,34 @@ fn mjcf_files_run_end_to_end_and_directories_pick_up_only_mujoco_xml() {
     assert!(stdout.contains("defaults.xml"), "{stdout}");
     assert!(!stdout.contains("notes.xml"), "{stdout}");
 }
+
+#[test]
+fn pose_key_takes_an_mjcf_keyframe_and_an_unknown_one_exits_2_listing_the_keys() {
+    let dir = temp_dir();
+    let model = write(
+        &dir,
+        "arm.xml",
+        r#"<mujoco><worldbody><body name="arm"><joint name="j" axis="0 1 0"/>
+<geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.02" mass="1"/></body></worldbody>
+<keyframe><key name="up" qpos="1.25"/><key name="flat" qpos="0"/></keyframe></mujoco>"#,
+    );
+    let path = model.to_str().unwrap();
+    let result = run(&[path, "--no-write", "--format", "json", "--pose", "key:up"]);
+    let report: serde_json::Value = serde_json::from_slice(&result.stdout).expect("JSON");
+    assert_eq!(report["statics"]["pose"], "key:up");
+    assert!((report["statics"]["configuration"]["j"].as_f64().unwrap() - 1.25).abs() < 1e-12);
+    let result = run(&[path, "--no-write", "--pose", "key:down"]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = text(&result.stderr);
+    assert!(
+        stderr.contains("no keyframe 'down' (its keys: up, flat)"),
+        "{stderr}"
+    );
+    let good = write(&dir, "good.urdf", GOOD);
+    let result = run(&[good.to_str().unwrap(), "--no-write", "--pose", "key:up"]);
+    assert_eq!(result.status.code(), Some(2));
+    assert!(text(&result.stderr).contains("keyframes are MJCF's"));
+    let result = run(&[path, "--no-write", "--pose", "key:"]);
+    assert_eq!(result.status.code(), Some(2));
+    assert!(text(&result.stderr).contains("key:NAME"));
+}

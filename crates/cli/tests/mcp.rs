@@ -223,6 +223,20 @@ fn a_session_lists_validates_answers_and_ends_with_stdin() {
     assert!(text.contains("robot.urdf:1:"), "{text}");
     assert!(error_text(&server.call("validate_urdf", json!({}))).contains("missing path"));
 
+    // An MJCF keyframe as the pose, as --pose key:NAME takes it.
+    let mjcf =
+        "<mujoco><worldbody><body name='arm'><joint name='j'/><geom size='0.1' pos='0.2 0 0'/>\
+                </body></worldbody><keyframe><key name='up' qpos='1'/></keyframe></mujoco>";
+    let result = server.call(
+        "validate_urdf",
+        json!({"xml": mjcf, "samples": 300, "pose": "key:up"}),
+    );
+    assert_eq!(result["isError"], false, "{result}");
+    assert_eq!(
+        result["structuredContent"]["statics"]["pose"], "key:up",
+        "{result}"
+    );
+
     // The CLI's flags reach the analysis.
     let result = server.call(
         "validate_urdf",

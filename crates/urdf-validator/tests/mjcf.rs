@@ -6,6 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use urdf_validator::analysis::pose::PoseKind;
 use urdf_validator::input::mesh::MeshCache;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::sandbox::Sandbox;
@@ -258,7 +260,7 @@ fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line
       <body name="c" childclass="missing"><joint/><geom size="0.1"/></body>
     </body>
   </worldbody>
-  <equality/>
+  <equality><gizmo/></equality>
 </mujoco>"#,
     );
     let v = run(&path);
@@ -283,7 +285,13 @@ fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line
     has(&v, "U030", "m.xml", 9, "<widget>");
     has(&v, "U030", "m.xml", 10, "only a body of the <worldbody>");
     has(&v, "U032", "m.xml", 10, "3 numbers expected");
-    has(&v, "U033", "m.xml", 14, "equality");
+    has(
+        &v,
+        "U030",
+        "m.xml",
+        14,
+        "<gizmo> is not an equality constraint",
+    );
 }
 
 #[test]
@@ -616,4 +624,264 @@ fn a_moving_body_without_mass_is_refused_as_mujoco_refuses_it() {
          <body name=\"bracket\" pos=\"1 0 0\">\n<geom size=\"0.1\"/>\n</body>\n</body>\n</worldbody>\n</mujoco>",
     );
     assert!(findings(&run(&accepted), "U030").is_empty());
+}
+
+/// A floating base, a hinge with `ref` (degrees), a slide with `ref` and a ball joint, with keyframes.
+const KEYFRAMES: &str = r#"<mujoco>
+  <compiler angle="degree"/>
+  <worldbody>
+    <body name="base" pos="0 0 1">
+      <freejoint name="root"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="5"/>
+      <body name="upper" pos="0 0 0.1">
+        <joint name="hinge" axis="0 1 0" ref="30"/>
+        <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="1"/>
+        <body name="slider" pos="0.3 0 0">
+          <joint name="slide" type="slide" axis="1 0 0" ref="0.05"/>
+          <geom type="sphere" size="0.03" mass="0.5"/>
+          <body name="wrist" pos="0.1 0 0">
+            <joint name="ball" type="ball"/>
+            <geom type="sphere" size="0.02" pos="0.05 0 0" mass="0.2"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key name="home" qpos="0 0 1 1 0 0 0  0.7  0.15  0.5 0.5 0.5 0.5" ctrl=""/>
+    <key name="short" qpos="0 0 1 1 0 0 0  0.2"/>
+    <key name="tilted" time="1" qpos="0 0 1 0.7071068 0.7071068 0 0"/>
+    <key qpos="0 0 0.5"/>
+    <key name="long" qpos="0 0 1 1 0 0 0 0 0 1 0 0 0 7"/>
+  </keyframe>
+</mujoco>"#;
+
+fn at_pose(path: &Path, kind: PoseKind) -> Result<Validation, String> {
+    let mut options = options();
+    options.statics.pose.kind = kind;
+    validate(path, &options).map_err(|e| e.to_string())
+}
+
+fn configuration(v: &Validation) -> std::collections::BTreeMap<String, f64> {
+    v.report.statics.as_ref().unwrap().configuration.clone()
+}
+
+#[test]
+fn keyframes_are_poses_in_mujocos_qpos_order() {
+    let dir = Scratch::new("keys");
+    let path = dir.file("m.xml", KEYFRAMES);
+    let v = at_pose(&path, PoseKind::Key("home".to_string())).unwrap();
+    let statics = v.report.statics.as_ref().unwrap();
+    assert_eq!(statics.pose, "key:home");
+    let q = configuration(&v);
+    // q = qpos − ref: the hinge's ref is 30°, the slide's 0.05 m.
+    assert!(
+        (q["hinge"] - (0.7 - 30f64.to_radians())).abs() < 1e-12,
+        "{q:?}"
+    );
+    assert!((q["slide"] - 0.1).abs() < 1e-12, "{q:?}");
+    // The ball's quaternion as the chained hinges x, y, z: exactly its rotation.
+    let turn = |axis: Vector3<f64>, angle: f64| {
+        UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle)
+    };
+    let chained = turn(Vector3::x(), q["ball_x"])
+        * turn(Vector3::y(), q["ball_y"])
+        * turn(Vector3::z(), q["ball_z"]);
+    let key = UnitQuaternion::from_quaternion(Quaternion::new(0.5, 0.5, 0.5, 0.5));
+    assert!(chained.angle_to(&key) < 1e-12, "{q:?}");
+    assert!(
+        statics
+            .notes
+            .iter()
+            .any(|n| n.contains("ball joint 'ball'")),
+        "{:?}",
+        statics.notes
+    );
+
+    // A short key leaves the rest at qpos0 (q = 0), as MuJoCo does.
+    let q = configuration(&at_pose(&path, PoseKind::Key("short".to_string())).unwrap());
+    assert!(
+        (q["hinge"] - (0.2 - 30f64.to_radians())).abs() < 1e-12,
+        "{q:?}"
+    );
+    assert_eq!((q["slide"], q["ball_x"], q["ball_y"]), (0.0, 0.0, 0.0));
+
+    // The base is not moved: a tilted or moved free joint is a note; an unnamed key is named by its index.
+    let v = at_pose(&path, PoseKind::Key("tilted".to_string())).unwrap();
+    let notes = &v.report.statics.as_ref().unwrap().notes;
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("'root' is not moved nor turned")),
+        "{notes:?}"
+    );
+    let v = at_pose(&path, PoseKind::Key("3".to_string())).unwrap();
+    let notes = &v.report.statics.as_ref().unwrap().notes;
+    assert!(
+        notes.iter().any(|n| n.contains("'root' is not moved:")),
+        "{notes:?}"
+    );
+
+    // A key longer than the model's qpos is refused by MuJoCo: U030 at it, and it is no pose.
+    has(
+        &v,
+        "U030",
+        "m.xml",
+        line_of(KEYFRAMES, "name=\"long\""),
+        "invalid qpos size",
+    );
+    let why = at_pose(&path, PoseKind::Key("long".to_string())).unwrap_err();
+    assert!(why.contains("no keyframe 'long'"), "{why}");
+    let why = at_pose(&path, PoseKind::Key("nope".to_string())).unwrap_err();
+    assert!(why.contains("its keys: home, short, tilted, 3"), "{why}");
+
+    // --pose home without an SRDF: the model's keyframe 'home'.
+    let v = at_pose(&path, PoseKind::Home).unwrap();
+    let statics = v.report.statics.as_ref().unwrap();
+    assert_eq!(statics.pose, "home");
+    assert!((statics.configuration["slide"] - 0.1).abs() < 1e-12);
+    assert!(statics.notes.iter().any(|n| n.contains("keyframe 'home'")));
+
+    // key: on a URDF is a usage error saying why.
+    let urdf = dir.file("r.urdf", r#"<robot name="r"><link name="a"/></robot>"#);
+    let why = at_pose(&urdf, PoseKind::Key("home".to_string())).unwrap_err();
+    assert!(
+        why.contains("keyframes are MJCF's") && why.contains("URDF"),
+        "{why}"
+    );
+}
+
+/// Two fingers coupled by a joint equality, a held joint, a nonlinear coupling, a four-bar closed by a
+/// connect, a weld to the world, and what is not read or switched off.
+const EQUALITY: &str = r#"<mujoco>
+  <compiler angle="radian" autolimits="true"/>
+  <default>
+    <default class="off"><equality active="false"/></default>
+  </default>
+  <worldbody>
+    <body name="palm" pos="0 0 0.5">
+      <joint name="lift" type="slide" axis="0 0 1" range="-0.1 0.1"/>
+      <geom type="box" size="0.05 0.05 0.02" mass="1"/>
+      <body name="left" pos="0 0.03 0">
+        <joint name="left_finger" type="slide" axis="0 1 0" range="0 0.04"/>
+        <geom type="box" size="0.01 0.01 0.04" pos="0 0 -0.04" mass="0.1"/>
+      </body>
+      <body name="right" pos="0 -0.03 0">
+        <joint name="right_finger" type="slide" axis="0 -1 0" range="0 0.04"/>
+        <geom type="box" size="0.01 0.01 0.04" pos="0 0 -0.04" mass="0.1"/>
+      </body>
+      <body name="crank" pos="0.1 0 0">
+        <joint name="crank_joint" axis="0 1 0" range="-1 1"/>
+        <geom type="capsule" fromto="0 0 0 0.1 0 0" size="0.01" mass="0.2"/>
+        <body name="rocker" pos="0.1 0 0">
+          <joint name="rocker_joint" axis="0 1 0" range="-1 1"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.1" size="0.01" mass="0.2"/>
+        </body>
+      </body>
+      <body name="wheel" pos="0 0 0.1">
+        <joint name="locked" axis="0 0 1" range="-1 1"/>
+        <geom type="box" size="0.05 0.01 0.01" pos="0.05 0 0" mass="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <equality>
+    <joint joint1="right_finger" joint2="left_finger" polycoef="0.001 1 0 0 0"/>
+    <joint joint1="rocker_joint" joint2="crank_joint" polycoef="0 -0.5 0.2 0 0"/>
+    <joint joint1="locked" polycoef="0.5 0 0 0 0"/>
+    <connect body1="rocker" body2="palm" anchor="0 0 -0.1"/>
+    <weld body1="palm"/>
+    <tendon tendon1="t"/>
+    <connect body1="left" body2="right" anchor="0 0 0" active="false"/>
+    <connect class="off" body1="left" body2="crank" anchor="0 0 0"/>
+    <joint joint1="nothing" joint2="left_finger"/>
+  </equality>
+  <actuator>
+    <motor joint="lift" ctrlrange="-100 100"/>
+    <motor joint="left_finger" ctrlrange="-10 10"/>
+    <motor joint="crank_joint" ctrlrange="-10 10"/>
+  </actuator>
+  <keyframe>
+    <key name="k" qpos="0.05 0.02 0.03 0.3 -0.15 0.5"/>
+  </keyframe>
+</mujoco>"#;
+
+#[test]
+fn equality_constraints_are_couplings_held_joints_and_reported_loops() {
+    let dir = Scratch::new("equality");
+    let path = dir.file("m.xml", EQUALITY);
+    let r = robot(&path);
+    let joint = |name: &str| r.joints.iter().find(|j| j.name.value == name).unwrap();
+    // joint1 follows joint2: q1 = a0 + a1·q2, in qpos − qpos0 of both (this reader's q).
+    let mimic = joint("right_finger").mimic.as_ref().unwrap();
+    assert_eq!(mimic.joint.value, "left_finger");
+    assert_eq!((mimic.multiplier, mimic.offset), (1.0, 0.001));
+    let mimic = joint("rocker_joint").mimic.as_ref().unwrap();
+    assert_eq!((mimic.multiplier, mimic.offset), (-0.5, 0.0));
+    // Without joint2 the joint is held at a0: fixed, its child turned by 0.5 rad about the axis.
+    let locked = joint("locked");
+    assert_eq!(locked.kind.as_ref().unwrap().value, JointKind::Fixed);
+    let [x, y, z, w] = locked.origin.quat_xyzw.unwrap();
+    let turn = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+    assert!((turn.angle() - 0.5).abs() < 1e-12 && (z - (0.25f64).sin()).abs() < 1e-12);
+
+    let v = run(&path);
+    let line = |needle: &str| line_of(EQUALITY, needle);
+    has(
+        &v,
+        "U033",
+        "m.xml",
+        line("polycoef=\"0 -0.5 0.2"),
+        "linear part",
+    );
+    has(
+        &v,
+        "U038",
+        "m.xml",
+        line("<connect body1=\"rocker\""),
+        "body 'rocker' and body 'palm' closes a kinematic loop",
+    );
+    has(
+        &v,
+        "U038",
+        "m.xml",
+        line("<weld body1=\"palm\""),
+        "body 'palm' and the world",
+    );
+    has(&v, "U033", "m.xml", line("<tendon tendon1"), "not read");
+    has(
+        &v,
+        "U030",
+        "m.xml",
+        line("joint1=\"nothing\""),
+        "no hinge or slide joint",
+    );
+    // Switched off (written, or by class): nothing.
+    assert_eq!(findings(&v, "U038").len(), 2, "{:?}", findings(&v, "U038"));
+    // The coupled fingers are one drive: the follower's gravity load is its leader's to hold, and the
+    // pair is not a mirrored pair differing in effort.
+    let statics = v.report.statics.as_ref().unwrap();
+    let follower = statics
+        .joints
+        .iter()
+        .find(|j| j.name == "right_finger")
+        .unwrap();
+    assert_eq!(follower.mimics.as_deref(), Some("left_finger"));
+    assert!(
+        findings(&v, "U770").is_empty(),
+        "{:?}",
+        findings(&v, "U770")
+    );
+    assert!(!statics.joints.iter().any(|j| j.name == "locked"));
+
+    // A keyframe sets the leaders; followers follow them, the held joint stays held.
+    let v = at_pose(&path, PoseKind::Key("k".to_string())).unwrap();
+    let q = configuration(&v);
+    assert_eq!(
+        (q["lift"], q["left_finger"], q["crank_joint"]),
+        (0.05, 0.02, 0.3)
+    );
+    assert!(
+        !q.contains_key("locked") && !q.contains_key("right_finger"),
+        "{q:?}"
+    );
 }

@@ -17,7 +17,9 @@
 //! `<frame>`, every orientation form, `eulerseq`, several joints in one body, `ref`, ball and free joints,
 //! welded and free top-level bodies, `inertiafromgeom`, `inertiagrouprange`, `boundmass`,
 //! `boundinertia`, `balanceinertia`, `settotalmass`, meshes with `scale` and legacy/exact inertia,
-//! unnamed bodies and joints) and compares them with MuJoCo run now (the venv's `mujoco`).
+//! unnamed bodies and joints, keyframes: a named one turning the ball joint, an unnamed short one) and
+//! compares them with MuJoCo run now (the venv's `mujoco`); a third runs every keyframe of the mesh-free
+//! Menagerie variants through MuJoCo (`--pose key:NAME` against the key's `qpos`).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
 
@@ -28,11 +30,14 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::Vector3;
 use serde_json::Value;
+use urdf_validator::analysis::pose::{PoseKind, PoseOptions};
 use urdf_validator::analysis::statics::gravity::{evaluate, StaticsData};
+use urdf_validator::analysis::statics::{analyse, StaticsOptions};
 use urdf_validator::input::mesh::MeshCache;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::Loaded;
 use urdf_validator::model::{LinkMass, Model};
+use urdf_validator::report::StaticsSection;
 
 const RELATIVE: f64 = 1e-9;
 const MASS_FLOOR: f64 = 1e-12;
@@ -272,12 +277,33 @@ fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
             .iter()
             .map(|v| v.as_f64().expect("number"))
             .collect();
-        let mut q = model.zero_configuration();
-        for (name, &at) in &address {
-            if let Some(joint) = model.joint(name) {
-                q[joint.0] = qpos[at] - qpos0[at];
+        let key = label.strip_prefix("key:").map(|name| StaticsOptions {
+            pose: PoseOptions {
+                kind: PoseKind::Key(name.to_string()),
+                ..PoseOptions::default()
+            },
+            ..StaticsOptions::default()
+        });
+        // A keyframe: the configuration `--pose key:NAME` analyses, made from the model by our reader.
+        let statics = key
+            .as_ref()
+            .map(|options| analyse(&robot, &model, None, options));
+        let q = match &statics {
+            Some(Ok(outcome)) => outcome.q.clone(),
+            Some(Err(why)) => {
+                out.push(format!("{label}: {why}"));
+                continue;
             }
-        }
+            None => {
+                let mut q = model.zero_configuration();
+                for (name, &at) in &address {
+                    if let Some(joint) = model.joint(name) {
+                        q[joint.0] = qpos[at] - qpos0[at];
+                    }
+                }
+                q
+            }
+        };
         evaluate(&model, &q, &mut data);
         for body in bodies {
             let name = ours(body["name"].as_str().expect("name"), "body");
@@ -329,6 +355,55 @@ fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
                     "{label}: joint '{name}' gravity torque {torque}, MuJoCo {theirs}"
                 ));
             }
+        }
+        if let Some(Ok(outcome)) = &statics {
+            out.extend(required_torques(
+                label,
+                &robot,
+                &model,
+                forces,
+                &outcome.section,
+            ));
+        }
+    }
+    out
+}
+
+/// The statics section's `required_torque_gravity` against MuJoCo's `qfrc_bias` (`forces`, by MJCF joint
+/// name): a joint's own, plus, for a joint others follow (an `<equality><joint>` read as mimic), each
+/// follower's times d q_follower / d q_joint (what the joint's drive holds through the coupling).
+fn required_torques(
+    label: &str,
+    robot: &urdf_validator::urdf::robot::Robot,
+    model: &Model,
+    forces: &serde_json::Map<String, Value>,
+    section: &StaticsSection,
+) -> Vec<String> {
+    let mut expected: HashMap<String, f64> = HashMap::new();
+    for (name, force) in forces {
+        let name = ours(name, "joint");
+        let (Some(joint), Some(force)) = (model.joint(&name), force.as_f64()) else {
+            continue;
+        };
+        *expected.entry(name.clone()).or_default() += force;
+        if model.mimic[joint.0].is_some() {
+            let (leader, factor) = model.independent_leader[joint.0];
+            *expected
+                .entry(robot.joints[leader.0].name.value.clone())
+                .or_default() += factor * force;
+        }
+    }
+    let mut out = Vec::new();
+    for joint in &section.joints {
+        let Some(theirs) = expected.get(&joint.name) else {
+            continue;
+        };
+        match joint.required_torque_gravity {
+            Some(torque) if agrees(torque, *theirs, TORQUE_FLOOR) => {}
+            other => out.push(format!(
+                "{label}: joint '{}' required_torque_gravity {other:?}, MuJoCo {theirs}",
+                joint.name
+            )),
         }
     }
     out
@@ -484,6 +559,10 @@ const FEATURES: &str = r#"<mujoco model="features">
       </frame>
     </body>
   </worldbody>
+  <keyframe>
+    <key name="bent" qpos="0.1 0.2 1.5 0.9 0.1 0.2 0.3  0.9 0.05 -0.4  0.6 0.2 -0.3 0.5  0.7 -0.2"/>
+    <key qpos="0 0 1 1 0 0 0 0.5"/>
+  </keyframe>
 </mujoco>
 "#;
 
@@ -559,5 +638,82 @@ fn models_using_every_feature_read_agree_with_mujoco_run_now() {
         }
     }
     std::fs::remove_dir_all(&dir).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The mesh-free Menagerie variants with keyframes (`tests/data/menagerie`), each key run through MuJoCo
+/// now (`mjcf_goldens.py --models` on the variant's folder): at `--pose key:NAME` (the key's qpos, its free
+/// joints left at qpos0) every body's centre of mass, the robot's and each joint's gravity torque agree
+/// with MuJoCo's, and so does the statics report's `required_torque_gravity` (a coupled joint's with its
+/// followers' folded in).
+#[test]
+fn menagerie_keyframes_agree_with_mujoco_run_now() {
+    let Some(python) = common::mujoco_python() else {
+        return;
+    };
+    let data = common::repo_root().join("crates/urdf-validator/tests/data/menagerie");
+    let script = common::repo_root().join("scripts/oracle/mjcf_goldens.py");
+    let scratch = std::env::temp_dir().join(format!("mjcf-keys-{}", std::process::id()));
+    let mut folders: Vec<PathBuf> = std::fs::read_dir(&data)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    folders.sort();
+    let (mut failures, mut keys) = (Vec::new(), 0);
+    for folder in folders {
+        let models: Vec<PathBuf> = std::fs::read_dir(&folder)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                p.extension().is_some_and(|e| e == "xml")
+                    && std::fs::read_to_string(p).unwrap().contains("<key ")
+            })
+            .collect();
+        if models.is_empty() {
+            continue;
+        }
+        let out = scratch.join(folder.file_name().unwrap());
+        let run = std::process::Command::new(&python)
+            .arg(&script)
+            .arg("--models")
+            .arg(&folder)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        for model in models {
+            let stem = model.file_stem().unwrap().to_string_lossy().into_owned();
+            // A variant MuJoCo refuses (see docs/menagerie.md) has no golden: nothing to compare.
+            let Ok(text) = std::fs::read_to_string(out.join(format!("{stem}.json"))) else {
+                continue;
+            };
+            let golden: Value = serde_json::from_str(&text).unwrap();
+            keys += golden["configurations"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|c| c["label"].as_str().unwrap().starts_with("key:"))
+                .count();
+            // The keyframes only: the variants' qpos0 is menagerie.py's, and their actuators use what
+            // `expected_efforts` does not model (e.g. `actuatorfrcrange` on position servos).
+            let differences: Vec<String> = compare(&model, &golden)
+                .into_iter()
+                .filter(|d| d.starts_with("key:"))
+                .collect();
+            if !differences.is_empty() {
+                failures.push(format!("{stem}:\n  {}", differences.join("\n  ")));
+            }
+        }
+    }
+    std::fs::remove_dir_all(&scratch).ok();
+    assert!(
+        keys >= 15,
+        "only {keys} keyframes compared (15 in 13 variants)"
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

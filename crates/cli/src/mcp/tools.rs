@@ -220,7 +220,8 @@ struct Flags {
     /// Link carrying the payload. Default: the end of the longest actuated chain.
     payload_link: Option<String>,
     /// Joint configuration for statics: zero (clamped into limits), limits (upper limits), custom
-    /// (joint_angles), home (SRDF group_state), worst (largest torque per joint over the samples).
+    /// (joint_angles), home (SRDF group_state; without an SRDF, an MJCF model's keyframe of that state name),
+    /// worst (largest torque per joint over the samples), key:NAME (an MJCF model's keyframe).
     /// Default: zero.
     pose: Option<String>,
     /// Joint values for pose "custom": "j1=0.5,j2=30deg" (radians or metres; deg for degrees).
@@ -716,7 +717,8 @@ fn property_names(schema: &JsonObject) -> Vec<String> {
 
 /// The JSON Schema of `T` as a tool's arguments: optional fields are simply not required (no `null`
 /// type), no `$ref`s, objects closed to other properties, and the values clap accepts listed as `enum`
-/// for the string arguments named as a flag (`robot_type`, `pose`, `task`).
+/// for the string arguments named as a flag with a fixed list (`robot_type`, `task`; `pose` also takes
+/// `key:NAME`, so it has none).
 fn schema<T: JsonSchema>() -> JsonObject {
     let settings =
         SchemaSettings::draft2020_12().with(|settings| settings.inline_subschemas = true);

@@ -1,7 +1,9 @@
 //! Poses: the configuration statics (and later stability and workspace) are evaluated at.
 //!
 //! `zero` (clamped into the limits), `limits` (every limited joint at its upper limit), `custom`
-//! (`--joint-angles`), `home` (a named SRDF `group_state`), and `worst` (handled by the statics sampler).
+//! (`--joint-angles`), `home` (a named SRDF `group_state`; for an MJCF model without SRDF, its keyframe of
+//! that name), `key:NAME` (a keyframe of the robot file: MJCF's `<key>`), and `worst` (handled by the
+//! statics sampler).
 
 use std::path::{Path, PathBuf};
 
@@ -10,10 +12,10 @@ use crate::input::srdf::{group_states, GroupState, Srdf};
 use crate::model::kinematics::Configuration;
 use crate::model::{JointId, Model};
 use crate::rng::SplitMix64;
-use crate::urdf::robot::Robot;
+use crate::urdf::robot::{Keyframe, Robot};
 
 /// Which configuration to evaluate.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub enum PoseKind {
     /// Every joint at 0, clamped into its limits.
     #[default]
@@ -26,17 +28,37 @@ pub enum PoseKind {
     Home,
     /// Per joint, the largest gravity torque over seeded samples within the limits.
     Worst,
+    /// The keyframe of this name the robot file defines (MJCF `<key name>`).
+    Key(String),
 }
 
 impl PoseKind {
-    /// The flag value.
-    pub fn as_str(self) -> &'static str {
+    /// The flag value (`key:NAME` for a keyframe).
+    pub fn label(&self) -> String {
         match self {
-            PoseKind::Zero => "zero",
-            PoseKind::Limits => "limits",
-            PoseKind::Custom => "custom",
-            PoseKind::Home => "home",
-            PoseKind::Worst => "worst",
+            PoseKind::Zero => "zero".to_string(),
+            PoseKind::Limits => "limits".to_string(),
+            PoseKind::Custom => "custom".to_string(),
+            PoseKind::Home => "home".to_string(),
+            PoseKind::Worst => "worst".to_string(),
+            PoseKind::Key(name) => format!("key:{name}"),
+        }
+    }
+
+    /// The pose a `--pose` value names: `zero`, `limits`, `custom`, `home`, `worst` or `key:NAME`.
+    pub fn parse(text: &str) -> Result<PoseKind, String> {
+        match text {
+            "zero" => Ok(PoseKind::Zero),
+            "limits" => Ok(PoseKind::Limits),
+            "custom" => Ok(PoseKind::Custom),
+            "home" => Ok(PoseKind::Home),
+            "worst" => Ok(PoseKind::Worst),
+            _ => match text.strip_prefix("key:") {
+                Some(name) if !name.is_empty() => Ok(PoseKind::Key(name.to_string())),
+                _ => Err(format!(
+                    "'{text}' is not a pose: expected zero, limits, custom, home, worst or key:NAME (a keyframe of an MJCF model)"
+                )),
+            },
         }
     }
 }
@@ -113,7 +135,7 @@ pub fn resolve(
     let mut notes = Vec::new();
     let mut unavailable = None;
     let mut q = clamped_zero(robot, model, &mut notes);
-    match options.kind {
+    match &options.kind {
         PoseKind::Zero | PoseKind::Worst => {}
         PoseKind::Limits => {
             for (i, joint) in model.joint_data.iter().enumerate() {
@@ -130,6 +152,10 @@ pub fn resolve(
             for (name, value) in parse_joint_angles(text)? {
                 set_joint(robot, model, &mut q, &name, value, &mut notes)?;
             }
+        }
+        PoseKind::Key(name) => {
+            let key = keyframe(robot, name)?;
+            set_keyframe(robot, model, &mut q, key, &mut notes)?;
         }
         PoseKind::Home => match srdf {
             Some(Srdf { path: srdf, text }) => {
@@ -175,11 +201,20 @@ pub fn resolve(
                     options.srdf.as_deref().unwrap_or(Path::new("")).display()
                 ))
             }
-            None => {
-                let why = "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose";
-                notes.push(why.to_string());
-                unavailable = Some(why.to_string());
-            }
+            None => match robot.keyframes.iter().find(|k| k.name == options.state) {
+                Some(key) => {
+                    notes.push(format!(
+                        "--pose home: no SRDF; the model's keyframe '{}' is the pose (as --pose key:{})",
+                        key.name, key.name
+                    ));
+                    set_keyframe(robot, model, &mut q, key, &mut notes)?;
+                }
+                None => {
+                    let why = "--pose home: no SRDF given (--srdf) or found beside the URDF (<file stem>.srdf or <robot name>.srdf); using the zero pose";
+                    notes.push(why.to_string());
+                    unavailable = Some(why.to_string());
+                }
+            },
         },
     }
     model.apply_mimic(&mut q);
@@ -188,6 +223,51 @@ pub fn resolve(
         notes,
         unavailable,
     })
+}
+
+/// The robot file's keyframe `name`; a usage error listing the keyframes there are when it has none of
+/// that name.
+fn keyframe<'r>(robot: &'r Robot, name: &str) -> Result<&'r Keyframe, String> {
+    if let Some(key) = robot.keyframes.iter().find(|k| k.name == name) {
+        return Ok(key);
+    }
+    if robot.format != crate::input::Format::Mjcf {
+        return Err(format!(
+            "--pose key:{name}: keyframes are MJCF's (<keyframe><key>); this input is {}: use --pose home (an SRDF group_state) or --pose custom --joint-angles",
+            if robot.format == crate::input::Format::Sdf { "SDFormat" } else { "URDF" }
+        ));
+    }
+    let names: Vec<&str> = robot.keyframes.iter().map(|k| k.name.as_str()).collect();
+    Err(format!(
+        "--pose key:{name}: the model has no keyframe '{name}' ({})",
+        if names.is_empty() {
+            "it has no <keyframe><key>".to_string()
+        } else {
+            format!("its keys: {}", names.join(", "))
+        }
+    ))
+}
+
+/// Set the joints `key` sets: a mimic follower follows its leader instead (as in MuJoCo, whose equality
+/// constraint pulls it there), and a joint held fixed (an MJCF joint equality without joint2) stays.
+fn set_keyframe(
+    robot: &Robot,
+    model: &Model,
+    q: &mut Configuration,
+    key: &Keyframe,
+    notes: &mut Vec<String>,
+) -> Result<(), String> {
+    notes.extend(key.notes.iter().cloned());
+    for (name, value) in &key.joints {
+        let Some(JointId(j)) = model.joint(name) else {
+            continue;
+        };
+        if model.mimic[j].is_some() || !model.joint_data[j].is_actuated() {
+            continue;
+        }
+        set_joint(robot, model, q, name, *value, notes)?;
+    }
+    Ok(())
 }
 
 fn set_joint(

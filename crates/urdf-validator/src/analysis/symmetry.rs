@@ -8,7 +8,8 @@
 //! breaking ties. Names are only a hint: they never make a pair on their own.
 //!
 //! Each matched link pair compares mass and principal moments of inertia, each matched joint pair its
-//! position limits (equal, or mirrored: `[l, u]` against `[−u, −l]`), effort and velocity. A difference
+//! position limits (equal, or mirrored: `[l, u]` against `[−u, −l]`), effort and velocity (a pair coupled to
+//! one drive, by mimic or an MJCF joint equality, may declare them on one side only). A difference
 //! above the tolerances below is a U770 finding naming the pair and the difference; a true twin gives none.
 
 use nalgebra::Vector3;
@@ -352,9 +353,12 @@ fn principal_moments(link: &Link) -> Option<[f64; 3]> {
         .principal_moments()
 }
 
-/// Limits, effort and velocity of two mirrored joints, beyond the tolerances.
+/// Limits, effort and velocity of two mirrored joints, beyond the tolerances. Two joints coupled to one
+/// drive (one mimics the other, or both the same leader: a gripper's fingers) may declare an effort or
+/// velocity on the driven side only: the other moves through the coupling.
 fn joint_differences(robot: &Robot, model: &Model, a: JointId, b: JointId) -> Vec<String> {
     let (da, db) = (&model.joint_data[a.0], &model.joint_data[b.0]);
+    let coupled = model.independent_leader[a.0].0 == model.independent_leader[b.0].0;
     let mut differences = Vec::new();
     if let (Some(la), Some(ua), Some(lb), Some(ub)) = (da.lower, da.upper, db.lower, db.upper) {
         let tolerance = LIMIT_TOLERANCE + 0.01 * (ua - la).abs().max((ub - lb).abs());
@@ -383,9 +387,10 @@ fn joint_differences(robot: &Robot, model: &Model, a: JointId, b: JointId) -> Ve
                     differences.push(format!("{what} {x} vs {y} ({apart})"));
                 }
             }
-            (Some(_), None) | (None, Some(_)) => {
+            (Some(_), None) | (None, Some(_)) if !coupled => {
                 differences.push(format!("{what} declared on one side only"));
             }
+            (Some(_), None) | (None, Some(_)) => {}
             (None, None) => {}
         }
     }

@@ -174,7 +174,7 @@ rules! {
         fix: "Write plain decimal numbers separated by spaces, as many as the attribute takes (e.g. `pos=\"0 0 0.1\"`).",
     }
     MJCF_NOT_READ = "U033" "mjcf-not-read" Info {
-        what: "An MJCF element or setting this validator does not turn into the robot yet: actuators on tendons, sites or bodies and actuator kinds other than motor, position, velocity and general (their joints get no effort from them), equality constraints, tendons, composite/flexcomp/replicate/attach bodies, height fields and SDF geoms, shell inertia; or a ball joint, analysed as three hinges about the body's x, y and z axes.",
+        what: "An MJCF element or setting this validator does not turn into the robot yet: actuators on tendons, sites or bodies and actuator kinds other than motor, position, velocity and general (their joints get no effort from them), tendon and flex equality constraints, a joint coupling's terms beyond the linear one, tendons, composite/flexcomp/replicate/attach bodies, height fields and SDF geoms, shell inertia; or a ball joint, analysed as three hinges about the body's x, y and z axes.",
         why: "What it describes is left out of the analyses (or, for a ball joint, analysed as three single-axis joints whose gravity torques are MuJoCo's three ball dofs at the pose analysed).",
         fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
     }
@@ -197,6 +197,11 @@ rules! {
         what: "A body whose inertia MuJoCo accepts only thanks to `<compiler balanceinertia>` (its principal moments break the triangle inequality A + B ≥ C) or `boundinertia` (a principal moment is zero).",
         why: "Without the compiler setting MuJoCo refuses the model; with it, the body's inertia is not the one written but one the compiler made up (the mean of the moments, or the bound), so the body's dynamics are not the real part's.",
         fix: "Write the body's real inertia (from CAD, or from its geoms); a physical inertia satisfies the triangle inequality and has no zero moment.",
+    }
+    MJCF_CLOSED_LOOP = "U038" "mjcf-closed-loop" Warn {
+        what: "An active `<equality><connect>` or `<weld>` joins two bodies (or a body and the world) that the body tree already connects: it closes a kinematic loop (a four-bar linkage, a parallel gripper), which this validator does not analyse.",
+        why: "The analyses see the open tree: statics puts the whole gravity load on the tree's joints, where MuJoCo lets the loop's constraint carry part of it (or makes the joints fight each other), and the workspace samples the loop's joints as if they moved independently, reaching poses the linkage cannot.",
+        fix: "Nothing, if the loop is meant; read the statics and workspace figures of the joints on the loop as those of the open chain.",
     }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
@@ -579,7 +584,7 @@ rules! {
     }
     MIRRORED_PAIR_DIFFERS = "U770" "mirrored-pair-differs" Warn {
         section: Symmetry,
-        what: "Two mirrored chains (sibling joints whose origins mirror each other across the parent link's x–z plane, walked together below) differ: a link pair's mass or principal moments of inertia by more than 10 % of the larger, a joint pair's effort or velocity by more than 10 %, its position limits by more than 0.01 (rad or m) + 1 % of the range (mirrored limits `[l, u]` / `[−u, −l]` count as equal), or a value is declared on one side only. Left/right names only break ties; they never make a pair.",
+        what: "Two mirrored chains (sibling joints whose origins mirror each other across the parent link's x–z plane, walked together below) differ: a link pair's mass or principal moments of inertia by more than 10 % of the larger, a joint pair's effort or velocity by more than 10 %, its position limits by more than 0.01 (rad or m) + 1 % of the range (mirrored limits `[l, u]` / `[−u, −l]` count as equal), or a value is declared on one side only (an effort or velocity may be, on two joints coupled to one drive: one mimics the other, or both the same leader). Left/right names only break ties; they never make a pair.",
         why: "A left and a right arm, leg or wheel built from the same part should weigh and move the same: a difference is usually a copy-paste slip (a mass typed for one side, a limit not mirrored) that makes the robot pull to one side in simulation or gives one side motors too weak for what the other side holds.",
         fix: "Compare the two elements the message names and correct the one that is wrong; if the robot really is asymmetric, suppress the finding with a reason.",
     }

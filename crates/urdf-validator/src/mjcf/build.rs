@@ -10,6 +10,8 @@
 
 mod actuators;
 mod contacts;
+mod equality;
+mod keyframes;
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -53,13 +55,12 @@ const IGNORED_IN_BODY: [&str; 3] = ["site", "camera", "light"];
 const NOT_BUILT_IN_BODY: [&str; 5] = ["composite", "flexcomp", "replicate", "attach", "plugin"];
 
 /// Top-level sections that say nothing about the tree or its mass.
-const QUIET_SECTIONS: [&str; 11] = [
+const QUIET_SECTIONS: [&str; 10] = [
     "option",
     "size",
     "visual",
     "statistic",
     "sensor",
-    "keyframe",
     "custom",
     "extension",
     "contact",
@@ -68,13 +69,7 @@ const QUIET_SECTIONS: [&str; 11] = [
 ];
 
 /// Sections read by the MJCF reader of a later step: what they hold is left out, with a U033.
-const SECTIONS_NOT_READ: [(&str, &str); 2] = [
-    (
-        "equality",
-        "equality constraints are not read yet: couplings and loops are left out",
-    ),
-    ("tendon", "tendons are not read yet"),
-];
+const SECTIONS_NOT_READ: [(&str, &str); 1] = [("tendon", "tendons are not read yet")];
 
 /// A `<mesh>` asset.
 #[derive(Clone, Debug)]
@@ -131,6 +126,8 @@ pub struct Builder<'a, 'r> {
     joint_facts: HashMap<String, actuators::JointFacts>,
     /// What the contact filter needs to know of each body, in document order.
     body_contacts: Vec<contacts::BodyContacts>,
+    /// Every joint in MuJoCo's qpos order, for the keyframes.
+    qpos: Vec<keyframes::QposJoint>,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -166,11 +163,12 @@ impl<'a, 'r> Builder<'a, 'r> {
             actuator_force: HashMap::new(),
             joint_facts: HashMap::new(),
             body_contacts: Vec::new(),
+            qpos: Vec::new(),
         };
         for section in sections {
             match section.tag() {
                 "asset" => builder.assets(*section),
-                "worldbody" | "compiler" | "actuator" => {}
+                "worldbody" | "compiler" | "actuator" | "equality" | "keyframe" => {}
                 tag if QUIET_SECTIONS.contains(&tag) => {}
                 tag => match SECTIONS_NOT_READ.iter().find(|(t, _)| *t == tag) {
                     Some((_, why)) => builder.note(*section, why.to_string()),
@@ -221,6 +219,8 @@ impl<'a, 'r> Builder<'a, 'r> {
         self.finish_masses();
         self.refuse_massless_moving_bodies();
         self.set_efforts(sections);
+        self.equalities(sections);
+        let keyframes = self.keyframes(sections);
         let collision_filtered = self.filtered_pairs(sections);
         let span = self.reader.span(root);
         Robot {
@@ -233,6 +233,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             joints: self.joints,
             format: crate::input::Format::Mjcf,
             collision_filtered,
+            keyframes,
             ..Robot::default()
         }
     }
@@ -653,10 +654,22 @@ impl<'a, 'r> Builder<'a, 'r> {
             if kind == "free" && floating_root {
                 // The root of a floating-base robot: its link frame is the world frame at qpos0.
                 body_in_link = at;
+                let name = self.joint_name(*joint_el);
+                self.qpos.push(keyframes::QposJoint::free(name, &at));
                 self.joint_ids += 1;
                 continue;
             }
             let joint = self.joint(*joint_el, joint_class, &name, kind, top_level);
+            self.qpos.push(match joint.kind {
+                JointKind::Floating => keyframes::QposJoint::free(joint.names[0].clone(), &at),
+                _ if joint.axes.len() == 3 => keyframes::QposJoint::Ball {
+                    hinges: joint.names.clone(),
+                },
+                _ => keyframes::QposJoint::Scalar {
+                    joint: joint.names[0].clone(),
+                    reference: joint.reference,
+                },
+            });
             for (k, axis) in joint.axes.iter().enumerate() {
                 let final_link = last && k + 1 == joint.axes.len();
                 let child = if final_link {
@@ -796,6 +809,12 @@ impl<'a, 'r> Builder<'a, 'r> {
         }
     }
 
+    /// The name of joint `el`: its `name`, else `joint#N` (N its MuJoCo joint id).
+    fn joint_name(&self, el: El<'a>) -> String {
+        el.attr("name")
+            .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string)
+    }
+
     /// A joint's numbers (three hinges for a ball joint).
     fn joint(
         &mut self,
@@ -805,9 +824,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         kind: &str,
         top_level: bool,
     ) -> JointSpec {
-        let name = el
-            .attr("name")
-            .map_or_else(|| format!("joint#{}", self.joint_ids), str::to_string);
+        let name = self.joint_name(el);
         self.joint_ids += 1;
         let span = self.reader.span(el);
         let name_span = self.reader.attr_span(el, "name");
@@ -835,6 +852,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             anchor,
             axes: vec![axis],
             kind: JointKind::Revolute,
+            reference: 0.0,
             limit: None,
             dynamics: None,
         };
@@ -876,6 +894,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         let degrees = hinge && self.compiler.degrees;
         let to_q = |v: f64| if degrees { v.to_radians() } else { v };
         let reference = to_q(self.scalar(el, class, "ref", 0.0));
+        spec.reference = reference;
         let range = self.value(el, class, "range");
         let limited = match self.word(el, class, "limited", &["auto", "true", "false"]) {
             "true" => true,
@@ -1244,6 +1263,8 @@ struct JointSpec {
     anchor: Vector3<f64>,
     axes: Vec<Vector3<f64>>,
     kind: JointKind,
+    /// `ref` (radians or metres): MuJoCo's `qpos0` of a hinge or slide joint, 0 for the others.
+    reference: f64,
     limit: Option<Limit>,
     dynamics: Option<Dynamics>,
 }

@@ -19,11 +19,15 @@
 //! - geoms with `contype` and `conaffinity` 0 are visual shapes, the others collision shapes; geoms of the
 //!   world body (the floor) are not part of the robot;
 //! - a joint's effort is what its `motor`, `position`, `velocity` and `general` actuators can apply
-//!   (`build/actuators.rs`); a joint without actuator is passive (no effort: statics UNKNOWN).
+//!   (`build/actuators.rs`); a joint without actuator is passive (no effort: statics UNKNOWN);
+//! - `<equality>`: a joint coupling is a mimic, a joint equality without joint2 a fixed joint, `connect`
+//!   and `weld` loops are reported, not analysed (`build/equality.rs`);
+//! - `<keyframe><key>`s become the robot's keyframes, poses for `--pose key:NAME`
+//!   (`build/keyframes.rs`).
 //!
-//! Not read yet (U033): actuators on tendons, sites or bodies and other actuator kinds, equality
-//! constraints, tendons, composite/flexcomp/replicate/attach, height fields, SDF geoms, shell inertia;
-//! keyframes, contact pairs and exclusions are not read either.
+//! Not read yet (U033): actuators on tendons, sites or bodies and other actuator kinds, tendon and flex
+//! equalities, tendons, composite/flexcomp/replicate/attach, height fields, SDF geoms, shell inertia;
+//! contact pairs are not read either.
 
 mod build;
 mod compiler;

@@ -30,6 +30,21 @@ pub struct Robot {
     /// geoms pass `contype`/`conaffinity`, MuJoCo's parent filter), by link name: the self-collision
     /// check allows them as it allows an SRDF's `disable_collisions`.
     pub collision_filtered: Vec<(String, String)>,
+    /// Named poses the file itself defines (MJCF: `<keyframe><key>`), for `--pose key:NAME`.
+    pub keyframes: Vec<Keyframe>,
+}
+
+/// A pose the robot file defines (an MJCF `<key>`), already in this robot's joint values.
+#[derive(Clone, Debug, Default)]
+pub struct Keyframe {
+    /// Its name (an unnamed MJCF key is named by its index, `0`, `1`, ...).
+    pub name: String,
+    /// The element.
+    pub span: Span,
+    /// The value of each joint it sets (radians or metres, as the robot's joints take them).
+    pub joints: Vec<(String, f64)>,
+    /// What of the key the robot cannot take, for the report's notes.
+    pub notes: Vec<String>,
 }
 
 /// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians), or `xyz` + `quat_xyzw` (URDF 1.1).

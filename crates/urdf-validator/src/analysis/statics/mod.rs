@@ -153,7 +153,7 @@ pub fn analyse(
             pose: if worst.is_some() {
                 "its worst sampled configuration".to_string()
             } else {
-                format!("the {} pose", options.pose.kind.as_str())
+                format!("the {} pose", options.pose.kind.label())
             },
             payload: payload.map(|(link, mass)| (robot.links[link.0].name.value.as_str(), mass)),
         };
@@ -238,7 +238,7 @@ pub fn analyse(
     };
     let section = StaticsSection {
         status,
-        pose: options.pose.kind.as_str().to_string(),
+        pose: options.pose.kind.label(),
         configuration: named_configuration(robot, model, &resolved.q),
         notes: resolved.notes,
         full_body_com: com.map(|c| [c.x, c.y, c.z]),

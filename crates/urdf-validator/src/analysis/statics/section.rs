@@ -10,7 +10,7 @@ use crate::diagnostics::{Confidence, Status};
 pub struct StaticsSection {
     /// Worst joint status (N/A when the robot has no actuated joint).
     pub status: Status,
-    /// The pose evaluated: zero, limits, custom, home or worst.
+    /// The pose evaluated: zero, limits, custom, home, worst or key:NAME (a keyframe of an MJCF model).
     pub pose: String,
     /// Value of every independent actuated joint at the evaluated pose (rad or m). For `worst`, the reference
     /// (zero) pose; each joint's own worst configuration is in `joints[].worst_configuration`.

@@ -1,0 +1,186 @@
+//! `<keyframe><key qpos>` as poses of the robot (`--pose key:NAME`): MuJoCo's `qpos` (in its order: a
+//! free joint's 7 numbers, position and quaternion w x y z, a ball's 4, a hinge's or slide's 1, joints in
+//! body and document order) turned into the values of this robot's joints. A key shorter than the model's
+//! `nq` leaves the rest at `qpos0` (MuJoCo's rule); a longer one MuJoCo refuses (U030). Only `qpos`
+//! matters for statics: `time`, `qvel`, `act`, `ctrl`, `mpos` and `mquat` are not read.
+//!
+//! - hinge and slide: q = qpos − `ref` (every one is set, to 0 when the key leaves it at `qpos0`);
+//! - ball: the quaternion as the three chained hinges `NAME_x`, `NAME_y`, `NAME_z` (R = Rx·Ry·Rz, exact
+//!   for every rotation); their torques are about those chained axes, not MuJoCo's three ball dofs
+//!   (which are the torque's components in the body frame), unless the ball is at its identity;
+//! - free: the robot's base stays where `qpos0` puts it (the analyses have no base pose to take); a key
+//!   that moves it gets a note saying the analyses keep it there, upright.
+
+use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
+
+use super::Builder;
+use crate::diagnostics::rules;
+use crate::mjcf::defaults::MAIN;
+use crate::mjcf::xml::El;
+use crate::urdf::robot::Keyframe;
+
+/// A joint as MuJoCo lays it out in `qpos`.
+pub(super) enum QposJoint {
+    /// A free joint (7 numbers) and its `qpos0`: position, quaternion w x y z.
+    Free {
+        /// The MJCF joint's name.
+        name: String,
+        /// Its `qpos0`.
+        qpos0: [f64; 7],
+    },
+    /// A ball joint (4 numbers), read as three hinges (x, y, z, chained in that order).
+    Ball {
+        /// The three hinges' names.
+        hinges: Vec<String>,
+    },
+    /// A hinge or slide joint (1 number).
+    Scalar {
+        /// Its name.
+        joint: String,
+        /// Its `ref`: its `qpos0`.
+        reference: f64,
+    },
+}
+
+impl QposJoint {
+    /// A free joint whose body sits at `at` in the world at `qpos0`.
+    pub(super) fn free(name: String, at: &Isometry3<f64>) -> Self {
+        let p = at.translation.vector;
+        let q = at.rotation.quaternion();
+        QposJoint::Free {
+            name,
+            qpos0: [p.x, p.y, p.z, q.w, q.i, q.j, q.k],
+        }
+    }
+
+    /// How many `qpos` numbers it takes.
+    fn size(&self) -> usize {
+        match self {
+            QposJoint::Free { .. } => 7,
+            QposJoint::Ball { .. } => 4,
+            QposJoint::Scalar { .. } => 1,
+        }
+    }
+
+    /// Its `qpos0`.
+    fn qpos0(&self) -> Vec<f64> {
+        match self {
+            QposJoint::Free { qpos0, .. } => qpos0.to_vec(),
+            QposJoint::Ball { .. } => vec![1.0, 0.0, 0.0, 0.0],
+            QposJoint::Scalar { reference, .. } => vec![*reference],
+        }
+    }
+}
+
+/// Angles (a, b, c) of three hinges about x, then the turned y, then the twice-turned z whose rotation is
+/// `rotation` (R = Rx(a)·Ry(b)·Rz(c)).
+fn xyz_angles(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    // Rᵀ = Rz(−c)·Ry(−b)·Rx(−a): nalgebra's roll, pitch, yaw of Rᵀ are −a, −b, −c.
+    let (roll, pitch, yaw) = rotation.inverse().euler_angles();
+    [-roll, -pitch, -yaw]
+}
+
+impl<'a> Builder<'a, '_> {
+    /// The `<key>`s of the `<keyframe>` sections among `sections`, as poses of the robot built.
+    pub(super) fn keyframes(&mut self, sections: &[El<'a>]) -> Vec<Keyframe> {
+        let mut keys = Vec::new();
+        for section in sections.iter().filter(|s| s.tag() == "keyframe") {
+            for el in self.reader.children(*section) {
+                if el.tag() != "key" {
+                    self.problem(
+                        &rules::MJCF_STRUCTURE,
+                        el,
+                        format!(
+                            "<{}> cannot be in <keyframe>, only <key> (MuJoCo refuses the model)",
+                            el.tag()
+                        ),
+                    );
+                    continue;
+                }
+                let index = keys.len();
+                if let Some(key) = self.key(el, index) {
+                    keys.push(key);
+                }
+            }
+        }
+        keys
+    }
+
+    /// One `<key>` (the `index`-th) as a pose; `None` (with a U030) when MuJoCo refuses it.
+    fn key(&mut self, el: El<'a>, index: usize) -> Option<Keyframe> {
+        let name = el
+            .attr("name")
+            .map_or_else(|| index.to_string(), str::to_string);
+        let nq: usize = self.qpos.iter().map(QposJoint::size).sum();
+        let written = self.list(el, MAIN, "qpos").unwrap_or_default();
+        if written.len() > nq {
+            let span = self.reader.attr_span(el, "qpos");
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                span,
+                format!(
+                    "keyframe '{name}': qpos has {} numbers, the model's qpos {nq} (MuJoCo refuses it: \"invalid qpos size\")",
+                    written.len()
+                ),
+            );
+            return None;
+        }
+        let mut key = Keyframe {
+            name: name.clone(),
+            span: self.reader.span(el),
+            ..Keyframe::default()
+        };
+        let mut at = 0;
+        for joint in &self.qpos {
+            let size = joint.size();
+            let mut values = joint.qpos0();
+            for (k, value) in values.iter_mut().enumerate() {
+                if let Some(v) = written.get(at + k) {
+                    *value = *v;
+                }
+            }
+            at += size;
+            match joint {
+                QposJoint::Scalar { joint, reference } => {
+                    key.joints.push((joint.clone(), values[0] - reference));
+                }
+                QposJoint::Ball { hinges } => {
+                    let rotation = UnitQuaternion::from_quaternion(Quaternion::new(
+                        values[0], values[1], values[2], values[3],
+                    ));
+                    let angles = xyz_angles(&rotation);
+                    if rotation.angle() > 0.0 {
+                        let ball = hinges[0].strip_suffix("_x").unwrap_or(&hinges[0]);
+                        key.notes.push(format!(
+                            "keyframe '{name}': ball joint '{ball}' is set as the angles of '{}', '{}', '{}' (its orientation exactly); their gravity torques are about those chained axes, not MuJoCo's three ball dofs",
+                            hinges[0], hinges[1], hinges[2]
+                        ));
+                    }
+                    for (hinge, angle) in hinges.iter().zip(angles) {
+                        key.joints.push((hinge.clone(), angle));
+                    }
+                }
+                QposJoint::Free { name: joint, qpos0 } => {
+                    let moved = Vector3::new(values[0], values[1], values[2])
+                        != Vector3::new(qpos0[0], qpos0[1], qpos0[2]);
+                    let turn = |v: &[f64]| {
+                        UnitQuaternion::from_quaternion(Quaternion::new(v[3], v[4], v[5], v[6]))
+                    };
+                    let tilted = turn(&values).angle_to(&turn(qpos0)) > 1e-12;
+                    if moved || tilted {
+                        key.notes.push(format!(
+                            "keyframe '{name}': free joint '{joint}' is not moved{}: the analyses keep its body where qpos0 puts it{}",
+                            if tilted { " nor turned" } else { "" },
+                            if tilted {
+                                ", so gravity acts as on the robot at qpos0's orientation, not the key's"
+                            } else {
+                                ""
+                            }
+                        ));
+                    }
+                }
+            }
+        }
+        Some(key)
+    }
+}
