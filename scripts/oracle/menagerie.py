@@ -1,5 +1,13 @@
 #!/usr/bin/env python3
-"""MuJoCo Menagerie, mesh-free: MuJoCo against urdf_validate on the same files (issue #30, partial).
+"""MuJoCo Menagerie: MuJoCo against urdf_validate on the same files (issue #30).
+
+`--full DIR`: every model file of a whole Menagerie tree with its meshes (not committed; `--extract GIT_DIR
+--commit C` writes DIR from a fetched snapshot first), run on a stand-in tree where a file naming a mesh the
+snapshot lacks is rewritten without it: MuJoCo compiles?, our report (exit code, verdicts; a hang or crash is
+a failure), and mass, COM and gravity torques against MuJoCo at the statics pose and two seeded random
+configurations (`--pose custom`). One Markdown row per file (docs/menagerie.md); exit 1 on any failure.
+
+The rest of this text is the committed mesh-free corpus (`--write`, `--check`):
 
 Menagerie's meshes cannot be brought here (its snapshot is over the fetch limit); its XML files can, one by
 one. For each robot model listed in MODELS, whose original XML and LICENSE were copied by hand into
