@@ -1,5 +1,13 @@
 #!/usr/bin/env python3
-"""MuJoCo Menagerie, mesh-free: MuJoCo against urdf_validate on the same files (issue #30, partial).
+"""MuJoCo Menagerie: MuJoCo against urdf_validate on the same files (issue #30).
+
+`--full DIR`: every model file of a whole Menagerie tree with its meshes (not committed; `--extract GIT_DIR
+--commit C` writes DIR from a fetched snapshot first), run on a stand-in tree where a file naming a mesh the
+snapshot lacks is rewritten without it: MuJoCo compiles?, our report (exit code, verdicts; a hang or crash is
+a failure), and mass, COM and gravity torques against MuJoCo at the statics pose and two seeded random
+configurations (`--pose custom`). One Markdown row per file (docs/menagerie.md); exit 1 on any failure.
+
+The rest of this text is the committed mesh-free corpus (`--write`, `--check`):
 
 Menagerie's meshes cannot be brought here (its snapshot is over the fetch limit); its XML files can, one by
 one. For each robot model listed in MODELS, whose original XML and LICENSE were copied by hand into
@@ -41,10 +49,14 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
+import random
+import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -217,9 +229,9 @@ def bodies_with_inertial(root: ET.Element) -> set[str]:
     }
 
 
-def mesh_free(text: str) -> tuple[str, list[str], int]:
-    """The variant's text, the bodies that lose mass, and how many geoms were dropped."""
-    root = parse(text)
+def drop_geoms(root: ET.Element, drop) -> tuple[list[str], int]:
+    """Removes every geom `drop(geom)` says, with the `<contact>` pairs and sensors naming one; returns the
+    bodies that lose mass by it (their mass came from a dropped geom) and how many geoms were dropped."""
     classes = default_classes(root)
     compiler = root.find("compiler")
     from_geom = compiler.get("inertiafromgeom", "auto") if compiler is not None else "auto"
@@ -232,7 +244,7 @@ def mesh_free(text: str) -> tuple[str, list[str], int]:
     losing: list[str] = []
     dropped = 0
     for geom in geoms(root, classes):
-        if not uses_mesh(geom):
+        if not drop(geom):
             continue
         geom.parent.remove(geom.element)
         dropped += 1
@@ -242,6 +254,24 @@ def mesh_free(text: str) -> tuple[str, list[str], int]:
         if geom.body != "world" and mass_from_geoms and counts_for_mass(geom, group_range):
             if geom.body not in losing:
                 losing.append(geom.body)
+    for section in ("contact", "sensor"):
+        for node in root.findall(section):
+            for child in list(node):
+                named = {child.get(k) for k in ("geom", "geom1", "geom2")} - {None}
+                if named & dropped_names:
+                    node.remove(child)
+    return losing, dropped
+
+
+def serialise(root: ET.Element) -> str:
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="unicode") + "\n"
+
+
+def mesh_free(text: str) -> tuple[str, list[str], int]:
+    """The variant's text, the bodies that lose mass, and how many geoms were dropped."""
+    root = parse(text)
+    losing, dropped = drop_geoms(root, uses_mesh)
     dropped_textures: set[str] = set()
     for asset in root.findall("asset"):
         for child in list(asset):
@@ -253,14 +283,28 @@ def mesh_free(text: str) -> tuple[str, list[str], int]:
         for material in asset.findall("material"):
             if material.get("texture") in dropped_textures:
                 del material.attrib["texture"]
-    for section in ("contact", "sensor"):
-        for node in root.findall(section):
-            for child in list(node):
-                named = {child.get(k) for k in ("geom", "geom1", "geom2")} - {None}
-                if named & dropped_names:
-                    node.remove(child)
-    ET.indent(root, space="  ")
-    return ET.tostring(root, encoding="unicode") + "\n", losing, dropped
+    return serialise(root), losing, dropped
+
+
+def without_missing_meshes(text: str, missing) -> tuple[str, list[str], int] | None:
+    """The file without the `<mesh>` assets whose file `missing(file, meshdir)` says is absent and the
+    geoms using them (None when it has none): what MuJoCo can compile of a model whose largest meshes a
+    fetched snapshot lacks."""
+    root = parse(text)
+    compiler = root.find("compiler")
+    meshdir = ""
+    if compiler is not None:
+        meshdir = compiler.get("meshdir", compiler.get("assetdir", ""))
+    gone: set[str] = set()
+    for asset in root.findall("asset"):
+        for child in list(asset):
+            if child.tag == "mesh" and "file" in child.attrib and missing(child.get("file", ""), meshdir):
+                gone.add(child.get("name", Path(child.get("file", "")).stem))
+                asset.remove(child)
+    if not gone:
+        return None
+    losing, dropped = drop_geoms(root, lambda geom: geom.attrs.get("mesh") in gone)
+    return serialise(root), losing, dropped
 
 
 def write(source: Path) -> None:
@@ -302,7 +346,11 @@ def mujoco_values(path: Path, configuration: dict[str, float]) -> dict:
     """Total mass, centre of mass and gravity forces by joint, gravity on, at `qpos0` moved by the
     report's statics configuration (our q is MuJoCo's qpos - qpos0 for hinge and slide joints; ball and
     free joints stay at qpos0)."""
-    model = mujoco.MjModel.from_xml_path(str(path))
+    return values_at(mujoco.MjModel.from_xml_path(str(path)), configuration)
+
+
+def values_at(model: mujoco.MjModel, configuration: dict[str, float]) -> dict:
+    """`mujoco_values` of a compiled model (its gravity flag turned on)."""
     model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_GRAVITY)
     data = mujoco.MjData(model)
     data.qpos[:] = model.qpos0
@@ -369,16 +417,45 @@ def fold_couplings(model: mujoco.MjModel, forces: dict[str, float]) -> None:
 
 
 def our_report(binary: Path, path: Path) -> tuple[int, dict | None]:
-    with tempfile.TemporaryDirectory(prefix="menagerie-") as out:
-        run = subprocess.run(
-            [str(binary), "--format", "json", "--output-dir", out, str(path)],
-            capture_output=True,
-            text=True,
-            timeout=600,
+    run = validate(binary, path, [], 600.0)
+    return (run.code if run.code is not None else -1), run.report
+
+
+@dataclass
+class Run:
+    """One run of the validator on one file."""
+
+    code: int | None
+    """Its exit code (negative: killed by that signal); None when it did not finish in time (a hang)."""
+    report: dict | None
+    seconds: float
+    stderr: str
+
+    def crashed(self) -> bool:
+        """A crash: killed by a signal, a panic, an exit code the CLI never gives, or no report."""
+        return self.code is not None and (
+            self.code not in (0, 1, 2) or "panicked" in self.stderr or self.report is None
         )
+
+
+def validate(binary: Path, path: Path, extra: list[str], timeout: float) -> Run:
+    """`urdf_validate --format json` on `path` (the arguments as a list: file names are data, never
+    shell words), its report read back from a temporary --output-dir."""
+    with tempfile.TemporaryDirectory(prefix="menagerie-") as out:
+        start = time.monotonic()
+        try:
+            run = subprocess.run(
+                [str(binary), "--format", "json", "--output-dir", out, *extra, "--", str(path)],
+                capture_output=True,
+                text=True,
+                timeout=timeout,
+            )
+        except subprocess.TimeoutExpired:
+            return Run(None, None, time.monotonic() - start, "")
+        seconds = time.monotonic() - start
         reports = list(Path(out).glob("*_validation.json"))
         report = json.loads(reports[0].read_text()) if reports else None
-    return run.returncode, report
+    return Run(run.returncode, report, seconds, run.stderr)
 
 
 def compare(theirs: dict, report: dict) -> list[str]:
@@ -389,7 +466,10 @@ def compare(theirs: dict, report: dict) -> list[str]:
     if mass is None or not agrees(mass, theirs["mass"], MASS_FLOOR):
         out.append(f"total mass {mass}, MuJoCo {theirs['mass']}")
     com = statics.get("full_body_com")
-    if com is None or not all(agrees(com[i], theirs["com"][i], POSITION_FLOOR) for i in range(3)):
+    massless = theirs["mass"] == 0.0 and mass is not None and mass <= MASS_FLOOR
+    # A model without mass (a camera) has no centre of mass to compare.
+    if not massless and (com is None or not all(agrees(com[i], theirs["com"][i], POSITION_FLOOR)
+                                                for i in range(3))):
         out.append(f"centre of mass {com}, MuJoCo {theirs['com']}")
     ours = {j["name"]: j.get("required_torque_gravity") for j in statics.get("joints") or []}
     for name, force in theirs["forces"].items():
@@ -444,11 +524,279 @@ def row(model: Model, binary: Path) -> tuple[str, bool, list[str]]:
     return f"{start} yes | {agreed} ({figures}) {end}", not problems, problems
 
 
+# ---------------------------------------------------------------------------------------------- full corpus
+
+FULL_TIMEOUT = 300.0
+"""Seconds a validator run may take in --full before it counts as a hang (its own --timeout is 60 s)."""
+RANDOM_CONFIGURATIONS = 2
+SEED = 7
+UNSAFE_IN_JOINT_ANGLES = set(",= \t\n")
+"""Characters a joint name cannot have in `--joint-angles NAME=VALUE,...`: such a joint stays at qpos0."""
+
+
+def full_models(root: Path) -> list[Path]:
+    """Every model of a Menagerie tree: the `*.xml` files directly in a top-level folder whose root
+    element is `<mujoco>` (robot files, scenes, `mjx_` variants; not the fragments under `assets/`),
+    sorted. File names are data: they are never put into a shell command."""
+    found = []
+    for folder in sorted(p for p in root.iterdir() if p.is_dir() and not p.name.startswith(".")):
+        for path in sorted(folder.glob("*.xml")):
+            try:
+                tag = next(ET.iterparse(path, events=("start",)))[1].tag
+            except (ET.ParseError, StopIteration, OSError):
+                continue
+            if tag == "mujoco":
+                found.append(path)
+    return found
+
+
+def extract(git_dir: Path, commit: str, out: Path) -> list[tuple[str, str]]:
+    """Writes the tree of `commit` of a fetched Menagerie snapshot (a bare git directory) into `out`; returns
+    the files the snapshot lacks (path, blob id): a fetched snapshot has no file of 4 MiB or more. Paths
+    are data: no shell, and none may leave `out`."""
+    git = ["git", f"--git-dir={git_dir}"]
+    listing = subprocess.run(git + ["ls-tree", "-r", "-z", commit], capture_output=True, check=True).stdout
+    missing = []
+    for entry in listing.split(b"\0"):
+        if not entry:
+            continue
+        meta, raw = entry.split(b"\t", 1)
+        mode, kind, blob = meta.decode().split()
+        path = raw.decode()
+        if kind != "blob" or mode == "120000":
+            continue
+        target = (out / path).resolve()
+        if out.resolve() not in target.parents:
+            raise SystemExit(f"{path!r}: a path outside the tree")
+        content = subprocess.run(git + ["cat-file", "blob", blob], capture_output=True)
+        if content.returncode != 0:
+            missing.append((path, blob))
+            continue
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(content.stdout)
+    return missing
+
+
+@dataclass
+class StandIn:
+    """What the stand-in of one file dropped: the geoms whose mesh file the snapshot lacks."""
+
+    meshes: int
+    geoms: int
+    losing: list[str]
+
+
+def meshdirs(folder: Path) -> set[str]:
+    """The `meshdir`s (or `assetdir`s) the model files directly in `folder` give."""
+    found = set()
+    for path in folder.glob("*.xml"):
+        try:
+            compiler = ET.parse(path).getroot().find("compiler")
+        except ET.ParseError:
+            continue
+        if compiler is not None:
+            found.add(compiler.get("meshdir", compiler.get("assetdir", "")))
+    return found
+
+
+def stand_in_tree(root: Path, out: Path) -> dict[str, StandIn]:
+    """Mirrors the Menagerie tree `root` into `out` (symbolic links to its files), every XML file that
+    declares a `<mesh>` whose file is not in `root` rewritten without that mesh and the geoms using it
+    (`without_missing_meshes`); returns what each rewritten file dropped, by path relative to `root`.
+    Mesh files are looked up in the model's folder (the top-level folder), under the file's `meshdir`."""
+    if out.exists():
+        shutil.rmtree(out)
+    changed: dict[str, StandIn] = {}
+    for path in sorted(root.rglob("*")):
+        relative = path.relative_to(root)
+        target = out / relative
+        if path.is_dir():
+            target.mkdir(parents=True, exist_ok=True)
+            continue
+        target.parent.mkdir(parents=True, exist_ok=True)
+        variant = None
+        if path.suffix == ".xml" and len(relative.parts) > 1:
+            folder = root / relative.parts[0]
+            gone: set[str] = set()
+            # An included file's meshes resolve against the including model's meshdir: absent only when
+            # absent under every meshdir of the folder's models (and under the file's own folder).
+            bases = {path.parent, folder} | {folder / d for d in meshdirs(folder)}
+
+            def missing(file: str, meshdir: str, bases: set[Path] = bases, gone: set[str] = gone) -> bool:
+                absent = not any((base / meshdir / file).is_file() or (base / file).is_file() for base in bases)
+                if absent:
+                    gone.add(file)
+                return absent
+
+            try:
+                variant = without_missing_meshes(path.read_text(), missing)
+            except (ET.ParseError, UnicodeDecodeError, ValueError):
+                variant = None
+            if variant is not None:
+                text, losing, dropped = variant
+                target.write_text(text)
+                changed[str(relative)] = StandIn(len(gone), dropped, losing)
+        if variant is None:
+            target.symlink_to(path)
+    return changed
+
+
+def random_configuration(model: mujoco.MjModel, rng: random.Random) -> dict[str, float]:
+    """q (MuJoCo's qpos - qpos0) for every named hinge and slide joint the command line can name: uniform
+    in the joint's range when it is limited, else in [-pi, pi] (hinge) or [-0.1, 0.1] m (slide)."""
+    q = {}
+    for j in range(model.njnt):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j)
+        kind = int(model.jnt_type[j])
+        if not name or set(name) & UNSAFE_IN_JOINT_ANGLES:
+            continue
+        if kind not in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
+            continue
+        if model.jnt_limited[j]:
+            low, high = (float(x) for x in model.jnt_range[j])
+        elif kind == int(mujoco.mjtJoint.mjJNT_HINGE):
+            low, high = -math.pi, math.pi
+        else:
+            low, high = -0.1, 0.1
+        q[name] = rng.uniform(low, high) - float(model.qpos0[model.jnt_qposadr[j]])
+    return q
+
+
+@dataclass
+class FullResult:
+    """One model of the full corpus: MuJoCo's verdict, ours, and what disagrees."""
+
+    model: str
+    compiles: str
+    agrees: str
+    code: str
+    verdicts: str
+    seconds: float
+    failures: list[str]
+
+
+def full_row(binary: Path, root: Path, path: Path) -> FullResult:
+    """MuJoCo compiles the model?; our report (default options, then `--pose custom` at two seeded random
+    configurations); our mass, COM and gravity torques against MuJoCo's at each of the three poses."""
+    name = str(path.relative_to(root))
+    run = validate(binary, path, [], FULL_TIMEOUT)
+    failures = []
+    if run.code is None:
+        failures.append(f"hang: no report within {FULL_TIMEOUT:.0f} s")
+    elif run.crashed():
+        failures.append(f"crash: exit code {run.code}: {run.stderr.strip()[-300:]}")
+    code = "hang" if run.code is None else str(run.code)
+    result = FullResult(name, "", "–", code, verdicts(run.report), run.seconds, failures)
+    try:
+        model = mujoco.MjModel.from_xml_path(str(path))
+    except (ValueError, mujoco.FatalError) as error:
+        message = str(error).splitlines()[0].removeprefix("Error: ")
+        result.compiles = f"no: {message}"
+        return result
+    result.compiles = "yes"
+    if run.report is None:
+        return result
+    if (run.report.get("statics") or {}).get("total_mass") is None:
+        result.agrees = "– (no statics)"
+        return result
+    rng = random.Random(f"{SEED}:{name}")
+    poses: list[tuple[str, dict[str, float] | None]] = [("qpos0", None)]
+    if random_configuration(model, random.Random(0)):
+        poses += [(f"random {i + 1}", random_configuration(model, rng)) for i in range(RANDOM_CONFIGURATIONS)]
+    compared = 0
+    problems: list[str] = []
+    for label, wanted in poses:
+        report = run.report
+        if wanted is not None:
+            angles = ",".join(f"{joint}={value!r}" for joint, value in wanted.items())
+            extra = ["--pose", "custom", "--samples", "200"] + (["--joint-angles", angles] if angles else [])
+            posed = validate(binary, path, extra, FULL_TIMEOUT)
+            result.seconds += posed.seconds
+            if posed.code is None or posed.crashed() or posed.report is None:
+                failures.append(f"{label}: no report (exit code {posed.code}): {posed.stderr.strip()[-300:]}")
+                continue
+            report = posed.report
+        configuration = (report.get("statics") or {}).get("configuration") or {}
+        for joint, value in (wanted or {}).items():
+            if joint in configuration and configuration[joint] != value:
+                problems.append(f"{label}: joint {joint} analysed at {configuration[joint]}, asked {value}")
+        theirs = values_at(model, configuration)
+        problems += [f"{label}: {p}" for p in compare(theirs, report)]
+        compared = len(theirs["forces"])
+    failures += problems
+    figures = f"{float(sum(model.body_mass)):.6g} kg, {compared} joint torques × {len(poses)} poses"
+    result.agrees = ("yes" if not problems else f"**no** ({len(problems)} values)") + f" ({figures})"
+    return result
+
+
+def stand_in_note(path: Path, stand: Path, changed: dict[str, StandIn]) -> str:
+    """What the stand-in of the file, or of the files it includes, dropped ("–" when nothing)."""
+    notes = []
+    relative = path.relative_to(stand)
+    files = [relative]
+    try:
+        for include in ET.parse(path).getroot().iter("include"):
+            included = (path.parent / include.get("file", "")).resolve()
+            if stand.resolve() in included.parents:
+                files.append(included.relative_to(stand.resolve()))
+    except ET.ParseError:
+        pass
+    for file in files:
+        dropped = changed.get(str(file))
+        if dropped is not None:
+            lost = ", ".join(f"`{b}`" for b in dropped.losing) or "none"
+            where = "" if file == relative else f" (in `{file.name}`)"
+            notes.append(f"{dropped.meshes} missing meshes, {dropped.geoms} geoms dropped{where}; "
+                         f"bodies losing mass: {lost}")
+    return "; ".join(notes) or "–"
+
+
+def full(binary: Path, root: Path) -> int:
+    """The full-corpus table (Markdown, stdout), the failures (stderr); 1 when any. Runs on a stand-in
+    tree (target/menagerie-stand-in) where the files naming a mesh the snapshot lacks are rewritten
+    without it (the last column says what that dropped), everything else linked to `root`."""
+    stand = REPO / "target" / "menagerie-stand-in"
+    changed = stand_in_tree(root, stand)
+    models = full_models(stand)
+    if not models:
+        print(f"{root}: no Menagerie model folders here", file=sys.stderr)
+        return 2
+    print("| model | MuJoCo compiles | we agree (mass, COM, gravity torques at qpos0 and 2 random poses) "
+          "| exit code | verdicts (overall: sections) | time (s) | stand-in for meshes the snapshot lacks |")
+    print("|---|---|---|---|---|---|---|")
+    failed = []
+    start = time.monotonic()
+    for path in models:
+        r = full_row(binary, stand, path)
+        note = stand_in_note(path, stand, changed)
+        print(f"| {r.model} | {r.compiles} | {r.agrees} | {r.code} | {r.verdicts} | {r.seconds:.2f} "
+              f"| {note} |", flush=True)
+        failed += [f"{r.model}: {f}" for f in r.failures]
+    print(f"\n{len(models)} models, {time.monotonic() - start:.0f} s in all", file=sys.stderr)
+    for line in failed:
+        print(line, file=sys.stderr)
+    return 1 if failed else 0
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="make the variants from --source")
     parser.add_argument("--check", action="store_true", help="also check the variants are up to date")
     parser.add_argument("--source", type=Path, default=REPO / "target/menagerie-src")
+    parser.add_argument(
+        "--full",
+        type=Path,
+        metavar="DIR",
+        help="instead: every model of a whole Menagerie tree with its meshes (not committed; e.g. "
+        "target/menagerie-full), one table row each",
+    )
+    parser.add_argument(
+        "--extract",
+        type=Path,
+        metavar="GIT_DIR",
+        help="first write --full DIR from this fetched snapshot (a bare git directory) at --commit",
+    )
+    parser.add_argument("--commit", default="HEAD", help="the commit --extract writes")
     parser.add_argument(
         "--binary",
         type=Path,
@@ -464,8 +812,14 @@ def main() -> int:
     if args.write and not source.is_dir():
         print(f"{source}: no hand-copied Menagerie originals to make the variants from", file=sys.stderr)
         return 2
+    full_root = args.full.resolve() if args.full else None
     # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory: not into the repository.
     os.chdir(tempfile.mkdtemp(prefix="menagerie-"))
+    if full_root is not None:
+        if args.extract is not None:
+            for path, blob in extract(args.extract.resolve(), args.commit, full_root):
+                print(f"missing from the snapshot: {path} (blob {blob})")
+        return full(binary, full_root)
     if args.write:
         write(source)
     failed = 0

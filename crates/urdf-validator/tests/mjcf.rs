@@ -885,3 +885,105 @@ fn equality_constraints_are_couplings_held_joints_and_reported_loops() {
         "{q:?}"
     );
 }
+
+/// MuJoCo reads an OBJ mesh's vertices as single-precision floats (tinyobjloader's `real_t`), so a mesh
+/// whose coordinates are not floats (0.1 here) has the volume of its vertices rounded to f32: MuJoCo 4.0
+/// gives this cube 8.000000357627876 kg, 1000 × (2 · 0.1f32)³, not 8 kg. Found on the full Menagerie
+/// (flexiv_rizon4's OBJ links differed from MuJoCo by 3e-9 of their mass); STL meshes are floats already.
+#[test]
+fn an_obj_mesh_has_the_mass_of_its_vertices_rounded_to_floats_as_mujoco_reads_them() {
+    let dir = Scratch::new("obj-f32");
+    let mut obj = String::new();
+    for x in [-0.1, 0.1] {
+        for y in [-0.1, 0.1] {
+            for z in [-0.1, 0.1] {
+                obj.push_str(&format!("v {x} {y} {z}\n"));
+            }
+        }
+    }
+    obj.push_str("f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n");
+    dir.file("assets/cube.obj", &obj);
+    let path = dir.file(
+        "cube.xml",
+        "<mujoco model=\"cube\"><compiler meshdir=\"assets\"/><asset><mesh name=\"cube\" file=\"cube.obj\"/>\
+         </asset><worldbody><body name=\"box\"><joint name=\"hinge\" axis=\"1 0 0\"/>\
+         <geom type=\"mesh\" mesh=\"cube\"/></body></worldbody></mujoco>",
+    );
+    let robot = robot(&path);
+    let link = robot.links.iter().find(|l| l.name.value == "box").unwrap();
+    let mass = link.inertial.as_ref().unwrap().mass.as_ref().unwrap().value;
+    let side = 2.0 * f64::from(0.1_f32);
+    let expected = 1000.0 * side * side * side;
+    assert!(
+        ((mass - expected) / expected).abs() < 1e-12,
+        "mass {mass}, MuJoCo's {expected} (not {})",
+        1000.0 * 0.2_f64.powi(3)
+    );
+}
+
+/// The vertices of a box mesh, x in [0, 0.2], y in [-0.05, 0.05], z in [-0.1, 0.1] (centre 0.1, 0, 0).
+fn off_centre_box() -> String {
+    let mut obj = String::new();
+    for x in [0.0, 0.2] {
+        for y in [-0.05, 0.05] {
+            for z in [-0.1, 0.1] {
+                obj.push_str(&format!("v {x} {y} {z}\n"));
+            }
+        }
+    }
+    obj + "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n"
+}
+
+/// The mass and centre of mass (in its body's frame) of body `box` of the model `text` in `dir`.
+fn box_mass(dir: &Scratch, text: &str) -> (f64, [f64; 3]) {
+    let path = dir.file("model.xml", text);
+    let robot = robot(&path);
+    let link = robot.links.iter().find(|l| l.name.value == "box").unwrap();
+    let inertial = link.inertial.as_ref().unwrap();
+    (inertial.mass.as_ref().unwrap().value, inertial.origin.xyz)
+}
+
+/// A mesh's `refpos`/`refquat` is the frame its vertices are written in: MuJoCo moves them by its inverse
+/// and then scales them (MuJoCo 4.0 puts this box's centre at x = -0.05, and at -0.1 with `scale="2 1 1"`;
+/// read without them it was at x = +0.1). Found on the full Menagerie (shadow_dexee's fingers).
+#[test]
+fn a_mesh_reference_frame_moves_its_vertices_before_the_scale() {
+    let dir = Scratch::new("refquat");
+    dir.file("offbox.obj", &off_centre_box());
+    for (scale, x) in [("1 1 1", -0.05), ("2 1 1", -0.1)] {
+        let (_, com) = box_mass(
+            &dir,
+            &format!(
+                "<mujoco><asset><mesh name=\"m\" file=\"offbox.obj\" refpos=\"0.1 0.05 0\" refquat=\"1 0 0 1\" \
+                 scale=\"{scale}\"/></asset><worldbody><body name=\"box\"><joint axis=\"1 0 0\"/>\
+                 <geom type=\"mesh\" mesh=\"m\"/></body></worldbody></mujoco>"
+            ),
+        );
+        assert!(
+            (com[0] - x).abs() < 1e-7 && com[1].abs() < 1e-7 && com[2].abs() < 1e-7,
+            "scale {scale}: centre of mass {com:?}, MuJoCo's ({x}, 0, 0)"
+        );
+    }
+}
+
+/// A mesh declared in an included file that is not under `meshdir` is looked for in the included file's
+/// folder, as MuJoCo 4.0 does (ms_human_700's `assets/asset/*.xml` name `../geometry/*.stl`): the body
+/// gets the mesh's mass, not none with a "mesh not found".
+#[test]
+fn a_mesh_of_an_included_file_is_found_beside_that_file() {
+    let dir = Scratch::new("include-mesh");
+    dir.file("parts/offbox.obj", &off_centre_box());
+    dir.file(
+        "parts/assets.xml",
+        "<mujoco><asset><mesh name=\"m\" file=\"offbox.obj\"/></asset></mujoco>",
+    );
+    let (mass, _) = box_mass(
+        &dir,
+        "<mujoco><compiler meshdir=\"meshes\"/><include file=\"parts/assets.xml\"/><worldbody>\
+         <body name=\"box\"><joint axis=\"1 0 0\"/><geom type=\"mesh\" mesh=\"m\"/></body></worldbody></mujoco>",
+    );
+    assert!(
+        (mass - 4.0).abs() < 1e-6,
+        "mass {mass}: the 4 kg mesh was not found"
+    );
+}

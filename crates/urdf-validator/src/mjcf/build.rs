@@ -84,6 +84,9 @@ struct MeshAsset {
     volume: MeshVolume,
     /// `inertia="convex"`: over the convex hull's triangles.
     convex: bool,
+    /// `refpos` and `refquat`: the frame the file's vertices are written in (MuJoCo moves them by its
+    /// inverse).
+    reference: Isometry3<f64>,
 }
 
 /// A body's contents, `<frame>`s flattened.
@@ -502,12 +505,20 @@ impl<'a, 'r> Builder<'a, 'r> {
                         .to_string(),
                 );
             }
-            let relative = match &self.compiler.mesh_dir {
-                Some(dir) if !Path::new(file.text).is_absolute() => Path::new(dir)
-                    .join(file.text)
-                    .to_string_lossy()
-                    .into_owned(),
-                _ => file.text.to_string(),
+            let relative = self.mesh_path(el, file.text);
+            let refpos = self.vector(el, &class, "refpos", [0.0; 3]);
+            let refquat = self.vector(el, &class, "refquat", [1.0, 0.0, 0.0, 0.0]);
+            let rotation = match orientation::rotation("quat", &refquat, &self.compiler) {
+                Ok(r) => r,
+                Err(why) => {
+                    let span = self.reader.attr_span(el, "refquat");
+                    self.reader.report(
+                        &rules::MJCF_INVALID_VALUE,
+                        span,
+                        format!("<mesh refquat>: {why}"),
+                    );
+                    UnitQuaternion::identity()
+                }
             };
             self.meshes.insert(
                 name,
@@ -521,9 +532,42 @@ impl<'a, 'r> Builder<'a, 'r> {
                         MeshVolume::Exact
                     },
                     convex: inertia == "convex",
+                    reference: Isometry3::from_parts(
+                        Translation3::from(Vector3::from(refpos)),
+                        rotation,
+                    ),
                 },
             );
         }
+    }
+
+    /// Where MuJoCo finds a mesh file (relative to the model's folder): under `meshdir`, else, for a
+    /// mesh declared in an included file, in that file's folder (MuJoCo 4.0 looks there second).
+    fn mesh_path(&self, el: El<'a>, file: &str) -> String {
+        let under_meshdir = match &self.compiler.mesh_dir {
+            Some(dir) if !Path::new(file).is_absolute() => Path::new(dir).join(file),
+            _ => PathBuf::from(file),
+        };
+        let beside_include = self
+            .reader
+            .files()
+            .path(el.file)
+            .parent()
+            .map(|folder| folder.join(file));
+        match beside_include {
+            // The included file's path is as it was opened; the asset checks join the result to `dir`.
+            Some(path)
+                if el.file != 0 && !self.dir.join(&under_meshdir).is_file() && path.is_file() =>
+            {
+                match path.strip_prefix(&self.dir) {
+                    Ok(relative) => relative.to_path_buf(),
+                    Err(_) => std::path::absolute(&path).unwrap_or(path),
+                }
+            }
+            _ => under_meshdir,
+        }
+        .to_string_lossy()
+        .into_owned()
     }
 
     /// The contents of a body (or the world body, or a `<frame>`), frames flattened: `frame` places the
@@ -1136,10 +1180,17 @@ impl<'a, 'r> Builder<'a, 'r> {
             // The asset checks report a missing or refused mesh file; without it there is no solid.
             return (Some(geometry), None);
         }
+        // MuJoCo holds a mesh's vertices as single-precision floats (an OBJ's decimals are read into
+        // floats), then scales them: the same rounding gives its mass to 1e-9 (STL is floats already).
         let scaled = |points: &[[f64; 3]]| -> Vec<[f64; 3]> {
             points
                 .iter()
-                .map(|p| [0, 1, 2].map(|k| p[k] * asset.scale[k]))
+                .map(|p| {
+                    let read = asset
+                        .reference
+                        .inverse_transform_point(&[0, 1, 2].map(|k| f64::from(p[k] as f32)).into());
+                    [0, 1, 2].map(|k| read[k] * asset.scale[k])
+                })
                 .collect()
         };
         let solid = if asset.convex {
