@@ -123,10 +123,6 @@ const SWEEP_FROM_PAIRS_PER_LINK: usize = 64;
 /// With the sweep, the first `SWEEP_AFTER_LINKS × links` pairs are still scanned one by one first.
 const SWEEP_AFTER_LINKS: usize = 4;
 
-/// With the rigid-group broad phase, the first `GROUPS_AFTER_LINKS × links` pairs are scanned one by one
-/// before the groups are tested.
-const GROUPS_AFTER_LINKS: usize = 1;
-
 /// Slack added to every sweep interval, metres: the sweep only preselects pairs (each is tested exactly
 /// afterwards), so a margin that is too large changes nothing but a little time.
 const SWEEP_SLACK: f64 = 1e-6;
@@ -258,6 +254,9 @@ pub struct CheckScratch {
     /// Per slot of the pair set: the world centre of its link's bounding sphere; NaN when the link's
     /// placement is not usable.
     centre: Vec<Vector3<f64>>,
+    /// Per slot: the pose its `centre` was computed in ([`HELD`]: a held slot's, kept). With the
+    /// rigid-group broad phase a moving slot's centre is computed only when one of its pairs is looked at.
+    centre_stamp: Vec<u32>,
     /// Per shape: where it is in the current pose, valid when `stamp` matches.
     placed: Vec<(u32, Placed)>,
     stamp: u32,
@@ -282,6 +281,7 @@ impl CheckScratch {
     pub fn new(model: &CollisionModel) -> Self {
         CheckScratch {
             centre: Vec::new(),
+            centre_stamp: Vec::new(),
             placed: vec![(0, Placed::default()); model.shapes.len()],
             stamp: 0,
             axis: Vec::new(),
@@ -309,6 +309,10 @@ impl CheckScratch {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 || self.stamp == HELD {
             self.placed.iter_mut().for_each(|p| p.0 = 0);
+            self.centre_stamp
+                .iter_mut()
+                .filter(|s| **s != HELD)
+                .for_each(|s| *s = 0);
             self.stamp = 1;
         }
     }
@@ -696,10 +700,10 @@ impl CollisionModel {
         scratch.next_pose();
         let mut result = PoseCheck::default();
         let centre_of = |link: LinkId| {
-            placements.get(link.0).filter(|p| usable(p)).map(|p| {
-                p.transform_point(&Point3::from(self.bodies[link.0].centre))
-                    .coords
-            })
+            placements
+                .get(link.0)
+                .filter(|p| usable(p))
+                .map(|p| self.world_centre(link, p))
         };
         let held = match scratch.fixed_usable {
             Some(usable) if scratch.hold_fixed && scratch.centre.len() == pairs.links.len() => {
@@ -707,18 +711,33 @@ impl CollisionModel {
             }
             _ => None,
         };
+        // With the rigid-group broad phase (held links measured, every link usable), the moving slots'
+        // centres are computed as their pairs are looked at.
+        let grouped = pairs.held.as_ref().filter(|_| {
+            held == Some(true)
+                && pairs.sweep.is_none()
+                && pairs.moving.iter().all(|&slot| {
+                    placements
+                        .get(pairs.links[slot as usize].0)
+                        .is_some_and(usable)
+                })
+        });
         let mut all_usable = true;
-        if let Some(fixed_usable) = held {
+        if grouped.is_some() {
+            // Computed in the scan, as pairs need them.
+        } else if let Some(fixed_usable) = held {
             // Only the moving slots' centres change.
             all_usable = fixed_usable;
             for &slot in &pairs.moving {
                 let centre = centre_of(pairs.links[slot as usize]);
                 all_usable &= centre.is_some();
                 scratch.centre[slot as usize] = centre.unwrap_or(Vector3::repeat(f64::NAN));
+                scratch.centre_stamp[slot as usize] = scratch.stamp;
             }
         } else {
             let mut fixed_usable = true;
             scratch.centre.clear();
+            scratch.centre_stamp.clear();
             for (slot, &link) in pairs.links.iter().enumerate() {
                 let centre = centre_of(link);
                 all_usable &= centre.is_some();
@@ -726,6 +745,11 @@ impl CollisionModel {
                 scratch
                     .centre
                     .push(centre.unwrap_or(Vector3::repeat(f64::NAN)));
+                scratch.centre_stamp.push(if pairs.slot_moves[slot] {
+                    scratch.stamp
+                } else {
+                    HELD
+                });
             }
             scratch.fixed_usable = scratch.hold_fixed.then_some(fixed_usable);
             if let (true, Some(held)) = (scratch.hold_fixed, &pairs.held) {
@@ -764,28 +788,27 @@ impl CollisionModel {
             nearest: None,
             in_contact: false,
         };
-        let grouped = pairs
-            .held
-            .as_ref()
-            .filter(|_| held.is_some() && all_usable && pairs.sweep.is_none());
         if let Some(held_broad) = grouped {
-            // The first pairs (the largest links) one by one: a pose in contact usually stops there.
-            let first = (GROUPS_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len());
-            let going = self.scan(pairs, 0..first, placements, scratch, &mut state, on_contact);
             // The held links are where the first check left them, and each moving group keeps its
-            // shape: of the rest, only the pairs behind spheres that meet can be within the margin.
-            if going {
-                let mut kept = std::mem::take(&mut scratch.held_candidates);
-                held_broad.candidates(
-                    placements,
-                    &mut scratch.held_spheres,
-                    state.margin,
-                    &mut kept,
-                );
-                let rest = set_bits(&kept).filter(|&index| index >= first);
-                self.scan(pairs, rest, placements, scratch, &mut state, on_contact);
-                scratch.held_candidates = kept;
-            }
+            // shape: only the pairs behind spheres that meet can be within the margin (scanning the
+            // largest links' pairs first, as the other broad phases do, only costs time here: a moving
+            // link's centre is computed only for the pairs kept).
+            let mut kept = std::mem::take(&mut scratch.held_candidates);
+            held_broad.candidates(
+                placements,
+                &mut scratch.held_spheres,
+                state.margin,
+                &mut kept,
+            );
+            self.scan::<true>(
+                pairs,
+                set_bits(&kept),
+                placements,
+                scratch,
+                &mut state,
+                on_contact,
+            );
+            scratch.held_candidates = kept;
             if !state.in_contact {
                 result.min_clearance = state.nearest;
             }
@@ -800,7 +823,7 @@ impl CollisionModel {
             Some(_) => (SWEEP_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len()),
             None => pairs.broad.len(),
         };
-        let going = self.scan(
+        let going = self.scan::<false>(
             pairs,
             0..scanned,
             placements,
@@ -816,7 +839,7 @@ impl CollisionModel {
                 .iter()
                 .map(|&i| i as usize)
                 .filter(|&i| i >= scanned);
-            self.scan(pairs, rest, placements, scratch, &mut state, on_contact);
+            self.scan::<false>(pairs, rest, placements, scratch, &mut state, on_contact);
         }
         scratch.sweep.candidates = candidates;
         if !state.in_contact {
@@ -826,8 +849,8 @@ impl CollisionModel {
     }
 
     /// Check the pairs at `indices` (increasing) in order, updating `state`; false when `on_contact` stopped
-    /// the scan.
-    fn scan(
+    /// the scan. `LAZY`: a moving slot's centre is computed here when it is not yet for this pose.
+    fn scan<const LAZY: bool>(
         &self,
         pairs: &PairSet,
         indices: impl Iterator<Item = usize>,
@@ -840,6 +863,16 @@ impl CollisionModel {
         let mut going = true;
         for index in indices {
             let (slot_a, slot_b, radii) = pairs.broad[index];
+            if LAZY {
+                for slot in [slot_a, slot_b] {
+                    let stamp = scratch.centre_stamp[slot as usize];
+                    if stamp != scratch.stamp && stamp != HELD {
+                        scratch.centre[slot as usize] =
+                            self.lazy_centre(pairs.links[slot as usize], placements);
+                        scratch.centre_stamp[slot as usize] = scratch.stamp;
+                    }
+                }
+            }
             // Squared, so no root; NaN centres are unusable placements.
             let reach = radii + margin;
             let squared =
@@ -915,6 +948,21 @@ impl CollisionModel {
             }
         }
         best
+    }
+
+    /// The world centre of `link`'s bounding sphere, the link at `placement`.
+    fn world_centre(&self, link: LinkId, placement: &Isometry3<f64>) -> Vector3<f64> {
+        placement
+            .transform_point(&Point3::from(self.bodies[link.0].centre))
+            .coords
+    }
+
+    /// For the lazy scan: the world centre of a link whose placement was found usable (NaN if it is not
+    /// there).
+    fn lazy_centre(&self, link: LinkId, placements: &[Isometry3<f64>]) -> Vector3<f64> {
+        placements
+            .get(link.0)
+            .map_or(Vector3::repeat(f64::NAN), |p| self.world_centre(link, p))
     }
 
     /// Place shape `index` of a link placed at `link` in `scratch.placed`, unless it is there for the
