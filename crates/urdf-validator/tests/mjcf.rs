@@ -400,6 +400,95 @@ fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
     has(&v, "U033", "m.xml", 21, "tendon");
 }
 
+/// `inheritrange` gives a position servo its joint's range (scaled about its middle) as ctrlrange, as
+/// MuJoCo 4.0 compiles it (checked there: `actuator_ctrlrange` -1.7..1.7 for `inheritrange="1"`, half for
+/// 0.5, ±π/2 for a range of ±90 in degrees), so the servo's effort is kp × that width. Menagerie's arx_l5
+/// and berkeley_humanoid use it; before, their servos were bounded by `forcerange` alone (arx_l5's joint5:
+/// 100 N·m instead of MuJoCo's 34). Both ranges on one actuator, or a joint without a range, MuJoCo refuses.
+#[test]
+fn inheritrange_gives_a_position_servo_its_joints_range_as_mujoco_compiles_it() {
+    let dir = Scratch::new("inheritrange");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <compiler angle="radian"/>
+  <default><position inheritrange="1" forcerange="-100 100"/></default>
+  <worldbody>
+    <body name="a">
+      <joint name="whole" axis="0 1 0" range="-1.7 1.7"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+      <body name="b">
+        <joint name="half" axis="1 0 0" range="0.2 1"/>
+        <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="whole" kp="10"/>
+    <position joint="half" kp="10" inheritrange="0.5"/>
+  </actuator>
+</mujoco>"#,
+    );
+    let r = robot(&path);
+    let effort = |name: &str| {
+        r.joints
+            .iter()
+            .find(|j| j.name.value == name)
+            .and_then(|j| j.limit.as_ref()?.effort.as_ref())
+            .map(|e| e.value)
+    };
+    assert!(
+        (effort("whole").unwrap() - 34.0).abs() < 1e-12,
+        "{:?}",
+        effort("whole")
+    );
+    // MuJoCo: mean 0.6, radius 0.4 × 0.5: ctrlrange [0.4, 0.8], kp 10 × 0.4.
+    assert!(
+        (effort("half").unwrap() - 4.0).abs() < 1e-12,
+        "{:?}",
+        effort("half")
+    );
+    let degrees = dir.file(
+        "deg.xml",
+        r#"<mujoco>
+  <worldbody>
+    <body name="a">
+      <joint name="j" axis="0 1 0" range="-90 90"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+  </worldbody>
+  <actuator><position joint="j" kp="10" inheritrange="1"/></actuator>
+</mujoco>"#,
+    );
+    let r = robot(&degrees);
+    let effort = r.joints[0].limit.as_ref().and_then(|l| l.effort.as_ref());
+    assert!((effort.unwrap().value - 10.0 * std::f64::consts::PI).abs() < 1e-12);
+    let refused = dir.file(
+        "refused.xml",
+        r#"<mujoco>
+  <worldbody>
+    <body name="a">
+      <joint name="free_turn" axis="0 1 0"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="free_turn" kp="10" inheritrange="1"/>
+    <position joint="free_turn" kp="10" inheritrange="1" ctrlrange="-1 1"/>
+  </actuator>
+</mujoco>"#,
+    );
+    let v = run(&refused);
+    has(&v, "U030", "refused.xml", 9, "has none");
+    has(
+        &v,
+        "U030",
+        "refused.xml",
+        10,
+        "both ctrlrange and inheritrange",
+    );
+}
+
 /// An unlimited slide (tidybot's base in MuJoCo Menagerie) moves freely: no U305 "lower == upper == 0: it
 /// cannot move", which is URDF's reading of a prismatic joint without limits (failed before: U305 on `x`).
 #[test]

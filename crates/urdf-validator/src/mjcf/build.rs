@@ -989,6 +989,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             name.clone(),
             actuators::JointFacts {
                 range: limited.then(|| (to_q(bounds[0]), to_q(bounds[1]))),
+                written_range: range.is_some().then(|| (to_q(bounds[0]), to_q(bounds[1]))),
                 span,
                 still: damping == 0.0 && armature == 0.0,
             },

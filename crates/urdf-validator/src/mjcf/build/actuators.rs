@@ -25,6 +25,8 @@ use crate::mjcf::xml::El;
 pub(super) struct JointFacts {
     /// Its `range` in MuJoCo's qpos units (radians, metres) when it is limited.
     pub range: Option<(f64, f64)>,
+    /// Its `range` as written (or from its class), limited or not: what `inheritrange` copies.
+    pub written_range: Option<(f64, f64)>,
     /// The joint element.
     pub span: Span,
     /// Both `armature` and `damping` are zero.
@@ -138,6 +140,41 @@ impl<'a> Builder<'a, '_> {
         }
     }
 
+    /// The control range `inheritrange` gives a position servo (or `general`): its joint's range scaled
+    /// about the range's middle, as MuJoCo compiles it (`Some(None)` when MuJoCo refuses it: U030);
+    /// `None` without `inheritrange`.
+    fn inherited_ctrl(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        joint: &str,
+    ) -> Option<Option<((f64, f64), Span)>> {
+        let written = self.value(el, class, "inheritrange")?;
+        let scale = self.scalar(el, class, "inheritrange", 0.0);
+        if scale <= 0.0 {
+            return None;
+        }
+        let name = el.attr("name").unwrap_or("(unnamed)");
+        if el.attr("ctrlrange").is_some() {
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                written.span,
+                format!("actuator '{name}' has both ctrlrange and inheritrange (MuJoCo refuses it: \"ctrlrange and inheritrange cannot both be defined\")"),
+            );
+            return Some(None);
+        }
+        let Some((lo, hi)) = self.joint_facts.get(joint).and_then(|f| f.written_range) else {
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                written.span,
+                format!("actuator '{name}' inherits the range of joint '{joint}', which has none (MuJoCo refuses it: \"inheritrange used but target has no range defined\")"),
+            );
+            return Some(None);
+        };
+        let (mean, radius) = (0.5 * (hi + lo), 0.5 * (hi - lo) * scale);
+        Some(Some(((mean - radius, mean + radius), written.span)))
+    }
+
     /// The joint an actuator drives and the effort it can apply there; `None` (with a U033) when it
     /// drives no joint or is of a kind not read. Checks U034 and U036 on the way.
     fn actuator(&mut self, el: El<'a>) -> Option<Drive> {
@@ -162,7 +199,11 @@ impl<'a> Builder<'a, '_> {
             .list(el, &class, "gear")
             .and_then(|g| g.first().copied())
             .unwrap_or(1.0);
-        let ctrl = self.range(el, &class, "ctrl");
+        let ctrl = match tag {
+            "position" | "general" => self.inherited_ctrl(el, &class, joint),
+            _ => None,
+        }
+        .unwrap_or_else(|| self.range(el, &class, "ctrl"));
         let force = self.range(el, &class, "force");
         let (gain, position_like) = match tag {
             "motor" => (1.0, false),
