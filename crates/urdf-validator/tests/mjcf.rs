@@ -345,6 +345,15 @@ fn hostile_values_never_panic() {
     assert!(variants > 250, "{variants}");
 }
 
+/// The effort limit the reader gave joint `name`.
+fn effort_of(r: &Robot, name: &str) -> Option<f64> {
+    r.joints
+        .iter()
+        .find(|j| j.name.value == name)
+        .and_then(|j| j.limit.as_ref()?.effort.as_ref())
+        .map(|e| e.value)
+}
+
 #[test]
 fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
     let dir = Scratch::new("actuators");
@@ -375,13 +384,7 @@ fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
 </mujoco>"#,
     );
     let r = robot(&path);
-    let effort = |name: &str| {
-        r.joints
-            .iter()
-            .find(|j| j.name.value == name)
-            .and_then(|j| j.limit.as_ref()?.effort.as_ref())
-            .map(|e| e.value)
-    };
+    let effort = |name: &str| effort_of(&r, name);
     // The motor's ctrlrange comes from the class default; its forcerange caps it: 0.3 N × gear 10.
     assert_eq!(effort("shoulder"), Some(3.0));
     // kp 100 over a ctrl range of 2: 200 N·m, capped by the joint's actuatorfrcrange.
@@ -430,13 +433,7 @@ fn inheritrange_gives_a_position_servo_its_joints_range_as_mujoco_compiles_it() 
 </mujoco>"#,
     );
     let r = robot(&path);
-    let effort = |name: &str| {
-        r.joints
-            .iter()
-            .find(|j| j.name.value == name)
-            .and_then(|j| j.limit.as_ref()?.effort.as_ref())
-            .map(|e| e.value)
-    };
+    let effort = |name: &str| effort_of(&r, name);
     assert!(
         (effort("whole").unwrap() - 34.0).abs() < 1e-12,
         "{:?}",

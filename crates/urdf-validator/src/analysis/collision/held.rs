@@ -67,6 +67,30 @@ pub(super) struct HeldSpheres {
     near: Vec<u32>,
 }
 
+impl HeldSpheres {
+    /// Lay out the held spheres (centre, radius, per held slot) in blocks of nearby ones, each with its
+    /// enclosing sphere.
+    fn set_held(&mut self, held: &[(Vector3<f64>, f64)]) {
+        self.held_index.clear();
+        self.held_index
+            .extend(spatial_order(held).into_iter().map(|h| h as u32));
+        self.held.clear();
+        self.block.clear();
+        for indices in self.held_index.chunks(LANES) {
+            let mut lanes = [[f64::INFINITY; LANES]; 4];
+            lanes[3] = [0.0; LANES];
+            for (lane, &h) in indices.iter().enumerate() {
+                let (c, r) = held[h as usize];
+                (lanes[0][lane], lanes[1][lane], lanes[2][lane]) = (c.x, c.y, c.z);
+                lanes[3][lane] = r;
+            }
+            self.held.push(lanes);
+            self.block
+                .push(enclosing(indices.iter().map(|&h| held[h as usize])));
+        }
+    }
+}
+
 impl HeldBroad {
     /// The grouping of a pair set: `broad` holds each pair's two slots, `links` each slot's link;
     /// `group_root` gives, per link, the root of its rigid group when it moves (`None`: held). `None`
@@ -165,23 +189,7 @@ impl HeldBroad {
             )
         };
         let held: Vec<(Vector3<f64>, f64)> = self.held.iter().map(|&slot| sphere(slot)).collect();
-        into.held_index.clear();
-        into.held_index
-            .extend(spatial_order(&held).into_iter().map(|h| h as u32));
-        into.held.clear();
-        into.block.clear();
-        for indices in into.held_index.chunks(LANES) {
-            let mut lanes = [[f64::INFINITY; LANES]; 4];
-            lanes[3] = [0.0; LANES];
-            for (lane, &h) in indices.iter().enumerate() {
-                let (c, r) = held[h as usize];
-                (lanes[0][lane], lanes[1][lane], lanes[2][lane]) = (c.x, c.y, c.z);
-                lanes[3][lane] = r;
-            }
-            into.held.push(lanes);
-            into.block
-                .push(enclosing(indices.iter().map(|&h| held[h as usize])));
-        }
+        into.set_held(&held);
         into.group.clear();
         into.group.extend(
             self.group_root
@@ -451,25 +459,11 @@ mod tests {
             if count > 8 {
                 held[3].0.x = f64::NAN;
             }
-            let mut spheres = HeldSpheres::default();
-            let order = spatial_order(&held);
-            let mut sorted = order.clone();
+            let mut sorted = spatial_order(&held);
             sorted.sort_unstable();
             assert_eq!(sorted, (0..count).collect::<Vec<_>>(), "a permutation");
-            spheres.held_index = order.iter().map(|&h| h as u32).collect();
-            for indices in spheres.held_index.chunks(LANES) {
-                let mut lanes = [[f64::INFINITY; LANES]; 4];
-                lanes[3] = [0.0; LANES];
-                for (lane, &h) in indices.iter().enumerate() {
-                    let (c, r) = held[h as usize];
-                    (lanes[0][lane], lanes[1][lane], lanes[2][lane]) = (c.x, c.y, c.z);
-                    lanes[3][lane] = r;
-                }
-                spheres.held.push(lanes);
-                spheres
-                    .block
-                    .push(enclosing(indices.iter().map(|&h| held[h as usize])));
-            }
+            let mut spheres = HeldSpheres::default();
+            spheres.set_held(&held);
             let mut near = Vec::new();
             for _ in 0..500 {
                 let centre = Vector3::from_fn(|_, _| rng.uniform(-1.5, 1.5));
