@@ -359,6 +359,7 @@ def values_at(model: mujoco.MjModel, configuration: dict[str, float]) -> dict:
         # int(): a numpy integer is never `in` a tuple of MuJoCo's enum values.
         if int(model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
             data.qpos[model.jnt_qposadr[j]] += configuration.get(name or "", 0.0)
+    apply_couplings(model, data)
     data.qvel[:] = 0
     mujoco.mj_forward(model, data)
     forces: dict[str, float] = {}
@@ -387,10 +388,31 @@ def values_at(model: mujoco.MjModel, configuration: dict[str, float]) -> dict:
     }
 
 
+def joint_couplings(model: mujoco.MjModel) -> list[tuple[int, int, float, float]]:
+    """The active joint equalities: (joint1, joint2 or -1 when it holds joint1, a0, a1)."""
+    return [
+        (int(model.eq_obj1id[e]), int(model.eq_obj2id[e]), float(model.eq_data[e][0]), float(model.eq_data[e][1]))
+        for e in range(model.neq)
+        if int(model.eq_type[e]) == int(mujoco.mjtEq.mjEQ_JOINT) and model.eq_active0[e]
+    ]
+
+
+def apply_couplings(model: mujoco.MjModel, data: mujoco.MjData) -> None:
+    """Put each coupled joint where the validator's mimic puts it: q1 = a0 + a1·q2 in qpos - qpos0 (the
+    linear part; a held joint at a0), followed along chains (leaders first, at most one pass per coupling)."""
+    couplings = joint_couplings(model)
+    for _ in range(len(couplings)):
+        for first, second, a0, a1 in couplings:
+            at1 = model.jnt_qposadr[first]
+            q2 = 0.0 if second < 0 else data.qpos[model.jnt_qposadr[second]] - model.qpos0[model.jnt_qposadr[second]]
+            data.qpos[at1] = model.qpos0[at1] + a0 + a1 * q2
+
+
 def fold_couplings(model: mujoco.MjModel, forces: dict[str, float]) -> None:
     """Each active joint equality `q1 = a0 + a1·q2 + ...` couples joint1 to joint2, as the validator's mimic
     does: what holds the pair is joint2's drive, so the torque it must give is joint2's own plus a1 times
-    joint1's (virtual work through the linear part), followed along chains of couplings. joint1 keeps its
+    joint1's (virtual work through the linear part), followed along chains of couplings to their first
+    leader. joint1 keeps its
     own torque (the report's `required_torque_gravity` of a mimic follower); a joint equality without
     joint2 holds joint1 fixed, out of the report."""
     leader: dict[str, tuple[str, float]] = {}
@@ -406,12 +428,15 @@ def fold_couplings(model: mujoco.MjModel, forces: dict[str, float]) -> None:
         leader.setdefault(first, (second, float(model.eq_data[e][1])))
     own = dict(forces)
     for name, force in own.items():
-        at, factor = name, 1.0
-        while at in leader and factor != 0.0:
+        # To the chain's first leader only: a joint that follows another keeps its own torque, even when a
+        # third follows it (as the report resolves mimic chains).
+        at, factor, steps = name, 1.0, 0
+        while at in leader and factor != 0.0 and steps <= len(leader):
             at, multiplier = leader[at]
             factor *= multiplier
-            if at in forces:
-                forces[at] += factor * force
+            steps += 1
+        if at != name and at in forces:
+            forces[at] += factor * force
     for name in held:
         forces.pop(name, None)
 
@@ -643,9 +668,13 @@ def stand_in_tree(root: Path, out: Path) -> dict[str, StandIn]:
 
 def random_configuration(model: mujoco.MjModel, rng: random.Random) -> dict[str, float]:
     """q (MuJoCo's qpos - qpos0) for every named hinge and slide joint the command line can name: uniform
-    in the joint's range when it is limited, else in [-pi, pi] (hinge) or [-0.1, 0.1] m (slide)."""
+    in the joint's range when it is limited, else in [-pi, pi] (hinge) or [-0.1, 0.1] m (slide); not the
+    joints a joint equality moves (the validator places them as their coupling says)."""
     q = {}
+    coupled = {first for first, _, _, _ in joint_couplings(model)}
     for j in range(model.njnt):
+        if j in coupled:
+            continue
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j)
         kind = int(model.jnt_type[j])
         if not name or set(name) & UNSAFE_IN_JOINT_ANGLES:

@@ -752,6 +752,35 @@ fn configuration(v: &Validation) -> std::collections::BTreeMap<String, f64> {
     v.report.statics.as_ref().unwrap().configuration.clone()
 }
 
+/// `<size nkey="N">` gives a model N keys at least, those not written at `qpos0` and named by index, as
+/// MuJoCo compiles it (dm_control's dog: `nkey="1"` and no `<key>`; its golden has MuJoCo's `key:0`, and
+/// `--pose key:0` was a usage error before: "the model has no keyframe '0'").
+#[test]
+fn size_nkey_adds_keys_at_qpos0_named_by_index() {
+    let dir = Scratch::new("nkey");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <compiler angle="radian"/>
+  <size nkey="3"/>
+  <worldbody>
+    <body name="a">
+      <joint name="j" axis="0 1 0" range="-1 1" ref="0.2"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+    </body>
+  </worldbody>
+  <keyframe><key name="bent" qpos="0.7"/></keyframe>
+</mujoco>"#,
+    );
+    let bent = at_pose(&path, PoseKind::Key("bent".to_string())).unwrap();
+    assert!((configuration(&bent)["j"] - 0.5).abs() < 1e-12);
+    for index in ["1", "2"] {
+        let v = at_pose(&path, PoseKind::Key(index.to_string())).unwrap();
+        assert_eq!(configuration(&v)["j"], 0.0, "key {index} is at qpos0");
+    }
+    assert!(at_pose(&path, PoseKind::Key("3".to_string())).is_err());
+}
+
 #[test]
 fn keyframes_are_poses_in_mujocos_qpos_order() {
     let dir = Scratch::new("keys");

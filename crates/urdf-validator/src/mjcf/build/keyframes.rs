@@ -1,4 +1,5 @@
-//! `<keyframe><key qpos>` as poses of the robot (`--pose key:NAME`): MuJoCo's `qpos` (in its order: a
+//! `<keyframe><key qpos>` as poses of the robot (`--pose key:NAME`), and the keys `<size nkey>` adds at
+//! `qpos0` (named by index): MuJoCo's `qpos` (in its order: a
 //! free joint's 7 numbers, position and quaternion w x y z, a ball's 4, a hinge's or slide's 1, joints in
 //! body and document order) turned into the values of this robot's joints. A key shorter than the model's
 //! `nq` leaves the rest at `qpos0` (MuJoCo's rule); a longer one MuJoCo refuses (U030). Only `qpos`
@@ -15,6 +16,7 @@ use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 
 use super::Builder;
 use crate::diagnostics::rules;
+use crate::input::source::Span;
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
 use crate::urdf::robot::Keyframe;
@@ -103,6 +105,23 @@ impl<'a> Builder<'a, '_> {
                 }
             }
         }
+        // `<size nkey="N">` makes N keys at least: those not written are at qpos0, named by index.
+        let sized = sections
+            .iter()
+            .rev()
+            .find(|s| s.tag() == "size" && s.attr("nkey").is_some())
+            .map(|size| {
+                (
+                    self.scalar(*size, MAIN, "nkey", 0.0),
+                    self.reader.attr_span(*size, "nkey"),
+                )
+            });
+        if let Some((count, span)) = sized {
+            while (keys.len() as f64) < count {
+                let name = keys.len().to_string();
+                keys.push(self.pose_of(name, span, &[]));
+            }
+        }
         keys
     }
 
@@ -125,9 +144,14 @@ impl<'a> Builder<'a, '_> {
             );
             return None;
         }
+        Some(self.pose_of(name, self.reader.span(el), &written))
+    }
+
+    /// The key `name` (at `span`) whose `qpos` starts with `written` (the rest at `qpos0`) as a pose.
+    fn pose_of(&self, name: String, span: Span, written: &[f64]) -> Keyframe {
         let mut key = Keyframe {
             name: name.clone(),
-            span: self.reader.span(el),
+            span,
             ..Keyframe::default()
         };
         let mut at = 0;
@@ -181,6 +205,6 @@ impl<'a> Builder<'a, '_> {
                 }
             }
         }
-        Some(key)
+        key
     }
 }
