@@ -126,20 +126,26 @@ impl JointData {
 
     /// The motion of the joint at position `q`, in the joint frame.
     fn motion(&self, q: f64) -> Isometry3<f64> {
-        match self.kind {
-            JointKind::Revolute | JointKind::Continuous => match Unit::try_new(self.axis, 1e-9) {
-                Some(axis) => Isometry3::from_parts(
-                    Translation3::identity(),
-                    UnitQuaternion::from_axis_angle(&axis, q),
-                ),
-                None => Isometry3::identity(),
-            },
-            JointKind::Prismatic => Isometry3::from_parts(
-                Translation3::from(self.axis * q),
-                UnitQuaternion::identity(),
+        joint_motion(self.kind, self.axis, q)
+    }
+}
+
+/// The motion of a joint of `kind` along or about `axis` at position `q`, in the joint frame (the
+/// identity for joints without a scalar position, and about a zero axis).
+#[inline]
+pub fn joint_motion(kind: JointKind, axis: Vector3<f64>, q: f64) -> Isometry3<f64> {
+    match kind {
+        JointKind::Revolute | JointKind::Continuous => match Unit::try_new(axis, 1e-9) {
+            Some(axis) => Isometry3::from_parts(
+                Translation3::identity(),
+                UnitQuaternion::from_axis_angle(&axis, q),
             ),
-            JointKind::Fixed | JointKind::Floating | JointKind::Planar => Isometry3::identity(),
+            None => Isometry3::identity(),
+        },
+        JointKind::Prismatic => {
+            Isometry3::from_parts(Translation3::from(axis * q), UnitQuaternion::identity())
         }
+        JointKind::Fixed | JointKind::Floating | JointKind::Planar => Isometry3::identity(),
     }
 }
 

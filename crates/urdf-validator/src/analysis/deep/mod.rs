@@ -102,21 +102,18 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
         return None;
     }
     let trigger = if automatic { "automatic" } else { "requested" };
+    // For SDFormat there is no text MuJoCo reads (yet), an MJCF file may be withheld: say so when asked.
+    let not_read = |why: BridgeError| {
+        input
+            .options
+            .requested
+            .then(|| not_run(input, trigger, std::path::Path::new(""), &why))
+    };
     let source = match input.source {
         DeepSource::Urdf(text) => job::JobSource::Urdf(text),
         DeepSource::Mjcf(path) => job::JobSource::Mjcf(path),
-        DeepSource::Sdf | DeepSource::Withheld(_) => {
-            // For SDFormat there is no text MuJoCo reads (yet), an MJCF file may be withheld: say so
-            // when asked.
-            let why = match input.source {
-                DeepSource::Withheld(why) => BridgeError::Withheld(why.to_string()),
-                _ => BridgeError::NotUrdf,
-            };
-            return input
-                .options
-                .requested
-                .then(|| not_run(input, trigger, std::path::Path::new(""), &why));
-        }
+        DeepSource::Sdf => return not_read(BridgeError::NotUrdf),
+        DeepSource::Withheld(why) => return not_read(BridgeError::Withheld(why.to_string())),
     };
     let model = input.model;
     let q = &physics.q;

@@ -10,7 +10,7 @@
 //!
 //! `active="false"` (written, or from the element's class: MuJoCo's `<default><equality active>`) is off.
 
-use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 
 use super::{pose, Builder};
 use crate::diagnostics::rules;
@@ -18,7 +18,7 @@ use crate::input::source::Spanned;
 use crate::mjcf::compiler::boolean;
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
-use crate::model::kinematics::pose_isometry;
+use crate::model::kinematics::{joint_motion, pose_isometry};
 use crate::urdf::robot::{JointKind, Mimic};
 
 impl<'a> Builder<'a, '_> {
@@ -123,16 +123,11 @@ impl<'a> Builder<'a, '_> {
     fn hold(&mut self, index: usize, q: f64) {
         let joint = &mut self.joints[index];
         let axis = joint.axis.as_ref().map_or([0.0, 0.0, 1.0], |a| a.value);
-        let axis = Unit::new_normalize(Vector3::from(axis));
-        let motion = match joint.kind.as_ref().map(|k| k.value) {
-            Some(JointKind::Prismatic) => {
-                Isometry3::from(Translation3::from(axis.into_inner() * q))
-            }
-            _ => Isometry3::from_parts(
-                Translation3::identity(),
-                UnitQuaternion::from_axis_angle(&axis, q),
-            ),
+        let kind = match joint.kind.as_ref().map(|k| k.value) {
+            Some(JointKind::Prismatic) => JointKind::Prismatic,
+            _ => JointKind::Revolute,
         };
+        let motion = joint_motion(kind, Vector3::from(axis).normalize(), q);
         joint.origin = pose(&(pose_isometry(&joint.origin) * motion));
         if let Some(kind) = joint.kind.as_mut() {
             kind.value = JointKind::Fixed;
