@@ -203,8 +203,8 @@ fn an_mjcf_mujoco_refuses_is_a_finding_and_the_rest_of_the_report_runs() {
         return;
     };
     let dir = Scratch::new("refused");
-    // The weld's body names a body that does not exist: MuJoCo refuses the model, our reader does not
-    // read equality constraints.
+    // The weld's body names a body that does not exist: MuJoCo refuses the model; our reader only reports
+    // the weld as a loop (U038), so the refusal is MuJoCo's own.
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
