@@ -780,13 +780,14 @@ def stand_in_note(path: Path, stand: Path, changed: dict[str, StandIn]) -> str:
     return "; ".join(notes) or "–"
 
 
-def full(binary: Path, root: Path) -> int:
+def full(binary: Path, root: Path, only: str | None = None) -> int:
     """The full-corpus table (Markdown, stdout), the failures (stderr); 1 when any. Runs on a stand-in
     tree (target/menagerie-stand-in) where the files naming a mesh the snapshot lacks are rewritten
-    without it (the last column says what that dropped), everything else linked to `root`."""
+    without it (the last column says what that dropped), everything else linked to `root`. `only`: just
+    the model files whose path under the tree contains it."""
     stand = REPO / "target" / "menagerie-stand-in"
     changed = stand_in_tree(root, stand)
-    models = full_models(stand)
+    models = [m for m in full_models(stand) if only is None or only in str(m.relative_to(stand))]
     if not models:
         print(f"{root}: no Menagerie model folders here", file=sys.stderr)
         return 2
@@ -826,6 +827,7 @@ def main() -> int:
         help="first write --full DIR from this fetched snapshot (a bare git directory) at --commit",
     )
     parser.add_argument("--commit", default="HEAD", help="the commit --extract writes")
+    parser.add_argument("--only", metavar="TEXT", help="with --full: only the model files whose path contains TEXT")
     parser.add_argument(
         "--binary",
         type=Path,
@@ -848,7 +850,7 @@ def main() -> int:
         if args.extract is not None:
             for path, blob in extract(args.extract.resolve(), args.commit, full_root):
                 print(f"missing from the snapshot: {path} (blob {blob})")
-        return full(binary, full_root)
+        return full(binary, full_root, args.only)
     if args.write:
         write(source)
     failed = 0

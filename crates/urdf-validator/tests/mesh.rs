@@ -399,6 +399,7 @@ fn dae_unit_and_y_up_apply_to_node_translations() {
         &dir.join("t.dae"),
         &MeshOptions {
             up_axis: UpAxisPolicy::Ignore,
+            ..MeshOptions::default()
         },
     )
     .expect("loads");
@@ -732,6 +733,7 @@ fn pr2_collada_meshes_declare_y_up_but_are_modelled_z_up() {
         &base,
         &MeshOptions {
             up_axis: UpAxisPolicy::Ignore,
+            ..MeshOptions::default()
         },
     )
     .expect("loads");

@@ -597,6 +597,89 @@ const ASSEMBLY: &str = r#"<mujoco model="assembly">
 </mujoco>
 "#;
 
+/// Primitives fitted to a turned, unevenly scaled mesh (`type="capsule" mesh=…`), one of each type,
+/// `fitscale` on one; `FITAABB` is in the `<compiler>` of the variant fitted to bounding boxes.
+const FITTED: &str = r#"<mujoco model="fitted">
+  <compiler angle="radian" meshdir="meshes" FITAABB/>
+  <asset>
+    <mesh name="dent" file="dented.stl" scale="0.2 0.4 0.1" refquat="0.9 0.2 0.3 0.1"/>
+  </asset>
+  <default>
+    <default class="fit"><geom mesh="dent" density="700"/></default>
+  </default>
+  <worldbody>
+    <body name="base" pos="0 0 0.5">
+      <geom class="fit" type="capsule"/>
+      <body name="upper" pos="0.3 0 0">
+        <joint name="shoulder" axis="0 1 0"/>
+        <geom class="fit" type="cylinder" pos="0.1 0 0" euler="0.3 0.2 0.1"/>
+        <geom class="fit" type="sphere" pos="0.2 0.05 0" fitscale="1.3"/>
+        <body name="lower" pos="0.4 0 0">
+          <joint name="elbow" axis="0 0 1"/>
+          <geom class="fit" type="box" pos="0.1 0 0"/>
+          <geom class="fit" type="ellipsoid" pos="0.2 0 0.1" quat="0.8 0.1 0.5 0.2"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+
+/// An OBJ file of two objects, as MuJoCo reads only the first: a prism on a star-shaped hexagon (a
+/// polygon MuJoCo clips into ears) whose top is not flat (its sides are quads that are not planar), then
+/// a cube far away.
+fn two_object_obj() -> String {
+    let mut text = String::from("o prism\n");
+    for level in 0..2 {
+        for k in 0..6 {
+            let angle = std::f64::consts::PI / 3.0 * k as f64;
+            let radius = if k % 2 == 0 { 0.1 } else { 0.06 };
+            let z = if level == 0 {
+                0.0
+            } else {
+                0.1 + 0.03 * (k % 2) as f64
+            };
+            text += &format!("v {} {} {z}\n", radius * angle.cos(), radius * angle.sin());
+        }
+    }
+    text += "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n";
+    for k in 1..=6 {
+        let next = k % 6 + 1;
+        text += &format!("f {k} {next} {} {}\n", next + 6, k + 6);
+    }
+    text += "o cube\n";
+    for i in 0..8 {
+        let c = |bit: i32| if i & bit == 0 { 1.0 } else { 1.2 };
+        text += &format!("v {} {} {}\n", c(1), c(2), c(4));
+    }
+    for face in [
+        "1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6",
+    ] {
+        let corners: Vec<usize> = face
+            .split(' ')
+            .map(|n| n.parse::<usize>().unwrap() + 12)
+            .collect();
+        text += &format!(
+            "f {} {} {} {}\n",
+            corners[0], corners[1], corners[2], corners[3]
+        );
+    }
+    text
+}
+
+/// A model whose only mass is [`two_object_obj`]'s.
+const OBJECTS: &str = r#"<mujoco model="objects">
+  <compiler meshdir="meshes"/>
+  <asset><mesh name="two" file="two_objects.obj"/></asset>
+  <worldbody>
+    <body name="arm" pos="0 0 1">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom type="mesh" mesh="two" pos="0.3 0 0" density="900"/>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+
 #[test]
 fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     let Some(python) = common::mujoco_python() else {
@@ -607,6 +690,14 @@ fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     std::fs::create_dir_all(dir.join("meshes")).unwrap();
     std::fs::write(dir.join("features.xml"), FEATURES).unwrap();
     std::fs::write(dir.join("assembly.xml"), ASSEMBLY).unwrap();
+    std::fs::write(dir.join("fitted.xml"), FITTED.replace("FITAABB", "")).unwrap();
+    std::fs::write(dir.join("objects.xml"), OBJECTS).unwrap();
+    std::fs::write(dir.join("meshes/two_objects.obj"), two_object_obj()).unwrap();
+    std::fs::write(
+        dir.join("fitted_aabb.xml"),
+        FITTED.replace("FITAABB", "fitaabb=\"true\""),
+    )
+    .unwrap();
     std::fs::write(dir.join("meshes/dented.stl"), binary_stl(&dented_cube())).unwrap();
     let script = common::repo_root().join("scripts/oracle/mjcf_goldens.py");
     let run = std::process::Command::new(&python)
@@ -626,7 +717,7 @@ fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     );
     let report = String::from_utf8_lossy(&run.stdout).into_owned();
     let mut failures = Vec::new();
-    for stem in ["features", "assembly"] {
+    for stem in ["features", "assembly", "fitted", "fitted_aabb", "objects"] {
         let golden: Value = serde_json::from_str(
             &std::fs::read_to_string(out.join(format!("{stem}.json")))
                 .unwrap_or_else(|e| panic!("no golden for {stem}.xml ({e}):\n{report}")),

@@ -89,6 +89,42 @@ struct MeshAsset {
     reference: Isometry3<f64>,
 }
 
+impl MeshAsset {
+    /// The file's `points` as MuJoCo holds them, in the frame of the geoms that use the mesh: single-
+    /// precision floats (an OBJ's decimals are read into floats; STL is floats already), moved by the
+    /// inverse of `refpos`/`refquat`, then scaled. The same rounding gives MuJoCo's mass to 1e-9.
+    fn vertices(&self, points: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        points
+            .iter()
+            .map(|p| {
+                let read = self
+                    .reference
+                    .inverse_transform_point(&[0, 1, 2].map(|k| f64::from(p[k] as f32)).into());
+                [0, 1, 2].map(|k| read[k] * self.scale[k])
+            })
+            .collect()
+    }
+}
+
+/// The shape of a primitive geom of MuJoCo type `kind` and `size` (`None` for types without one).
+fn primitive_geometry(kind: &str, [a, b, c]: [f64; 3]) -> Option<Geometry> {
+    match kind {
+        "sphere" => Some(Geometry::Sphere { radius: a }),
+        "capsule" => Some(Geometry::Capsule {
+            radius: a,
+            length: 2.0 * b,
+        }),
+        "cylinder" => Some(Geometry::Cylinder {
+            radius: a,
+            length: 2.0 * b,
+        }),
+        "box" => Some(Geometry::Box {
+            size: [2.0 * a, 2.0 * b, 2.0 * c],
+        }),
+        _ => None,
+    }
+}
+
 /// A body's contents, `<frame>`s flattened.
 #[derive(Default)]
 struct Contents<'a> {
@@ -1082,7 +1118,7 @@ impl<'a, 'r> Builder<'a, 'r> {
                 ),
             }
         }
-        let at = frame * placement;
+        let mut at = frame * placement;
         let contype = self.scalar(el, class, "contype", 1.0);
         let conaffinity = self.scalar(el, class, "conaffinity", 1.0);
         // Bit masks: MuJoCo reads them as integers.
@@ -1099,25 +1135,16 @@ impl<'a, 'r> Builder<'a, 'r> {
                 self.note(el, format!("a {kind} geom is not read: no shape, no mass"));
                 (None, None)
             }
-            _ => {
-                let [a, b, c] = size;
-                let geometry = match kind {
-                    "sphere" => Some(Geometry::Sphere { radius: a }),
-                    "capsule" => Some(Geometry::Capsule {
-                        radius: a,
-                        length: 2.0 * b,
-                    }),
-                    "cylinder" => Some(Geometry::Cylinder {
-                        radius: a,
-                        length: 2.0 * b,
-                    }),
-                    "box" => Some(Geometry::Box {
-                        size: [2.0 * a, 2.0 * b, 2.0 * c],
-                    }),
-                    _ => None,
-                };
-                (geometry, mass::primitive(kind, size))
+            _ if self.value(el, class, "mesh").is_some() => {
+                match self.fitted_geom(el, class, kind) {
+                    Some((geometry, fitted, solid)) => {
+                        at *= fitted;
+                        (geometry, Some(solid))
+                    }
+                    None => (None, None),
+                }
             }
+            _ => (primitive_geometry(kind, size), mass::primitive(kind, size)),
         };
         let mass = solid.filter(|_| counts).map(|solid: Solid| {
             let mass = match self.value(el, class, "mass") {
@@ -1141,23 +1168,7 @@ impl<'a, 'r> Builder<'a, 'r> {
 
     /// A mesh geom's shape and solid (the mesh file read through the sandbox and the mesh cache).
     fn mesh_geom(&mut self, el: El<'a>, class: &str) -> (Option<Geometry>, Option<Solid>) {
-        let Some(name) = self.value(el, class, "mesh") else {
-            self.problem(
-                &rules::MJCF_STRUCTURE,
-                el,
-                "a mesh geom without a mesh attribute (MuJoCo refuses it)".to_string(),
-            );
-            return (None, None);
-        };
-        let Some(asset) = self.meshes.get(name.text).cloned() else {
-            self.reader.report(
-                &rules::MJCF_STRUCTURE,
-                name.span,
-                format!(
-                    "mesh '{}' is not an <asset> mesh of this model (MuJoCo refuses it)",
-                    name.text
-                ),
-            );
+        let Some(asset) = self.mesh_asset(el, class) else {
             return (None, None);
         };
         if self
@@ -1176,38 +1187,92 @@ impl<'a, 'r> Builder<'a, 'r> {
             },
             scale: asset.scale,
         };
-        let path = self.dir.join(&asset.file);
-        if self.resolver.sandbox().check_file(&path).is_err() || !path.is_file() {
-            // The asset checks report a missing or refused mesh file; without it there is no solid.
-            return (Some(geometry), None);
-        }
-        // MuJoCo holds a mesh's vertices as single-precision floats (an OBJ's decimals are read into
-        // floats), then scales them: the same rounding gives its mass to 1e-9 (STL is floats already).
-        let scaled = |points: &[[f64; 3]]| -> Vec<[f64; 3]> {
-            points
-                .iter()
-                .map(|p| {
-                    let read = asset
-                        .reference
-                        .inverse_transform_point(&[0, 1, 2].map(|k| f64::from(p[k] as f32)).into());
-                    [0, 1, 2].map(|k| read[k] * asset.scale[k])
-                })
-                .collect()
-        };
-        let solid = if asset.convex {
-            match self.mesh_cache.get(&path).as_ref() {
-                Ok(data) => mass::mesh(&scaled(&data.hull), &data.hull_triangles, asset.volume),
-                Err(_) => None,
-            }
+        (Some(geometry), self.mesh_solid(&asset))
+    }
+
+    /// A primitive geom that names a mesh (`type="capsule" mesh=…`): the primitive MuJoCo fits to the
+    /// mesh, its shape and its solid, both in the geom frame. `None` when the mesh cannot be read (the
+    /// asset checks say why) or MuJoCo cannot fit it.
+    fn fitted_geom(
+        &mut self,
+        el: El<'a>,
+        class: &str,
+        kind: &str,
+    ) -> Option<(Option<Geometry>, Isometry3<f64>, Solid)> {
+        let asset = self.mesh_asset(el, class)?;
+        let solid = self.mesh_solid(&asset)?;
+        let vertices = if self.compiler.fit_aabb {
+            Some(asset.vertices(&load_surface(&self.readable(&asset)?).ok()?.vertices))
         } else {
-            match load_surface(&path) {
-                Ok(surface) => {
-                    mass::mesh(&scaled(&surface.vertices), &surface.triangles, asset.volume)
-                }
-                Err(_) => None,
-            }
+            None
         };
-        (Some(geometry), solid)
+        let fitscale = self.scalar(el, class, "fitscale", 1.0);
+        let Some(fitted) = mass::fit_primitive(kind, &solid, vertices.as_deref(), fitscale) else {
+            self.problem(
+                &rules::MJCF_STRUCTURE,
+                el,
+                format!(
+                    "a {kind} fitted to mesh '{}' has no positive size (MuJoCo refuses it)",
+                    asset.file
+                ),
+            );
+            return None;
+        };
+        let solid = mass::primitive(kind, fitted.size)?;
+        Some((primitive_geometry(kind, fitted.size), fitted.frame, solid))
+    }
+
+    /// The `<mesh>` asset a geom's `mesh` attribute names (a finding when it names none).
+    fn mesh_asset(&mut self, el: El<'a>, class: &str) -> Option<MeshAsset> {
+        let Some(name) = self.value(el, class, "mesh") else {
+            self.problem(
+                &rules::MJCF_STRUCTURE,
+                el,
+                "a mesh geom without a mesh attribute (MuJoCo refuses it)".to_string(),
+            );
+            return None;
+        };
+        let asset = self.meshes.get(name.text).cloned();
+        if asset.is_none() {
+            self.reader.report(
+                &rules::MJCF_STRUCTURE,
+                name.span,
+                format!(
+                    "mesh '{}' is not an <asset> mesh of this model (MuJoCo refuses it)",
+                    name.text
+                ),
+            );
+        }
+        asset
+    }
+
+    /// The path of a mesh asset's file when the sandbox lets it be read and it is there (the asset
+    /// checks report a missing or refused mesh file).
+    fn readable(&self, asset: &MeshAsset) -> Option<PathBuf> {
+        let path = self.dir.join(&asset.file);
+        (self.resolver.sandbox().check_file(&path).is_ok() && path.is_file()).then_some(path)
+    }
+
+    /// The solid of a mesh asset, in the frame of the geoms that use it (`None` without a readable file, or
+    /// when MuJoCo would refuse the mesh).
+    fn mesh_solid(&self, asset: &MeshAsset) -> Option<Solid> {
+        let path = self.readable(asset)?;
+        if asset.convex {
+            let data = self.mesh_cache.get(&path);
+            let data = data.as_ref().as_ref().ok()?;
+            mass::mesh(
+                &asset.vertices(&data.hull),
+                &data.hull_triangles,
+                asset.volume,
+            )
+        } else {
+            let surface = load_surface(&path).ok()?;
+            mass::mesh(
+                &asset.vertices(&surface.vertices),
+                &surface.triangles,
+                asset.volume,
+            )
+        }
     }
 
     /// `boundmass`, `boundinertia`, `balanceinertia` and `settotalmass` applied to every body's mass.

@@ -38,6 +38,9 @@ pub struct Compiler {
     pub set_total_mass: Option<f64>,
     /// `inertiagrouprange`: the geom groups whose geoms count for mass and inertia.
     pub inertia_groups: (i64, i64),
+    /// `fitaabb`: a primitive geom fitted to a mesh (`type="capsule" mesh=…`) encloses the mesh's
+    /// bounding box in its principal frame, instead of matching its equivalent inertia box.
+    pub fit_aabb: bool,
 }
 
 impl Default for Compiler {
@@ -53,6 +56,7 @@ impl Default for Compiler {
             balance_inertia: false,
             set_total_mass: None,
             inertia_groups: (0, 5),
+            fit_aabb: false,
         }
     }
 }
@@ -99,6 +103,7 @@ impl Compiler {
                     "boundmass" => scalar(text).map(|v| compiler.bound_mass = v),
                     "boundinertia" => scalar(text).map(|v| compiler.bound_inertia = v),
                     "balanceinertia" => boolean(text).map(|b| compiler.balance_inertia = b),
+                    "fitaabb" => boolean(text).map(|b| compiler.fit_aabb = b),
                     "settotalmass" => scalar(text).map(|v| {
                         compiler.set_total_mass = (v > 0.0).then_some(v);
                     }),

@@ -2,7 +2,9 @@
 //! a mesh as the solid its surface bounds), its mass from `mass` or `density` × volume, and a body's
 //! total about its centre of mass; then `boundmass`, `boundinertia` and `balanceinertia`.
 
-use nalgebra::{Isometry3, Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{
+    Isometry3, Matrix3, Quaternion, SymmetricEigen, Translation3, UnitQuaternion, Vector3,
+};
 
 /// Mass, centre of mass and the inertia tensor about it, in one frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -178,6 +180,185 @@ pub fn primitive(kind: &str, size: [f64; 3]) -> Option<Solid> {
         com: Vector3::zeros(),
         unit_inertia: Matrix3::from_diagonal(&Vector3::from(diagonal)),
     })
+}
+
+/// A primitive geom fitted to a mesh (`<geom type="capsule" mesh=…>`), as MuJoCo's compiler fits it
+/// (`mjCMesh::FitGeom`): its MuJoCo `size`, and its frame in the geom frame (at the mesh's centre of mass,
+/// along the mesh's principal axes, largest moment first).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fitted {
+    /// Radii and half-lengths, as `<geom size>`.
+    pub size: [f64; 3],
+    /// Where the primitive sits in the geom frame.
+    pub frame: Isometry3<f64>,
+}
+
+/// The primitive of MuJoCo type `kind` fitted to the mesh whose solid is `mesh`, scaled by `fitscale`:
+/// to the mesh's equivalent inertia box, or, with `vertices` (`<compiler fitaabb="true">`), to the box
+/// that bounds them in the principal frame. `None` for a type that cannot be fitted or a fit with no
+/// finite positive size (MuJoCo refuses both).
+pub fn fit_primitive(
+    kind: &str,
+    mesh: &Solid,
+    vertices: Option<&[[f64; 3]]>,
+    fitscale: f64,
+) -> Option<Fitted> {
+    // MuJoCo's mesh frame: the principal axes as its own Jacobi iteration finds them (to about 1e-7 of a
+    // turn: a bounding box in that frame needs these very axes to agree to 1e-9).
+    let (moments, rotation) = principal_axes(&(mesh.unit_inertia * mesh.volume));
+    let axes = rotation.to_rotation_matrix().into_inner();
+    let (centre, size) = match vertices {
+        None => {
+            // Half-sizes of the box with the same principal moments and volume.
+            let [a, b, c] = moments;
+            let volume = mesh.volume;
+            let half = [
+                0.5 * (6.0 * (b + c - a) / volume).sqrt(),
+                0.5 * (6.0 * (a + c - b) / volume).sqrt(),
+                0.5 * (6.0 * (a + b - c) / volume).sqrt(),
+            ];
+            let size = match kind {
+                "sphere" => [half.iter().sum::<f64>() / 3.0, 0.0, 0.0],
+                "capsule" => {
+                    let radius = (half[0] + half[1]) / 2.0;
+                    [radius, (half[2] - radius / 2.0).max(0.0), 0.0]
+                }
+                "cylinder" => [(half[0] + half[1]) / 2.0, half[2], 0.0],
+                "ellipsoid" | "box" => half,
+                _ => return None,
+            };
+            (Vector3::zeros(), size)
+        }
+        Some(points) => {
+            let (mut low, mut high) = (
+                Vector3::repeat(f64::INFINITY),
+                Vector3::repeat(f64::NEG_INFINITY),
+            );
+            for p in points {
+                let local = axes.transpose() * (Vector3::from(*p) - mesh.com);
+                low = low.inf(&local);
+                high = high.sup(&local);
+            }
+            let centre = (low + high) / 2.0;
+            let half = high - centre;
+            let size = match kind {
+                "sphere" => [half.max(), 0.0, 0.0],
+                "capsule" => {
+                    let radius = half[0].max(half[1]);
+                    [radius, half[2] - radius, 0.0]
+                }
+                "cylinder" => [half[0].max(half[1]), half[2], 0.0],
+                "ellipsoid" | "box" => [half[0], half[1], half[2]],
+                _ => return None,
+            };
+            (centre, size)
+        }
+    };
+    let size = size.map(|s| s * fitscale);
+    if size[0].is_nan() || size[0] <= 0.0 || size.iter().any(|s| !s.is_finite() || *s < 0.0) {
+        return None;
+    }
+    Some(Fitted {
+        size,
+        frame: Isometry3::from_parts(Translation3::from(mesh.com + axes * centre), rotation),
+    })
+}
+
+/// The principal moments of a symmetric `inertia` (largest first) and the rotation whose columns are
+/// their axes, as MuJoCo's `mjuu_eig3` computes them: Jacobi rotations accumulated in a quaternion until
+/// the largest off-diagonal term is below 1e-12, then the moments sorted by quarter turns.
+fn principal_axes(inertia: &Matrix3<f64>) -> ([f64; 3], UnitQuaternion<f64>) {
+    const EPS: f64 = 1e-12;
+    let mut quat = [1.0, 0.0, 0.0, 0.0];
+    let mut moments = [0.0; 3];
+    for _ in 0..500 {
+        let v = quat_matrix(quat);
+        let d = v.transpose() * inertia * v;
+        moments = [d[(0, 0)], d[(1, 1)], d[(2, 2)]];
+        let (row, col, axis) =
+            if d[(0, 1)].abs() > d[(0, 2)].abs() && d[(0, 1)].abs() > d[(1, 2)].abs() {
+                (0, 1, 2)
+            } else if d[(0, 2)].abs() > d[(1, 2)].abs() {
+                (0, 2, 1)
+            } else {
+                (1, 2, 0)
+            };
+        if d[(row, col)].abs() < EPS {
+            break;
+        }
+        let tau = (d[(col, col)] - d[(row, row)]) / (2.0 * d[(row, col)]);
+        let t = if tau >= 0.0 {
+            1.0 / (tau + (1.0 + tau * tau).sqrt())
+        } else {
+            -1.0 / (-tau + (1.0 + tau * tau).sqrt())
+        };
+        let c = 1.0 / (1.0 + t * t).sqrt();
+        if c > 1.0 - EPS {
+            break;
+        }
+        let mut turn = [0.0; 4];
+        let s = (0.5 - 0.5 * c).sqrt();
+        turn[axis + 1] = if (tau >= 0.0) != (axis == 1) { -s } else { s };
+        turn[0] = (1.0 - turn[axis + 1] * turn[axis + 1]).sqrt();
+        quat = quat_product(quat, normalized(turn));
+    }
+    for j in 0..3 {
+        let lead = j % 2;
+        if moments[lead] + EPS < moments[lead + 1] {
+            moments.swap(lead, lead + 1);
+            // MuJoCo's literal for cos(π/4), one ulp off: the product is then not normalised again.
+            #[allow(clippy::excessive_precision, clippy::approx_constant)]
+            let mut turn = [0.707106781186548, 0.0, 0.0, 0.0];
+            turn[(lead + 2) % 3 + 1] = turn[0];
+            quat = quat_product(quat, turn);
+        }
+    }
+    let [w, x, y, z] = quat;
+    (
+        moments,
+        UnitQuaternion::new_unchecked(Quaternion::new(w, x, y, z)),
+    )
+}
+
+/// The rotation matrix of a unit quaternion (w, x, y, z), as MuJoCo's `mjuu_quat2mat`.
+fn quat_matrix([w, x, y, z]: [f64; 4]) -> Matrix3<f64> {
+    Matrix3::new(
+        w * w + x * x - y * y - z * z,
+        2.0 * (x * y - w * z),
+        2.0 * (x * z + w * y),
+        2.0 * (x * y + w * z),
+        w * w - x * x + y * y - z * z,
+        2.0 * (y * z - w * x),
+        2.0 * (x * z - w * y),
+        2.0 * (y * z + w * x),
+        w * w - x * x - y * y + z * z,
+    )
+}
+
+/// The product of two quaternions, normalised, as MuJoCo's `mjuu_mulquat`.
+fn quat_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    normalized([
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ])
+}
+
+/// `q` over its norm, as MuJoCo's `mjuu_normvec` (left as it is when the norm is within 1e-14 of 1, or
+/// below 1e-14).
+fn normalized(q: [f64; 4]) -> [f64; 4] {
+    const EPS: f64 = 1e-14;
+    let squared: f64 = q.iter().map(|v| v * v).sum();
+    if squared < EPS {
+        return q;
+    }
+    let norm = squared.sqrt();
+    if (norm - 1.0).abs() > EPS {
+        q.map(|v| v / norm)
+    } else {
+        q
+    }
 }
 
 /// MuJoCo's `mjMINVAL`: below it a triangle has no area, a principal moment or a mass is zero.

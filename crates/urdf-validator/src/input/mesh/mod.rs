@@ -23,6 +23,7 @@
 //! parry3d-f64's quickhull after an affine normalisation (see [`MeshData::hull`]).
 
 mod disk_cache;
+mod obj;
 pub mod solid;
 pub(crate) mod surface;
 
@@ -35,6 +36,7 @@ use nalgebra::{Matrix4, Rotation3, SymmetricEigen, Unit, Vector3};
 use roxmltree::{Document, Node};
 
 pub use disk_cache::DiskCache;
+pub use obj::ObjReading;
 pub use solid::{MeshSolid, SolidSource, VolumeIntegrals};
 
 /// Largest mesh file read, in bytes (256 MiB).
@@ -210,6 +212,8 @@ pub enum UpAxisPolicy {
 pub struct MeshOptions {
     /// Treatment of COLLADA `<up_axis>`.
     pub up_axis: UpAxisPolicy,
+    /// Whose reading of an OBJ file's faces.
+    pub obj_reading: ObjReading,
 }
 
 /// Why a mesh could not be used.
@@ -384,14 +388,18 @@ pub struct Surface {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// The surface of an STL or OBJ file (COLLADA triangles are not read: an error says so), with the
-/// loader's limits.
+/// The surface of an STL or OBJ file as MuJoCo reads it (an OBJ's first object, see
+/// [`ObjReading::MuJoCo`]; COLLADA triangles are not read: an error says so), with the loader's limits.
 pub fn load_surface(path: &Path) -> Result<Surface, MeshError> {
     let error = |message: String| MeshError {
         path: path.to_path_buf(),
         message,
     };
-    let raw = read_raw(path, &MeshOptions::default()).map_err(error)?;
+    let options = MeshOptions {
+        obj_reading: ObjReading::MuJoCo,
+        ..MeshOptions::default()
+    };
+    let raw = read_raw(path, &options).map_err(error)?;
     match raw.faces {
         Some(triangles) => Ok(Surface {
             vertices: raw.vertices,
@@ -427,7 +435,7 @@ fn read_raw(path: &Path, options: &MeshOptions) -> Result<RawMesh, String> {
     }
     match format {
         Format::Stl => parse_stl(&bytes),
-        Format::Obj => parse_obj(&bytes),
+        Format::Obj => obj::parse(&bytes, options.obj_reading),
         Format::Dae => parse_dae(&bytes, options),
     }
 }
@@ -737,94 +745,6 @@ fn parse_ascii_stl(bytes: &[u8], declared: Option<u64>) -> Result<RawMesh, Strin
         declared_up_axis: None,
         faces,
     })
-}
-
-// ---------------------------------------------------------------------------------------------
-// OBJ
-
-fn parse_obj(bytes: &[u8]) -> Result<RawMesh, String> {
-    if bytes.is_empty() {
-        return Err("empty file (expected Wavefront OBJ 'v x y z' lines)".to_string());
-    }
-    let mut sink = VertexSink::default();
-    let mut triangles = 0usize;
-    // The deduplicated index of every `v` line, in order (faces number `v` lines from 1).
-    let mut indices: Vec<u32> = Vec::new();
-    let mut faces = Some(Vec::new());
-    for (line, tokens) in lines(bytes) {
-        match tokens.first().copied() {
-            Some(b"v") => {
-                let v = xyz(&tokens, line, "v")?;
-                indices.push(sink.push(v).map_err(|e| format!("line {line}: {e}"))?);
-            }
-            Some(b"f") => {
-                triangles = triangles.saturating_add(tokens.len().saturating_sub(3));
-                if let Some(list) = faces.as_mut() {
-                    if !obj_face(&tokens[1..], &indices, &sink.vertices, list) {
-                        faces = None;
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok(RawMesh {
-        vertices: sink.finish("Wavefront OBJ 'v x y z' lines")?,
-        triangles,
-        declared_up_axis: None,
-        faces,
-    })
-}
-
-/// Add an OBJ face's triangles to `faces` as Drake's OBJ reader (tinyobjloader) splits them: a quad along
-/// its shorter diagonal (which matters when it is not planar), a larger polygon as a fan from its first
-/// vertex (tinyobjloader clips ears; the two agree for a planar convex polygon). `false` when a corner
-/// names no vertex read so far (1-based, or negative: counted back from the last) or the face has fewer
-/// than three corners.
-fn obj_face(
-    corners: &[&[u8]],
-    indices: &[u32],
-    vertices: &[[f64; 3]],
-    faces: &mut Vec<[u32; 3]>,
-) -> bool {
-    let vertex = |token: &[u8]| -> Option<u32> {
-        let first = token.split(|&b| b == b'/').next()?;
-        let n: i64 = std::str::from_utf8(first).ok()?.parse().ok()?;
-        let at = if n > 0 {
-            usize::try_from(n - 1).ok()?
-        } else {
-            indices
-                .len()
-                .checked_sub(usize::try_from(n.checked_neg()?).ok()?)?
-        };
-        indices.get(at).copied()
-    };
-    let Some(corners) = corners
-        .iter()
-        .map(|t| vertex(t))
-        .collect::<Option<Vec<u32>>>()
-    else {
-        return false;
-    };
-    if corners.len() < 3 {
-        return false;
-    }
-    if let &[a, b, c, d] = corners.as_slice() {
-        let squared = |i: u32, j: u32| match (vertices.get(i as usize), vertices.get(j as usize)) {
-            (Some(p), Some(q)) => (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>(),
-            _ => f64::INFINITY,
-        };
-        if squared(a, c) <= squared(b, d) {
-            faces.extend([[a, b, c], [a, c, d]]);
-        } else {
-            faces.extend([[a, b, d], [b, c, d]]);
-        }
-        return true;
-    }
-    for k in 1..corners.len() - 1 {
-        faces.push([corners[0], corners[k], corners[k + 1]]);
-    }
-    true
 }
 
 // ---------------------------------------------------------------------------------------------
