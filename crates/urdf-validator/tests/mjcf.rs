@@ -781,6 +781,55 @@ fn size_nkey_adds_keys_at_qpos0_named_by_index() {
     assert!(at_pose(&path, PoseKind::Key("3".to_string())).is_err());
 }
 
+/// Menagerie's G1 with hands (its issue #296): a key that puts a joint past its range and a control past
+/// its actuator's `ctrlrange`. Checked in `qpos` terms, `ref` and degrees included; a key inside the
+/// ranges, a slide's exact limit and an unlimited joint give nothing.
+#[test]
+fn a_keyframe_outside_a_joints_range_or_a_ctrlrange_is_a_u039() {
+    let dir = Scratch::new("keyrange");
+    let path = dir.file(
+        "m.xml",
+        r#"<mujoco>
+  <worldbody>
+    <body name="a">
+      <joint name="hinge" axis="0 1 0" range="-30 60" ref="10"/>
+      <geom type="sphere" size="0.05" pos="0.3 0 0" mass="1"/>
+      <body name="b" pos="0.3 0 0">
+        <joint name="slide" type="slide" axis="1 0 0" range="0 0.1"/>
+        <joint name="free_spin" axis="0 0 1"/>
+        <geom type="sphere" size="0.05" mass="1"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <position name="servo" joint="hinge" ctrlrange="-0.5 1" kp="10"/>
+    <motor joint="slide" ctrlrange="-1 1"/>
+  </actuator>
+  <keyframe>
+    <key name="inside" qpos="1.0 0.1 5" ctrl="1 -1"/>
+    <key name="past" qpos="1.1 0.1 5" ctrl="0.2 1.5"/>
+  </keyframe>
+</mujoco>"#,
+    );
+    let v = run(&path);
+    let found = findings(&v, "U039");
+    assert_eq!(found.len(), 2, "{found:?}");
+    // 60° is 1.047 rad: 1.1 is past it (the ref does not move the range in qpos terms).
+    assert!(
+        found[0].2.contains("keyframe 'past'") && found[0].2.contains("joint 'hinge' at 1.1"),
+        "{found:?}"
+    );
+    assert!(found[0].2.contains("1.047198"), "{found:?}");
+    assert!(
+        found[1].2.contains("actuator 'actuator#1' at 1.5"),
+        "{found:?}"
+    );
+    assert_eq!(
+        found[0].1,
+        line_of(&std::fs::read_to_string(&path).unwrap(), "name=\"past\"")
+    );
+}
+
 #[test]
 fn keyframes_are_poses_in_mujocos_qpos_order() {
     let dir = Scratch::new("keys");

@@ -203,6 +203,11 @@ rules! {
         why: "The analyses see the open tree: statics puts the whole gravity load on the tree's joints, where MuJoCo lets the loop's constraint carry part of it (or makes the joints fight each other), and the workspace samples the loop's joints as if they moved independently, reaching poses the linkage cannot.",
         fix: "Nothing, if the loop is meant; read the statics and workspace figures of the joints on the loop as those of the open chain.",
     }
+    MJCF_KEYFRAME_OUT_OF_RANGE = "U039" "mjcf-keyframe-out-of-range" Warn {
+        what: "A `<keyframe><key>` puts a limited hinge or slide joint outside its `range` (its `qpos`), or sets a control outside a limited actuator's `ctrlrange` (its `ctrl`).",
+        why: "MuJoCo loads the key as it is written: a simulation reset to it starts with the joint past its limit, so the limit constraint kicks it back on the first step, and a control outside `ctrlrange` is clamped to it, so the key does not hold the pose it was made for. Analysed at `--pose key:NAME`, the joint is where the key puts it, past its limit.",
+        fix: "Move the key's value inside the joint's `range` (or the actuator's `ctrlrange`), or widen the range if the key is the real limit.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

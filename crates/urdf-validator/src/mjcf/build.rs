@@ -167,6 +167,9 @@ pub struct Builder<'a, 'r> {
     body_contacts: Vec<contacts::BodyContacts>,
     /// Every joint in MuJoCo's qpos order, for the keyframes.
     qpos: Vec<keyframes::QposJoint>,
+    /// Every actuator in MuJoCo's order (its name, or `actuator#INDEX`) and its `ctrlrange` when limited
+    /// and read, for the keyframes' `ctrl`.
+    actuator_ctrl: Vec<(String, Option<(f64, f64)>)>,
 }
 
 impl<'a, 'r> Builder<'a, 'r> {
@@ -203,6 +206,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             joint_facts: HashMap::new(),
             body_contacts: Vec::new(),
             qpos: Vec::new(),
+            actuator_ctrl: Vec::new(),
         };
         for section in sections {
             match section.tag() {

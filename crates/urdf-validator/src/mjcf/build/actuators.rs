@@ -39,6 +39,8 @@ struct Drive {
     joint: String,
     effort: Option<Spanned<f64>>,
     span: Span,
+    /// Its `ctrlrange` when limited.
+    ctrl: Option<(f64, f64)>,
 }
 
 /// The actuator elements read; the others are U033.
@@ -53,11 +55,19 @@ impl<'a> Builder<'a, '_> {
         let mut unbounded: HashMap<String, Span> = HashMap::new();
         for section in sections.iter().filter(|s| s.tag() == "actuator") {
             for el in self.reader.children(*section) {
+                let name = el.attr("name").map_or_else(
+                    || format!("actuator#{}", self.actuator_ctrl.len()),
+                    str::to_string,
+                );
+                let drive = self.actuator(el);
+                self.actuator_ctrl
+                    .push((name, drive.as_ref().and_then(|d| d.ctrl)));
                 let Some(Drive {
                     joint,
                     effort,
                     span,
-                }) = self.actuator(el)
+                    ..
+                }) = drive
                 else {
                     continue;
                 };
@@ -249,6 +259,7 @@ impl<'a> Builder<'a, '_> {
                 span,
             }),
             span: self.reader.span(el),
+            ctrl: ctrl.map(|(range, _)| range),
         })
     }
 }

@@ -3,7 +3,8 @@
 //! free joint's 7 numbers, position and quaternion w x y z, a ball's 4, a hinge's or slide's 1, joints in
 //! body and document order) turned into the values of this robot's joints. A key shorter than the model's
 //! `nq` leaves the rest at `qpos0` (MuJoCo's rule); a longer one MuJoCo refuses (U030). Only `qpos`
-//! matters for statics: `time`, `qvel`, `act`, `ctrl`, `mpos` and `mquat` are not read.
+//! matters for statics: `time`, `qvel`, `act`, `mpos` and `mquat` are not read; `ctrl` is only checked
+//! against the actuators' `ctrlrange` (U039, as a `qpos` outside a joint's range).
 //!
 //! - hinge and slide: q = qpos − `ref` (every one is set, to 0 when the key leaves it at `qpos0`);
 //! - ball: the quaternion as the three chained hinges `NAME_x`, `NAME_y`, `NAME_z` (R = Rx·Ry·Rz, exact
@@ -72,6 +73,16 @@ impl QposJoint {
             QposJoint::Scalar { reference, .. } => vec![*reference],
         }
     }
+}
+
+/// How far past a range (relative, at least 1e-6 of a radian or metre) a key's value must be for a U039:
+/// less is the rounding of a range or a key written to a few digits (MS-Human-700's knees sit 1e-8 past
+/// theirs), which no simulation notices.
+const OUT_OF_RANGE: f64 = 1e-6;
+
+/// A `qpos` value, to 6 decimals.
+fn shown(value: f64) -> String {
+    format!("{}", (value * 1e6).round() / 1e6)
 }
 
 /// Angles (a, b, c) of three hinges about x, then the turned y, then the twice-turned z whose rotation is
@@ -144,7 +155,80 @@ impl<'a> Builder<'a, '_> {
             );
             return None;
         }
-        Some(self.pose_of(name, self.reader.span(el), &written))
+        let key = self.pose_of(name, self.reader.span(el), &written);
+        self.check_key_ranges(el, &key);
+        Some(key)
+    }
+
+    /// U039 for the limited hinge and slide joints the key puts outside their ranges (by more than
+    /// [`OUT_OF_RANGE`]), in
+    /// `qpos` terms (radians or metres, `ref` included) as the key is written, and for the limited
+    /// actuators (of the kinds read) its `ctrl` sets outside their `ctrlrange`.
+    fn check_key_ranges(&mut self, el: El<'a>, key: &Keyframe) {
+        let mut outside = Vec::new();
+        for joint in &self.qpos {
+            let QposJoint::Scalar { joint, reference } = joint else {
+                continue;
+            };
+            let Some((_, q)) = key.joints.iter().find(|(name, _)| name == joint) else {
+                continue;
+            };
+            let Some((lower, upper)) = self
+                .joints
+                .iter()
+                .find(|j| j.name.value == *joint)
+                .and_then(|j| j.limit.as_ref())
+                .and_then(|l| Some((l.lower.as_ref()?.value, l.upper.as_ref()?.value)))
+            else {
+                continue;
+            };
+            let slack = OUT_OF_RANGE * lower.abs().max(upper.abs()).max(1.0);
+            if *q < lower - slack || *q > upper + slack {
+                outside.push(format!(
+                    "joint '{joint}' at {} (its range is {} to {})",
+                    shown(q + reference),
+                    shown(lower + reference),
+                    shown(upper + reference)
+                ));
+            }
+        }
+        if !outside.is_empty() {
+            let message = format!(
+                "keyframe '{}' puts {}, in qpos terms (radians or metres): MuJoCo starts there and the limit pushes the joint back",
+                key.name,
+                outside.join(", ")
+            );
+            let span = self.reader.attr_span(el, "qpos");
+            self.reader
+                .report(&rules::MJCF_KEYFRAME_OUT_OF_RANGE, span, message);
+        }
+        let ctrl = self.list(el, MAIN, "ctrl").unwrap_or_default();
+        let outside: Vec<String> = ctrl
+            .iter()
+            .zip(&self.actuator_ctrl)
+            .filter_map(|(value, (name, range))| {
+                let (lower, upper) = (*range)?;
+                let slack = OUT_OF_RANGE * lower.abs().max(upper.abs()).max(1.0);
+                (*value < lower - slack || *value > upper + slack).then(|| {
+                    format!(
+                        "actuator '{name}' at {} (its ctrlrange is {} to {})",
+                        shown(*value),
+                        shown(lower),
+                        shown(upper)
+                    )
+                })
+            })
+            .collect();
+        if !outside.is_empty() {
+            let message = format!(
+                "keyframe '{}' sets {}: MuJoCo clamps the control, so the key does not command what it says",
+                key.name,
+                outside.join(", ")
+            );
+            let span = self.reader.attr_span(el, "ctrl");
+            self.reader
+                .report(&rules::MJCF_KEYFRAME_OUT_OF_RANGE, span, message);
+        }
     }
 
     /// The key `name` (at `span`) whose `qpos` starts with `written` (the rest at `qpos0`) as a pose.
