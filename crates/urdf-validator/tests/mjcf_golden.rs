@@ -571,6 +571,7 @@ const ASSEMBLY: &str = r#"<mujoco model="assembly">
   <asset>
     <mesh name="dent" file="dented.stl" scale="0.2 0.4 0.1"/>
     <mesh file="dented.stl" name="dent_exact" inertia="exact" scale="0.1 0.1 0.1"/>
+    <mesh file="dented.stl" name="dent_mirrored" inertia="exact" scale="-0.1 0.2 0.1"/>
   </asset>
   <worldbody>
     <body name="post" pos="0 0 0.5" euler="10 20 30">
@@ -585,6 +586,10 @@ const ASSEMBLY: &str = r#"<mujoco model="assembly">
             <joint name="pitch" axis="0 1 0"/>
             <joint name="roll" axis="1 0 0" pos="0.05 0 0"/>
             <geom type="box" size="0.02 0.03 0.04" pos="0.1 0 0" mass="0.3"/>
+            <body name="mirrored" pos="0.2 0 0">
+              <joint name="flip" axis="0 0 1"/>
+              <geom type="mesh" mesh="dent_mirrored" pos="0.05 0 0"/>
+            </body>
           </body>
         </body>
       </body>

@@ -93,6 +93,16 @@ impl MeshAsset {
     /// The file's `points` as MuJoCo holds them, in the frame of the geoms that use the mesh: single-
     /// precision floats (an OBJ's decimals are read into floats; STL is floats already), moved by the
     /// inverse of `refpos`/`refquat`, then scaled. The same rounding gives MuJoCo's mass to 1e-9.
+    /// The file's `triangles` as MuJoCo winds them: reversed when the scale mirrors the mesh (an odd
+    /// number of negative factors), so that they still face outwards (an `exact` volume stays positive).
+    fn triangles(&self, triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
+        let mirrored = self.scale.iter().product::<f64>() < 0.0;
+        triangles
+            .iter()
+            .map(|&[a, b, c]| if mirrored { [a, c, b] } else { [a, b, c] })
+            .collect()
+    }
+
     fn vertices(&self, points: &[[f64; 3]]) -> Vec<[f64; 3]> {
         points
             .iter()
@@ -1266,14 +1276,14 @@ impl<'a, 'r> Builder<'a, 'r> {
             let data = data.as_ref().as_ref().ok()?;
             mass::mesh(
                 &asset.vertices(&data.hull),
-                &data.hull_triangles,
+                &asset.triangles(&data.hull_triangles),
                 asset.volume,
             )
         } else {
             let surface = load_surface(&path).ok()?;
             mass::mesh(
                 &asset.vertices(&surface.vertices),
-                &surface.triangles,
+                &asset.triangles(&surface.triangles),
                 asset.volume,
             )
         }
