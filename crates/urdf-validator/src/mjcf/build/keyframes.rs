@@ -80,6 +80,26 @@ impl QposJoint {
 /// theirs), which no simulation notices.
 const OUT_OF_RANGE: f64 = 1e-6;
 
+/// "`what` at VALUE (its `range_name` is LOWER to UPPER)" when `value` is past `range` (a limited one) by
+/// more than [`OUT_OF_RANGE`].
+fn past_range(
+    what: &str,
+    range_name: &str,
+    value: f64,
+    range: Option<(f64, f64)>,
+) -> Option<String> {
+    let (lower, upper) = range?;
+    let slack = OUT_OF_RANGE * lower.abs().max(upper.abs()).max(1.0);
+    (value < lower - slack || value > upper + slack).then(|| {
+        format!(
+            "{what} at {} (its {range_name} is {} to {})",
+            shown(value),
+            shown(lower),
+            shown(upper)
+        )
+    })
+}
+
 /// A `qpos` value, to 6 decimals.
 fn shown(value: f64) -> String {
     format!("{}", (value * 1e6).round() / 1e6)
@@ -160,12 +180,11 @@ impl<'a> Builder<'a, '_> {
         Some(key)
     }
 
-    /// U039 for the limited hinge and slide joints the key puts outside their ranges (by more than
-    /// [`OUT_OF_RANGE`]), in
-    /// `qpos` terms (radians or metres, `ref` included) as the key is written, and for the limited
-    /// actuators (of the kinds read) its `ctrl` sets outside their `ctrlrange`.
+    /// U039 for the limited hinge and slide joints the key puts past their ranges (by more than
+    /// [`OUT_OF_RANGE`]), in `qpos` terms (radians or metres, `ref` included) as the key is written, and
+    /// for the limited actuators (of the kinds read) its `ctrl` sets past their `ctrlrange`.
     fn check_key_ranges(&mut self, el: El<'a>, key: &Keyframe) {
-        let mut outside = Vec::new();
+        let mut joints = Vec::new();
         for joint in &self.qpos {
             let QposJoint::Scalar { joint, reference } = joint else {
                 continue;
@@ -173,59 +192,43 @@ impl<'a> Builder<'a, '_> {
             let Some((_, q)) = key.joints.iter().find(|(name, _)| name == joint) else {
                 continue;
             };
-            let Some((lower, upper)) = self
+            let range = self
                 .joints
                 .iter()
                 .find(|j| j.name.value == *joint)
                 .and_then(|j| j.limit.as_ref())
-                .and_then(|l| Some((l.lower.as_ref()?.value, l.upper.as_ref()?.value)))
-            else {
-                continue;
-            };
-            let slack = OUT_OF_RANGE * lower.abs().max(upper.abs()).max(1.0);
-            if *q < lower - slack || *q > upper + slack {
-                outside.push(format!(
-                    "joint '{joint}' at {} (its range is {} to {})",
-                    shown(q + reference),
-                    shown(lower + reference),
-                    shown(upper + reference)
-                ));
+                .and_then(|l| Some((l.lower.as_ref()?.value, l.upper.as_ref()?.value)));
+            if let Some(past) = past_range(
+                &format!("joint '{joint}'"),
+                "range",
+                q + reference,
+                range.map(|(lo, hi)| (lo + reference, hi + reference)),
+            ) {
+                joints.push(past);
             }
         }
-        if !outside.is_empty() {
-            let message = format!(
-                "keyframe '{}' puts {}, in qpos terms (radians or metres): MuJoCo starts there and the limit pushes the joint back",
-                key.name,
-                outside.join(", ")
-            );
-            let span = self.reader.attr_span(el, "qpos");
-            self.reader
-                .report(&rules::MJCF_KEYFRAME_OUT_OF_RANGE, span, message);
-        }
         let ctrl = self.list(el, MAIN, "ctrl").unwrap_or_default();
-        let outside: Vec<String> = ctrl
+        let actuators: Vec<String> = ctrl
             .iter()
             .zip(&self.actuator_ctrl)
             .filter_map(|(value, (name, range))| {
-                let (lower, upper) = (*range)?;
-                let slack = OUT_OF_RANGE * lower.abs().max(upper.abs()).max(1.0);
-                (*value < lower - slack || *value > upper + slack).then(|| {
-                    format!(
-                        "actuator '{name}' at {} (its ctrlrange is {} to {})",
-                        shown(*value),
-                        shown(lower),
-                        shown(upper)
-                    )
-                })
+                past_range(&format!("actuator '{name}'"), "ctrlrange", *value, *range)
             })
             .collect();
-        if !outside.is_empty() {
+        let reports = [
+            ("qpos", joints, "puts", "in qpos terms (radians or metres): MuJoCo starts there and the limit pushes the joint back"),
+            ("ctrl", actuators, "sets", "MuJoCo clamps the control, so the key does not command what it says"),
+        ];
+        for (attribute, past, verb, consequence) in reports {
+            if past.is_empty() {
+                continue;
+            }
             let message = format!(
-                "keyframe '{}' sets {}: MuJoCo clamps the control, so the key does not command what it says",
+                "keyframe '{}' {verb} {}, {consequence}",
                 key.name,
-                outside.join(", ")
+                past.join(", ")
             );
-            let span = self.reader.attr_span(el, "ctrl");
+            let span = self.reader.attr_span(el, attribute);
             self.reader
                 .report(&rules::MJCF_KEYFRAME_OUT_OF_RANGE, span, message);
         }
