@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::time::UNIX_EPOCH;
 
 use super::{
-    MeshData, MeshOptions, MeshSolid, MeshSummary, SolidSource, UpAxis, UpAxisPolicy,
+    MeshData, MeshOptions, MeshSolid, MeshSummary, ObjReading, SolidSource, UpAxis, UpAxisPolicy,
     VolumeIntegrals,
 };
 
@@ -129,9 +129,15 @@ fn key(path: &Path, options: &MeshOptions) -> Option<String> {
         UpAxisPolicy::Honour => "honour",
         UpAxisPolicy::Ignore => "ignore",
     };
+    // Drake's OBJ reading (the default) adds nothing, so the entries written before readings existed
+    // stay valid.
+    let obj_reading = match options.obj_reading {
+        ObjReading::Drake => "",
+        ObjReading::MuJoCo => " obj:mujoco",
+    };
     // The entry format is part of the key: builds with different formats keep separate entries.
     Some(format!(
-        "{file}\n{}\n{}.{:09}\n{up_axis}\n{}\n{}",
+        "{file}\n{}\n{}.{:09}\n{up_axis}{obj_reading}\n{}\n{}",
         meta.len(),
         modified.as_secs(),
         modified.subsec_nanos(),
@@ -475,6 +481,20 @@ mod tests {
             "kept, not read again (the file itself is no mesh)"
         );
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn each_obj_reading_has_its_own_entry() {
+        let (dir, mesh_file, cache) = scratch("reading");
+        let drake = MeshOptions::default();
+        let mujoco = MeshOptions {
+            obj_reading: ObjReading::MuJoCo,
+            ..drake
+        };
+        cache.write(&mesh_file, &drake, &cube());
+        assert!(cache.read(&mesh_file, &drake).is_some());
+        assert!(cache.read(&mesh_file, &mujoco).is_none());
+        let _ = std::fs::remove_dir_all(dir);
     }
 
     #[test]
