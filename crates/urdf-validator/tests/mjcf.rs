@@ -691,6 +691,33 @@ fn an_include_problem_inside_a_section_is_reported_once() {
 /// A moving body that has, with the bodies welded to it, no mass is U030 at the body: MuJoCo 4.0 refuses
 /// these models ("mass and inertia of moving bodies must be larger than mjMINVAL"), and accepts a massless
 /// moving body whose welded child carries mass. (Failed before: no U030.)
+/// MuJoCo refuses `shellinertia` on a mesh geom (a mesh's shell is `<mesh inertia="shell">`); on a
+/// primitive it is read (its mass against MuJoCo's: `tests/mjcf_golden.rs`, the shells model).
+#[test]
+fn shellinertia_on_a_mesh_geom_is_refused_as_mujoco_refuses_it() {
+    let dir = Scratch::new("shellmesh");
+    let text = r#"<mujoco>
+  <asset><mesh name="m" file="m.stl"/></asset>
+  <worldbody>
+    <body name="a">
+      <joint axis="0 1 0"/>
+      <geom type="mesh" mesh="m" shellinertia="true"/>
+      <geom type="box" size="0.1 0.1 0.1" shellinertia="true"/>
+    </body>
+  </worldbody>
+</mujoco>"#;
+    let path = dir.file("m.xml", text);
+    let v = run(&path);
+    has(
+        &v,
+        "U030",
+        "m.xml",
+        line_of(text, "type=\"mesh\""),
+        "shellinertia on a mesh geom",
+    );
+    assert_eq!(findings(&v, "U030").len(), 1, "{:?}", findings(&v, "U030"));
+}
+
 #[test]
 fn a_moving_body_without_mass_is_refused_as_mujoco_refuses_it() {
     let dir = Scratch::new("massless");

@@ -685,6 +685,34 @@ const OBJECTS: &str = r#"<mujoco model="objects">
 </mujoco>
 "#;
 
+/// Mass spread over surfaces: each primitive with `shellinertia` (from a class), a mesh asset with
+/// `inertia="shell"`, and a capsule fitted to that mesh with a shell of its own.
+const SHELLS: &str = r#"<mujoco model="shells">
+  <compiler meshdir="meshes"/>
+  <asset><mesh name="skin" file="dented.stl" inertia="shell" scale="0.2 0.3 0.1"/></asset>
+  <default>
+    <default class="thin"><geom shellinertia="true" density="300"/></default>
+  </default>
+  <worldbody>
+    <body name="base" pos="0 0 0.5">
+      <geom class="thin" type="box" size="0.1 0.2 0.05"/>
+      <body name="upper" pos="0.3 0 0">
+        <joint name="shoulder" axis="0 1 0"/>
+        <geom class="thin" type="sphere" size="0.05" pos="0.1 0 0"/>
+        <geom class="thin" type="capsule" fromto="0 0 0 0.3 0.1 0" size="0.03"/>
+        <geom class="thin" type="cylinder" size="0.04 0.08" pos="0.2 0 0.1" euler="0.3 0.2 0.1"/>
+        <body name="lower" pos="0.4 0 0">
+          <joint name="elbow" axis="0 0 1"/>
+          <geom class="thin" type="ellipsoid" size="0.05 0.08 0.03" pos="0.1 0 0" quat="0.8 0.1 0.5 0.2"/>
+          <geom type="mesh" mesh="skin" pos="0.2 0.05 0"/>
+          <geom class="thin" type="capsule" mesh="skin" pos="0.3 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"#;
+
 #[test]
 fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     let Some(python) = common::mujoco_python() else {
@@ -697,6 +725,7 @@ fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     std::fs::write(dir.join("assembly.xml"), ASSEMBLY).unwrap();
     std::fs::write(dir.join("fitted.xml"), FITTED.replace("FITAABB", "")).unwrap();
     std::fs::write(dir.join("objects.xml"), OBJECTS).unwrap();
+    std::fs::write(dir.join("shells.xml"), SHELLS).unwrap();
     std::fs::write(dir.join("meshes/two_objects.obj"), two_object_obj()).unwrap();
     std::fs::write(
         dir.join("fitted_aabb.xml"),
@@ -722,7 +751,14 @@ fn models_using_every_feature_read_agree_with_mujoco_run_now() {
     );
     let report = String::from_utf8_lossy(&run.stdout).into_owned();
     let mut failures = Vec::new();
-    for stem in ["features", "assembly", "fitted", "fitted_aabb", "objects"] {
+    for stem in [
+        "features",
+        "assembly",
+        "fitted",
+        "fitted_aabb",
+        "objects",
+        "shells",
+    ] {
         let golden: Value = serde_json::from_str(
             &std::fs::read_to_string(out.join(format!("{stem}.json")))
                 .unwrap_or_else(|e| panic!("no golden for {stem}.xml ({e}):\n{report}")),

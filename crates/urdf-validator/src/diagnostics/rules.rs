@@ -174,7 +174,7 @@ rules! {
         fix: "Write plain decimal numbers separated by spaces, as many as the attribute takes (e.g. `pos=\"0 0 0.1\"`).",
     }
     MJCF_NOT_READ = "U033" "mjcf-not-read" Info {
-        what: "An MJCF element or setting this validator does not turn into the robot yet: actuators on tendons, sites or bodies and actuator kinds other than motor, position, velocity and general (their joints get no effort from them), tendon and flex equality constraints, a joint coupling's terms beyond the linear one, tendons, composite/flexcomp/replicate/attach bodies, height fields and SDF geoms, shell inertia; or a ball joint, analysed as three hinges about the body's x, y and z axes.",
+        what: "An MJCF element or setting this validator does not turn into the robot yet: actuators on tendons, sites or bodies and actuator kinds other than motor, position, velocity and general (their joints get no effort from them), tendon and flex equality constraints, a joint coupling's terms beyond the linear one, tendons, composite/flexcomp/replicate/attach bodies, height fields and SDF geoms; or a ball joint, analysed as three hinges about the body's x, y and z axes.",
         why: "What it describes is left out of the analyses (or, for a ball joint, analysed as three single-axis joints whose gravity torques are MuJoCo's three ball dofs at the pose analysed).",
         fix: "Nothing to fix in the file; read the analyses knowing the element was left out.",
     }

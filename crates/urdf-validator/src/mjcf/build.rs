@@ -80,7 +80,7 @@ struct MeshAsset {
     span: Span,
     /// `scale`.
     scale: [f64; 3],
-    /// `inertia`: how its volume is summed (`shell` is read as `legacy`, with a U033).
+    /// `inertia`: how its volume (or, for `shell`, its area) is summed.
     volume: MeshVolume,
     /// `inertia="convex"`: over the convex hull's triangles.
     convex: bool,
@@ -548,13 +548,6 @@ impl<'a, 'r> Builder<'a, 'r> {
                 "inertia",
                 &["legacy", "exact", "convex", "shell"],
             );
-            if inertia == "shell" {
-                self.note(
-                    el,
-                    "inertia=\"shell\" is not read: the mesh's mass is taken from its volume (legacy)"
-                        .to_string(),
-                );
-            }
             let relative = self.mesh_path(el, file.text);
             let refpos = self.vector(el, &class, "refpos", [0.0; 3]);
             let refquat = self.vector(el, &class, "refquat", [1.0, 0.0, 0.0, 0.0]);
@@ -576,10 +569,10 @@ impl<'a, 'r> Builder<'a, 'r> {
                     file: relative,
                     span: file.span,
                     scale,
-                    volume: if inertia == "legacy" || inertia == "shell" {
-                        MeshVolume::Legacy
-                    } else {
-                        MeshVolume::Exact
+                    volume: match inertia {
+                        "legacy" => MeshVolume::Legacy,
+                        "shell" => MeshVolume::Shell,
+                        _ => MeshVolume::Exact,
                     },
                     convex: inertia == "convex",
                     reference: Isometry3::from_parts(
@@ -1158,7 +1151,10 @@ impl<'a, 'r> Builder<'a, 'r> {
                     None => (None, None),
                 }
             }
-            _ => (primitive_geometry(kind, size), mass::primitive(kind, size)),
+            _ => (
+                primitive_geometry(kind, size),
+                mass::primitive(kind, size, self.shell_inertia(el, class)),
+            ),
         };
         let mass = solid.filter(|_| counts).map(|solid: Solid| {
             let mass = match self.value(el, class, "mass") {
@@ -1185,13 +1181,11 @@ impl<'a, 'r> Builder<'a, 'r> {
         let Some(asset) = self.mesh_asset(el, class) else {
             return (None, None);
         };
-        if self
-            .value(el, class, "shellinertia")
-            .is_some_and(|v| boolean(v.text) == Some(true))
-        {
-            self.note(
+        if self.shell_inertia(el, class) {
+            self.problem(
+                &rules::MJCF_STRUCTURE,
                 el,
-                "shellinertia is not read: the mesh's mass is taken from its volume".to_string(),
+                "shellinertia on a mesh geom (MuJoCo refuses it: \"for mesh geoms, inertia should be specified in the mesh asset\", <mesh inertia=\"shell\">)".to_string(),
             );
         }
         let geometry = Geometry::Mesh {
@@ -1232,8 +1226,14 @@ impl<'a, 'r> Builder<'a, 'r> {
             );
             return None;
         };
-        let solid = mass::primitive(kind, fitted.size)?;
+        let solid = mass::primitive(kind, fitted.size, self.shell_inertia(el, class))?;
         Some((primitive_geometry(kind, fitted.size), fitted.frame, solid))
+    }
+
+    /// Whether a geom's mass is spread over its surface (`shellinertia="true"`, written or from its class).
+    fn shell_inertia(&self, el: El<'a>, class: &str) -> bool {
+        self.value(el, class, "shellinertia")
+            .is_some_and(|v| boolean(v.text) == Some(true))
     }
 
     /// The `<mesh>` asset a geom's `mesh` attribute names (a finding when it names none).

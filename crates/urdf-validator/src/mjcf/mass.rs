@@ -128,7 +128,11 @@ impl Solid {
 
 /// The solid of a primitive geom of MuJoCo type `kind` with MuJoCo `size` (radii and half-lengths), as
 /// `mjCGeom::GetVolume` / `SetInertia`; `None` for types without a volume (plane, hfield, sdf, mesh).
-pub fn primitive(kind: &str, size: [f64; 3]) -> Option<Solid> {
+/// With `shell` (`shellinertia="true"`) the mass is spread over the surface: the "volume" is the area.
+pub fn primitive(kind: &str, size: [f64; 3], shell: bool) -> Option<Solid> {
+    if shell {
+        return primitive_shell(kind, size);
+    }
     use std::f64::consts::PI;
     let [a, b, c] = size;
     let (volume, diagonal) = match kind {
@@ -361,6 +365,101 @@ fn normalized(q: [f64; 4]) -> [f64; 4] {
     }
 }
 
+/// A primitive's surface as MuJoCo's `shellinertia` spreads the mass over it (`mjCGeom::GetVolume` and
+/// `SetInertia` with `mjINERTIA_SHELL`): the area, and the thin shell's inertia per unit mass (an ellipsoid's
+/// area by Thomsen's approximation and its inertia as the difference of two solids 1e-6 apart, as MuJoCo).
+fn primitive_shell(kind: &str, [a, b, c]: [f64; 3]) -> Option<Solid> {
+    use std::f64::consts::PI;
+    let (area, diagonal) = match kind {
+        "sphere" => (4.0 * PI * a * a, [2.0 * a * a / 3.0; 3]),
+        "capsule" => {
+            let (r, half) = (a, b);
+            let h = 2.0 * half;
+            let (spheres, side) = (4.0 * PI * r * r, 2.0 * PI * r * h);
+            let total = spheres + side;
+            let sphere_mass = spheres / total;
+            let cylinder_mass = 1.0 - sphere_mass;
+            let hemisphere_com = r / 2.0;
+            let hemisphere_at = half + hemisphere_com;
+            let sphere_inertia = 2.0 * sphere_mass * r * r / 3.0;
+            let across = cylinder_mass * (6.0 * r * r + h * h) / 12.0
+                + sphere_inertia
+                + sphere_mass * (hemisphere_at * hemisphere_at - hemisphere_com * hemisphere_com);
+            (
+                total,
+                [across, across, cylinder_mass * r * r + sphere_inertia],
+            )
+        }
+        "cylinder" => {
+            let (r, half) = (a, b);
+            let h = 2.0 * half;
+            let (disk, side) = (PI * r * r, 2.0 * PI * r * h);
+            let total = 2.0 * disk + side;
+            let disk_mass = disk / total;
+            let side_mass = 1.0 - 2.0 * disk_mass;
+            let disk_across = disk_mass * r * r / 4.0 + disk_mass * half * half;
+            let across = side_mass * (6.0 * r * r + h * h) / 12.0 + 2.0 * disk_across;
+            let axial = side_mass * r * r + 2.0 * (disk_mass * r * r / 2.0);
+            (total, [across, across, axial])
+        }
+        "ellipsoid" => {
+            let p = 1.6075;
+            let sum = (a * b).powf(p) + (b * c).powf(p) + (c * a).powf(p);
+            let area = 4.0 * PI * (sum / 3.0).powf(1.0 / p);
+            let eps = 1e-6;
+            let inner = 4.0 * PI * a * b * c / 3.0;
+            let (ae, be, ce) = (a + eps, b + eps, c + eps);
+            let outer = 4.0 * PI * ae * be * ce / 3.0;
+            let density = 1.0 / (outer - inner);
+            let (mi, mo) = (inner * density, outer * density);
+            (
+                area,
+                [
+                    mo * (be * be + ce * ce) / 5.0 - mi * (b * b + c * c) / 5.0,
+                    mo * (ae * ae + ce * ce) / 5.0 - mi * (a * a + c * c) / 5.0,
+                    mo * (ae * ae + be * be) / 5.0 - mi * (a * a + b * b) / 5.0,
+                ],
+            )
+        }
+        "box" => {
+            let (lx, ly, lz) = (2.0 * a, 2.0 * b, 2.0 * c);
+            let (a0, a1, a2) = (lx * ly, ly * lz, lz * lx);
+            let total = 2.0 * (a0 + a1 + a2);
+            let (m0, m1, m2) = (a0 / total, a1 / total, a2 / total);
+            let (s00, s11, s22) = (a * a, b * b, c * c);
+            let (ix0, iy0, iz0) = (
+                m0 * ly * ly / 12.0,
+                m0 * lx * lx / 12.0,
+                m0 * (lx * lx + ly * ly) / 12.0,
+            );
+            let (ix1, iy1, iz1) = (
+                m1 * (ly * ly + lz * lz) / 12.0,
+                m1 * lz * lz / 12.0,
+                m1 * ly * ly / 12.0,
+            );
+            let (ix2, iy2, iz2) = (
+                m2 * lz * lz / 12.0,
+                m2 * (lx * lx + lz * lz) / 12.0,
+                m2 * lx * lx / 12.0,
+            );
+            (
+                total,
+                [
+                    2.0 * (m0 * s22 + m2 * s11 + ix0 + ix1 + ix2),
+                    2.0 * (m0 * s22 + m1 * s00 + iy0 + iy1 + iy2),
+                    2.0 * (m1 * s00 + m2 * s11 + iz0 + iz1 + iz2),
+                ],
+            )
+        }
+        _ => return None,
+    };
+    Some(Solid {
+        volume: area,
+        com: Vector3::zeros(),
+        unit_inertia: Matrix3::from_diagonal(&Vector3::from(diagonal)),
+    })
+}
+
 /// MuJoCo's `mjMINVAL`: below it a triangle has no area, a principal moment or a mass is zero.
 pub(super) const MIN_VALUE: f64 = 1e-15;
 
@@ -373,6 +472,10 @@ pub enum MeshVolume {
     /// `exact` (and `convex`, over the convex hull's triangles): signed pyramids, the volume the surface
     /// encloses.
     Exact,
+    /// `shell`: the mass spread over the surface (the "volume" is its area); the centre of mass as MuJoCo's
+    /// `ComputeSurfaceArea` places it (each triangle's area at three quarters of the way from the
+    /// triangles' centroid to its centre, as for a pyramid).
+    Shell,
 }
 
 /// The solid of a mesh surface (`vertices` already scaled, `triangles` indices into them) as MuJoCo's
@@ -390,8 +493,14 @@ pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> 
     };
     let signed = |v: f64| match kind {
         MeshVolume::Legacy => v.abs(),
-        MeshVolume::Exact => v,
+        MeshVolume::Exact | MeshVolume::Shell => v,
     };
+    // Each triangle's weight: its pyramid's volume from `apex`, or its area for a shell.
+    let weight =
+        |centre: Vector3<f64>, normal: Vector3<f64>, area: f64, apex: Vector3<f64>| match kind {
+            MeshVolume::Shell => area,
+            _ => signed((centre - apex).dot(&normal) * area / 3.0),
+        };
     let mut centroid = Vector3::zeros();
     let mut area_sum = 0.0;
     for t in triangles {
@@ -407,7 +516,7 @@ pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> 
     let mut volume = 0.0;
     for t in triangles {
         let (area, normal, centre) = triangle(corners(t)?);
-        let v = signed((centre - centroid).dot(&normal) * area / 3.0);
+        let v = weight(centre, normal, area, centroid);
         volume += v;
         com += (centre * 0.75 + centroid * 0.25) * v;
     }
@@ -421,11 +530,16 @@ pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> 
     for t in triangles {
         let [d, e, f] = corners(t)?.map(|p| p - com);
         let (area, normal, centre) = triangle([d, e, f]);
-        let v = signed(centre.dot(&normal) * area / 3.0);
+        let v = weight(centre, normal, area, Vector3::zeros());
         total += v;
+        let divisor = if kind == MeshVolume::Shell {
+            12.0
+        } else {
+            20.0
+        };
         for i in 0..3 {
             for j in 0..3 {
-                products[(i, j)] += v / 20.0
+                products[(i, j)] += v / divisor
                     * (2.0 * (d[i] * d[j] + e[i] * e[j] + f[i] * f[j])
                         + d[i] * e[j]
                         + d[j] * e[i]
@@ -465,11 +579,11 @@ mod tests {
 
     #[test]
     fn a_capsule_is_a_cylinder_and_a_sphere_by_volume() {
-        let s = primitive("capsule", [0.1, 0.2, 0.0]).unwrap();
+        let s = primitive("capsule", [0.1, 0.2, 0.0], false).unwrap();
         let pi = std::f64::consts::PI;
         assert!((s.volume - (pi * 0.01 * 0.4 + 4.0 / 3.0 * pi * 0.001)).abs() < 1e-15);
         // Long thin capsule → close to a rod's m L²/12 about its side.
-        let rod = primitive("capsule", [1e-4, 1.0, 0.0]).unwrap();
+        let rod = primitive("capsule", [1e-4, 1.0, 0.0], false).unwrap();
         assert!((rod.unit_inertia[(0, 0)] - 4.0 / 12.0).abs() < 1e-3);
     }
 
@@ -493,7 +607,7 @@ mod tests {
             [3, 7, 5],
         ];
         let exact = mesh(&v, &t, MeshVolume::Exact).unwrap();
-        let cube = primitive("box", [0.5; 3]).unwrap();
+        let cube = primitive("box", [0.5; 3], false).unwrap();
         assert!((exact.volume - 1.0).abs() < 1e-12);
         assert!((exact.com - Vector3::repeat(0.5)).norm() < 1e-12);
         assert!((exact.unit_inertia - cube.unit_inertia).norm() < 1e-12);

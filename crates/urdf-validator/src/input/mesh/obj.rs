@@ -14,7 +14,7 @@ pub enum ObjReading {
     Drake,
     /// MuJoCo 4.0's (its OBJ reader, a recent tinyobjloader, in single precision): only the first
     /// object's faces (up to the first `o` or `g` line after a face); a quad split along its shorter
-    /// diagonal (the second one on a tie), a larger polygon clipped ear by ear (see [`clip_ears`]).
+    /// diagonal (the second one on a tie), a larger polygon clipped ear by ear as tinyobjloader does.
     MuJoCo,
 }
 
