@@ -13,8 +13,10 @@ mod contacts;
 mod equality;
 mod keyframes;
 
+use std::cell::OnceCell;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
@@ -87,12 +89,11 @@ struct MeshAsset {
     /// `refpos` and `refquat`: the frame the file's vertices are written in (MuJoCo moves them by its
     /// inverse).
     reference: Isometry3<f64>,
+    /// Its solid once read (shared by the clones: the file is read once however many geoms use it).
+    solid: Rc<OnceCell<Option<Solid>>>,
 }
 
 impl MeshAsset {
-    /// The file's `points` as MuJoCo holds them, in the frame of the geoms that use the mesh: single-
-    /// precision floats (an OBJ's decimals are read into floats; STL is floats already), moved by the
-    /// inverse of `refpos`/`refquat`, then scaled. The same rounding gives MuJoCo's mass to 1e-9.
     /// The file's `triangles` as MuJoCo winds them: reversed when the scale mirrors the mesh (an odd
     /// number of negative factors), so that they still face outwards (an `exact` volume stays positive).
     fn triangles(&self, triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
@@ -103,6 +104,9 @@ impl MeshAsset {
             .collect()
     }
 
+    /// The file's `points` as MuJoCo holds them, in the frame of the geoms that use the mesh: single-
+    /// precision floats (an OBJ's decimals are read into floats; STL is floats already), moved by the
+    /// inverse of `refpos`/`refquat`, then scaled. The same rounding gives MuJoCo's mass to 1e-9.
     fn vertices(&self, points: &[[f64; 3]]) -> Vec<[f64; 3]> {
         points
             .iter()
@@ -579,6 +583,7 @@ impl<'a, 'r> Builder<'a, 'r> {
                         Translation3::from(Vector3::from(refpos)),
                         rotation,
                     ),
+                    solid: Rc::default(),
                 },
             );
         }
@@ -1268,8 +1273,12 @@ impl<'a, 'r> Builder<'a, 'r> {
     }
 
     /// The solid of a mesh asset, in the frame of the geoms that use it (`None` without a readable file, or
-    /// when MuJoCo would refuse the mesh).
+    /// when MuJoCo would refuse the mesh), read on its first use.
     fn mesh_solid(&self, asset: &MeshAsset) -> Option<Solid> {
+        *asset.solid.get_or_init(|| self.read_mesh_solid(asset))
+    }
+
+    fn read_mesh_solid(&self, asset: &MeshAsset) -> Option<Solid> {
         let path = self.readable(asset)?;
         if asset.convex {
             let data = self.mesh_cache.get(&path);
