@@ -11,6 +11,7 @@ mod section;
 pub use section::{body_joints_held, ArmWorkspace, WorkspaceSection};
 
 pub mod chain;
+mod placements;
 mod sincos;
 pub mod target;
 mod verdict;
@@ -30,13 +31,14 @@ use crate::analysis::statics::gravity::{evaluate, mass_and_com, StaticsData};
 use crate::assets::LinkSupports;
 use crate::diagnostics::{Confidence, Status};
 use crate::input::srdf::SrdfCollisions;
-use crate::model::kinematics::{forward_kinematics_links, Configuration, Data};
+use crate::model::kinematics::{Configuration, Data};
 use crate::model::{JointId, LinkId, Model, Motion};
 use crate::rng::SplitMix64;
 use crate::timings::Progress;
 use crate::urdf::robot::Robot;
 
 use chain::{ArmChain, Samples, BATCH};
+use placements::{BatchPlacements, LANES};
 use target::{Orientation, OrientationMatcher, Task};
 
 /// Samples per parallel work unit (and per generator seed).
@@ -173,10 +175,10 @@ struct ArmJob<'a> {
     approach_source: &'static str,
     /// Links whose placement changes with the arm's joints (parents first).
     moving_links: Vec<LinkId>,
-    /// Of those, the ones self-collision reads: the links of `pairs` and the moving links above them
-    /// (parents first). A moved link that no pair reaches (a tool frame, a finger without geometry) is
-    /// never placed.
-    placed_links: Vec<LinkId>,
+    /// Of those, the ones self-collision reads, placed a batch of samples at a time: the links of `pairs`
+    /// and the moving links above them (parents first). A moved link that no pair reaches (a tool frame,
+    /// a finger without geometry) is never placed.
+    placements: Option<BatchPlacements>,
     pairs: Option<PairSet>,
 }
 
@@ -289,6 +291,31 @@ fn chunk_seed(seed: u64, arm: usize, chunk: usize) -> u64 {
     mix(mix(mix(seed) ^ arm as u64) ^ chunk as u64)
 }
 
+/// A chunk's self-collision state: a full configuration and placements, updated on the arm's moving
+/// links only.
+struct SampleCollision<'a> {
+    model: &'a CollisionModel,
+    pairs: &'a PairSet,
+    q: Configuration,
+    data: Data,
+    scratch: CheckScratch,
+    placements: BatchPlacements,
+}
+
+impl SampleCollision<'_> {
+    /// Place the moving links of up to [`LANES`] samples, a row of the arm's `sampled` joint values each.
+    fn place(&mut self, model: &Model, rows: &[Vec<f64>], sampled: &[(JointId, f64, f64)]) {
+        for (lane, row) in rows.iter().enumerate() {
+            for (value, (joint, _, _)) in row.iter().zip(sampled) {
+                self.q[joint.0] = *value;
+            }
+            model.apply_mimic(&mut self.q);
+            self.placements.load(lane, &self.q);
+        }
+        self.placements.place();
+    }
+}
+
 fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usize) -> ArmStats {
     let scene = ctx.scene;
     let start = chunk * CHUNK;
@@ -306,16 +333,18 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     let mut rng = SplitMix64::new(chunk_seed(ctx.options.seed, arm_index, chunk));
     // One batch of samples' values, a row per sample.
     let mut rows = vec![vec![0.0; job.chain.dof()]; BATCH];
-    // Collision scratch: a full configuration and placements, updated on the moving links only.
-    let mut collision_state = match (ctx.collision, &job.pairs) {
-        (Some(model), Some(pairs)) if !pairs.is_empty() => Some((
-            model,
-            pairs,
-            scene.q.to_vec(),
-            scene.data.clone(),
-            // Only the arm's links move in this chunk: every other link's placement is kept.
-            CheckScratch::holding_fixed(model),
-        )),
+    let mut collision_state = match (ctx.collision, &job.pairs, &job.placements) {
+        (Some(model), Some(pairs), Some(placements)) if !pairs.is_empty() => {
+            Some(SampleCollision {
+                model,
+                pairs,
+                q: scene.q.to_vec(),
+                data: scene.data.clone(),
+                // Only the arm's links move in this chunk: every other link's placement is kept.
+                scratch: CheckScratch::holding_fixed(model),
+                placements: placements.clone(),
+            })
+        }
         _ => None,
     };
     let target_height = ctx
@@ -361,14 +390,19 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             stats.max_from_base = stats.max_from_base.max(p.norm());
             // Self-collision first: task heights, the band and orientations count feasible poses only.
             let mut free = true;
-            if let Some((model, pairs, q_full, data, scratch)) = collision_state.as_mut() {
-                for (value, (joint, _, _)) in q.iter().zip(&job.chain.sampled) {
-                    q_full[joint.0] = *value;
+            if let Some(state) = collision_state.as_mut() {
+                if k % LANES == 0 {
+                    let lanes = &rows[k..(k + LANES).min(batch)];
+                    state.place(scene.model, lanes, &job.chain.sampled);
                 }
-                scene.model.apply_mimic(q_full);
-                forward_kinematics_links(scene.model, q_full, &job.placed_links, data);
+                state.placements.write(k % LANES, &mut state.data);
                 let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
-                let check = model.check(pairs, &data.link_placement, cutoff, scratch);
+                let check = state.model.check(
+                    state.pairs,
+                    &state.data.link_placement,
+                    cutoff,
+                    &mut state.scratch,
+                );
                 free = check.is_free();
                 if free {
                     stats.collision_free += 1;
@@ -544,17 +578,17 @@ pub fn analyse(
             let motion = model.motion_of(&sampled);
             let moving_links = moved_links(model, &motion);
             let pairs = collision.map(|c| c.model.pairs_moved_by(&motion));
-            let placed_links = pairs
-                .as_ref()
-                .map(|pairs| links_to_place(model, &moving_links, pairs))
-                .unwrap_or_default();
+            let placements = pairs.as_ref().map(|pairs| {
+                let links = links_to_place(model, &moving_links, pairs);
+                BatchPlacements::new(model, &links, &motion, scene.q, scene.data)
+            });
             Some(ArmJob {
                 arm,
                 chain,
                 approach,
                 approach_source,
                 moving_links,
-                placed_links,
+                placements,
                 pairs,
             })
         })
