@@ -42,6 +42,7 @@ use std::ops::Range;
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::gjk::VoronoiSimplex;
+use rayon::prelude::*;
 
 use crate::assets::LinkSupports;
 use crate::input::srdf::{SrdfCollisions, SrdfPair};
@@ -360,19 +361,29 @@ impl CollisionModel {
     /// rigidly attached pairs.
     pub fn build(robot: &Robot, model: &Model, supports: &[LinkSupports]) -> CollisionModel {
         let links = robot.links.len();
+        // Each link's shapes (a mesh hull's edges and support map are built here), links in parallel.
+        let per_link: Vec<Vec<ConvexShape>> = robot
+            .links
+            .par_iter()
+            .zip(supports)
+            .map(|(link, link_supports)| {
+                // Supports are the collisions, or the visuals when a link has none: only collisions
+                // collide.
+                if link.collisions.is_empty() {
+                    return Vec::new();
+                }
+                link_supports
+                    .shapes
+                    .iter()
+                    .filter_map(ConvexShape::from_support)
+                    .collect()
+            })
+            .collect();
         let mut shapes = Vec::new();
         let mut bodies = Vec::with_capacity(links);
-        for (link, link_supports) in robot.links.iter().zip(supports) {
+        for link_shapes in per_link {
             let start = shapes.len();
-            // Supports are the collisions, or the visuals when a link has none: only collisions collide.
-            if !link.collisions.is_empty() {
-                shapes.extend(
-                    link_supports
-                        .shapes
-                        .iter()
-                        .filter_map(ConvexShape::from_support),
-                );
-            }
+            shapes.extend(link_shapes);
             let spheres: Vec<(Vector3<f64>, f64)> = shapes[start..]
                 .iter()
                 .map(|s| (s.centre, s.bound))

@@ -296,6 +296,9 @@ pub struct ConvexShape {
     pub bound: f64,
     /// A box around the grown core, in the link frame.
     pub obb: Obb,
+    /// The centre of that box in the shape frame: where a separating axis between two shapes is first
+    /// looked for.
+    pub inner: Vector,
 }
 
 /// An oriented box: `frame` places its centre and axes, `half` its half extents along them.
@@ -479,6 +482,7 @@ impl ConvexShape {
                 half: Vector3::new(*radius, *radius, *half),
             },
         };
+        let inner = frame.inverse_transform_point(&Point3::from(obb.frame.translation.vector));
         Some(ConvexShape {
             core,
             radius,
@@ -486,6 +490,7 @@ impl ConvexShape {
             centre,
             bound,
             obb,
+            inner: Vector::new(inner.x, inner.y, inner.z),
         })
     }
 }
@@ -589,6 +594,15 @@ pub fn proximity(
             let near_a = a.core.local_support_point(*axis);
             let near_b = b.core.support_point(&pos12, -*axis);
             if axis.dot(near_b - near_a) - rounding >= margin {
+                return Proximity::Beyond;
+            }
+        }
+        // Then the direction from one shape's box centre to the other's: pairs that are far apart for
+        // this pose, whatever they were for the last one, are settled by two more support points.
+        if let Some(toward) = (pos12.transform_point(b.inner) - a.inner).try_normalize() {
+            let near_a = a.core.local_support_point(toward);
+            let near_b = b.core.support_point(&pos12, -toward);
+            if toward.dot(near_b - near_a) - rounding >= margin {
                 return Proximity::Beyond;
             }
         }

@@ -60,7 +60,8 @@ pub struct WorkspaceSection {
     pub orientation_tolerance_deg: f64,
     /// Fraction of sampled poses (all arms) free of self-collision.
     pub self_collision_free_fraction: Option<f64>,
-    /// Smallest distance between two links over the collision-free sampled poses, mm.
+    /// Smallest distance between two links over the collision-free sampled poses, mm, rounded to the
+    /// micrometre (GJK's last digits depend on where its search started).
     pub self_collision_min_clearance_mm: Option<f64>,
     /// The pair found in contact in the most colliding samples (each colliding sample counts its first
     /// contact in a fixed pair order), else the pair with the smallest clearance.
@@ -136,7 +137,7 @@ pub struct ArmWorkspace {
     pub orientation_fraction: Option<f64>,
     /// Fraction of this arm's samples free of self-collision.
     pub self_collision_free_fraction: Option<f64>,
-    /// Smallest clearance over this arm's collision-free samples, mm.
+    /// Smallest clearance over this arm's collision-free samples, mm, rounded to the micrometre.
     pub self_collision_min_clearance_mm: Option<f64>,
     /// Tip positions of a deterministic subset of the samples, for plots of the reach envelope: every
     /// k-th sample (k = ⌈samples / 400⌉, sample indices 0, k, 2k, …), at most 400, in sample order,
