@@ -34,14 +34,14 @@ pub(super) struct HeldBroad {
     members: Vec<Vec<u32>>,
     /// The held slots.
     held: Vec<u32>,
-    /// The pairs of group `g` and held slot `held[h]` are `group_held_pairs[o[i]..o[i + 1]]` with
-    /// `i = g * held.len() + h` and `o` = `group_held_offsets`.
+    /// The pairs of group `g` and held slot `held[h]` are the bits of `group_held_pairs[o[i]..o[i + 1]]`
+    /// (see [`PairWords`]) with `i = g * held.len() + h` and `o` = `group_held_offsets`.
     group_held_offsets: Vec<u32>,
-    group_held_pairs: Vec<u32>,
+    group_held_pairs: Vec<PairWords>,
     /// Per two groups `g < k` with pairs between them: `g`, `k`, and where their pairs are in
     /// `group_pairs`.
     group_links: Vec<(u32, u32, u32, u32)>,
-    group_pairs: Vec<u32>,
+    group_pairs: Vec<PairWords>,
     /// One bit per pair of the set: the pairs no sphere stands for (always tested one by one).
     always: Vec<u64>,
 }
@@ -220,10 +220,10 @@ impl HeldBroad {
     ) {
         bits.clear();
         bits.extend_from_slice(&self.always);
-        let mut keep = |pairs: &[u32]| {
-            for &pair in pairs {
-                if let Some(word) = bits.get_mut(pair as usize / 64) {
-                    *word |= 1 << (pair % 64);
+        let mut keep = |pairs: &[PairWords]| {
+            for &(word, mask) in pairs {
+                if let Some(word) = bits.get_mut(word as usize) {
+                    *word |= mask;
                 }
             }
         };
@@ -367,17 +367,30 @@ fn split_widest(order: &mut [usize], spheres: &[(Vector3<f64>, f64)]) {
     split_widest(right, spheres);
 }
 
-/// Lists as one array and the offsets of each list's start (and of the end).
-fn compressed(lists: Vec<Vec<u32>>) -> (Vec<u32>, Vec<u32>) {
+/// Lists of pairs (each increasing) as one array of [`PairWords`] and the offsets of each list's start
+/// (and of the end).
+fn compressed(lists: Vec<Vec<u32>>) -> (Vec<u32>, Vec<PairWords>) {
     let mut offsets = Vec::with_capacity(lists.len() + 1);
-    let mut all = Vec::new();
+    let mut all: Vec<PairWords> = Vec::new();
     offsets.push(0);
     for list in lists {
-        all.extend(list);
+        let start = all.len();
+        for pair in list {
+            let (word, bit) = (pair / 64, 1u64 << (pair % 64));
+            let open = all.len() > start;
+            match all.last_mut() {
+                Some((last, mask)) if open && *last == word => *mask |= bit,
+                _ => all.push((word, bit)),
+            }
+        }
         offsets.push(all.len() as u32);
     }
     (offsets, all)
 }
+
+/// Pairs of the set as bits of the candidate words: a word's index and the pairs' bits in it. A group's
+/// pairs with one link are mostly neighbours in the set, so one word holds several.
+type PairWords = (u32, u64);
 
 /// The indices of the set bits of `bits`, in increasing order.
 pub(super) fn set_bits(bits: &[u64]) -> impl Iterator<Item = usize> + '_ {
