@@ -57,6 +57,97 @@ pub struct Hull {
     /// Per cell of a cube map of directions (see [`cube_cell`]): the vertex furthest along the cell's
     /// centre direction, where climbs start; empty when the hull is scanned.
     starts: Vec<u32>,
+    /// The vertices by coordinate, for a hull small enough that scanning them all in vector registers
+    /// is faster than climbing (and a CPU that has the registers).
+    lanes: Option<VertexLanes>,
+}
+
+/// Up to this many vertices, a hull's support queries scan every vertex four at a time (AVX2) instead of
+/// climbing: a climb's steps wait on each other and on memory, a scan does not.
+const SCAN_UP_TO: usize = 96;
+
+/// A hull's vertices as coordinate arrays padded to a multiple of 4 with copies of the last vertex.
+#[derive(Clone, Debug)]
+struct VertexLanes {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl VertexLanes {
+    /// The lanes of `points` when they are few enough and this CPU has AVX2.
+    fn of(points: &[Vector]) -> Option<VertexLanes> {
+        #[cfg(target_arch = "x86_64")]
+        if (1..=SCAN_UP_TO).contains(&points.len()) && std::arch::is_x86_feature_detected!("avx2") {
+            let padded = points.len().next_multiple_of(4);
+            let at = |i: usize| points[i.min(points.len() - 1)];
+            return Some(VertexLanes {
+                x: (0..padded).map(|i| at(i).x).collect(),
+                y: (0..padded).map(|i| at(i).y).collect(),
+                z: (0..padded).map(|i| at(i).z).collect(),
+            });
+        }
+        let _ = points;
+        None
+    }
+
+    /// The first vertex furthest along `dir` (the first one when `dir` is not a number).
+    fn furthest(&self, dir: Vector) -> usize {
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: lanes exist only where AVX2 was detected (`VertexLanes::of`).
+            unsafe { self.furthest_avx2(dir) }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let _ = dir;
+            0
+        }
+    }
+
+    /// [`VertexLanes::furthest`]: the largest of the dot products, four at a time, then the first lane
+    /// holding it (the dot products computed again the same way, so equal to the bit).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn furthest_avx2(&self, dir: Vector) -> usize {
+        use std::arch::x86_64::*;
+        let (dx, dy, dz) = (
+            _mm256_set1_pd(dir.x),
+            _mm256_set1_pd(dir.y),
+            _mm256_set1_pd(dir.z),
+        );
+        let dot = |i: usize| {
+            // SAFETY: `i + 4 <= len` for every `i` the loops below pass (the lengths are multiples of 4
+            // and equal).
+            let (x, y, z) = unsafe {
+                (
+                    _mm256_loadu_pd(self.x.as_ptr().add(i)),
+                    _mm256_loadu_pd(self.y.as_ptr().add(i)),
+                    _mm256_loadu_pd(self.z.as_ptr().add(i)),
+                )
+            };
+            _mm256_add_pd(
+                _mm256_add_pd(_mm256_mul_pd(x, dx), _mm256_mul_pd(y, dy)),
+                _mm256_mul_pd(z, dz),
+            )
+        };
+        let len = self.x.len();
+        let mut best = _mm256_set1_pd(f64::NEG_INFINITY);
+        for i in (0..len).step_by(4) {
+            best = _mm256_max_pd(best, dot(i));
+        }
+        let mut lanes = [0.0; 4];
+        // SAFETY: `lanes` holds four doubles.
+        unsafe { _mm256_storeu_pd(lanes.as_mut_ptr(), best) };
+        let top = _mm256_set1_pd(lanes[0].max(lanes[1]).max(lanes[2]).max(lanes[3]));
+        for i in (0..len).step_by(4) {
+            let equal = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_EQ_OQ>(dot(i), top));
+            if equal != 0 {
+                return i + equal.trailing_zeros() as usize;
+            }
+        }
+        0
+    }
 }
 
 /// Cells per cube face side of [`Hull::starts`] for a hull of `vertices` vertices: about one cell per 4
@@ -108,22 +199,24 @@ impl Hull {
     /// one per mesh file, see [`MeshData::hull_triangles`](crate::input::mesh::MeshData)); without one,
     /// parry's quickhull builds it here and it is checked before it is used.
     pub fn new(points: Vec<Vector>, surface: Option<&[[u32; 3]]>) -> Hull {
-        if points.len() >= CLIMB_FROM {
-            let built = match surface.filter(|t| !t.is_empty()) {
+        let built = if points.len() >= CLIMB_FROM {
+            match surface.filter(|t| !t.is_empty()) {
                 Some(triangles) => Self::from_surface(&points, triangles),
                 None => Self::triangulated(&points),
-            };
-            if let Some(hull) = built {
-                return hull;
             }
-        }
-        Hull {
+        } else {
+            None
+        };
+        let mut hull = built.unwrap_or(Hull {
             points,
             offsets: Vec::new(),
             neighbours: Vec::new(),
             starts: Vec::new(),
             cells: 0,
-        }
+            lanes: None,
+        });
+        hull.lanes = VertexLanes::of(&hull.points);
+        hull
     }
 
     /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
@@ -177,6 +270,7 @@ impl Hull {
             neighbours,
             starts: Vec::new(),
             cells: 0,
+            lanes: None,
         };
         // Each cell's start, climbed to from its neighbour's (cells in order are mostly adjacent).
         let mut previous = 0;
@@ -194,6 +288,9 @@ impl Hull {
     /// The index of a vertex furthest along `dir`, climbing from vertex `start` when edges are known
     /// (or from the cube map's start for `dir` when that is further along, or `start` is out of range).
     fn support_index(&self, dir: Vector, start: usize) -> usize {
+        if let Some(lanes) = &self.lanes {
+            return lanes.furthest(dir);
+        }
         if self.offsets.is_empty() {
             let mut best = 0;
             let mut best_dot = f64::NEG_INFINITY;
@@ -642,7 +739,67 @@ pub fn proximity(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
     use nalgebra::{Translation3, UnitQuaternion};
+
+    /// Support queries on hulls of 1 to 200 points (scanned four at a time up to [`SCAN_UP_TO`] vertices
+    /// where the CPU has AVX2, climbed or scanned one by one otherwise) reach the furthest value along
+    /// every direction, random, along an axis (ties between vertices) or not a number; a scan answers the
+    /// first vertex holding it.
+    #[test]
+    fn support_queries_reach_the_furthest_vertex() {
+        let mut rng = SplitMix64::new(9);
+        let mut scanned = 0;
+        for n in 1..=200 {
+            // Points in a box, some on its faces (axis directions then meet ties), or all on a sphere
+            // (every point a vertex).
+            let points: Vec<Vector> = (0..n)
+                .map(|i| {
+                    let mut c = [0.0; 3].map(|_| rng.uniform(-1.0, 1.0));
+                    if n % 2 == 1 {
+                        let norm = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+                        c = c.map(|v| v / norm);
+                    } else if i % 3 == 0 {
+                        c[i % 2] = if i % 4 == 0 { 1.0 } else { -1.0 };
+                    }
+                    Vector::new(c[0], c[1], c[2])
+                })
+                .collect();
+            let hull = Hull::new(points.clone(), None);
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                assert_eq!(hull.lanes.is_some(), hull.points.len() <= SCAN_UP_TO);
+            }
+            scanned += usize::from(hull.lanes.is_some());
+            let mut directions: Vec<Vector> = (0..50)
+                .map(|_| {
+                    Vector::new(
+                        rng.uniform(-1.0, 1.0),
+                        rng.uniform(-1.0, 1.0),
+                        rng.uniform(-1.0, 1.0),
+                    )
+                })
+                .collect();
+            directions.extend([Vector::X, -Vector::X, Vector::Y, -Vector::Z]);
+            for dir in directions {
+                let dots: Vec<f64> = points.iter().map(|p| p.dot(dir)).collect();
+                let top = dots.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let found = hull.points[hull.support_index(dir, usize::MAX)];
+                assert_eq!(found.dot(dir), top, "{n} points along {dir:?}");
+                if hull.lanes.is_some() {
+                    // The hull's own vertices (a triangulated hull keeps only its corners).
+                    let first = hull.points.iter().position(|p| p.dot(dir) == top);
+                    assert_eq!(Some(hull.support_index(dir, usize::MAX)), first);
+                }
+            }
+            // Not a number: some vertex, no panic.
+            assert!(hull.support_index(Vector::splat(f64::NAN), 0) < hull.points.len());
+        }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            assert!((100..200).contains(&scanned), "{scanned} hulls scanned");
+        }
+    }
 
     fn shape(support: Support) -> ConvexShape {
         ConvexShape::from_support(&support).expect("usable")
