@@ -22,7 +22,14 @@ where
     R: Send,
     F: Fn(&T) -> R + Sync,
 {
-    map_on_threads(items, rayon::current_num_threads(), job)
+    // Asking rayon for its size starts its pool: a single file needs no second thread (its stages start
+    // the pool themselves when they have parallel work).
+    let threads = if items.len() > 1 {
+        rayon::current_num_threads()
+    } else {
+        1
+    };
+    map_on_threads(items, threads, job)
 }
 
 /// [`map_files`] on `threads` threads (at most one per item).
