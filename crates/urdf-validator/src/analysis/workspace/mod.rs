@@ -63,7 +63,6 @@ fn tip_stride(samples: usize) -> usize {
     samples.div_ceil(MAX_TIP_SAMPLES).max(1)
 }
 
-/// A position rounded to the millimetre (the report's plots need no more, and the JSON stays small).
 /// A clearance of `metres`, in mm rounded to the micrometre: GJK stops within 10⁻¹¹ m or so of the
 /// distance, and where it stops depends on the direction it started from (the pair's last direction,
 /// so on the order the samples met the pair in), which the report should not show.
@@ -71,6 +70,7 @@ fn clearance_mm(metres: f64) -> f64 {
     (metres * 1e6).round() / 1000.0
 }
 
+/// A position rounded to the millimetre (the report's plots need no more, and the JSON stays small).
 fn round_mm(p: &Vector3<f64>) -> [f64; 3] {
     let mm = |v: f64| (v * 1000.0).round() / 1000.0;
     [mm(p.x), mm(p.y), mm(p.z)]
