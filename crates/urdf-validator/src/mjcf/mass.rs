@@ -527,16 +527,17 @@ pub fn mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], kind: MeshVolume) -> 
     // Products ∫xᵢxⱼ over pyramids from the centre of mass (MuJoCo's `ComputeInertia`).
     let mut products = Matrix3::<f64>::zeros();
     let mut total = 0.0;
+    // A shell's second moments are those of its triangles (/12), a solid's those of its pyramids (/20).
+    let divisor = if kind == MeshVolume::Shell {
+        12.0
+    } else {
+        20.0
+    };
     for t in triangles {
         let [d, e, f] = corners(t)?.map(|p| p - com);
         let (area, normal, centre) = triangle([d, e, f]);
         let v = weight(centre, normal, area, Vector3::zeros());
         total += v;
-        let divisor = if kind == MeshVolume::Shell {
-            12.0
-        } else {
-            20.0
-        };
         for i in 0..3 {
             for j in 0..3 {
                 products[(i, j)] += v / divisor

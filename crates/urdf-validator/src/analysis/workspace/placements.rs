@@ -35,16 +35,15 @@ struct Poses {
 impl Poses {
     /// `pose` in every lane.
     fn splat(pose: &Isometry3<f64>) -> Poses {
-        let q = pose.rotation.quaternion();
-        let t = &pose.translation.vector;
+        let Constant([i, j, k, w, x, y, z]) = Constant::new(pose);
         Poses {
-            i: [q.i; LANES],
-            j: [q.j; LANES],
-            k: [q.k; LANES],
-            w: [q.w; LANES],
-            x: [t.x; LANES],
-            y: [t.y; LANES],
-            z: [t.z; LANES],
+            i: [i; LANES],
+            j: [j; LANES],
+            k: [k; LANES],
+            w: [w; LANES],
+            x: [x; LANES],
+            y: [y; LANES],
+            z: [z; LANES],
         }
     }
 
@@ -74,7 +73,8 @@ impl Operand for Poses {
     }
 }
 
-/// The same isometry in every lane.
+/// The same isometry in every lane: rotation (`i`, `j`, `k`, `w`) and translation.
+#[derive(Clone, Copy, Debug)]
 struct Constant([f64; 7]);
 
 impl Constant {
@@ -149,7 +149,7 @@ enum JointMotion {
     /// Nothing (a fixed joint, or one held at zero).
     None,
     /// The same motion in every sample (a joint the arm does not sample, held away from zero).
-    Constant(Isometry3<f64>),
+    Constant(Constant),
     /// A revolute joint's rotation about its unit axis; `None`: a degenerate axis (the identity).
     Revolute(Option<Unit<Vector3<f64>>>),
     /// A prismatic joint's translation along its axis.
@@ -161,7 +161,8 @@ struct Step {
     link: LinkId,
     joint: JointId,
     parent: Parent,
-    frame: Isometry3<f64>,
+    /// The joint frame in the parent link's frame.
+    frame: Constant,
     motion: JointMotion,
 }
 
@@ -224,14 +225,14 @@ impl BatchPlacements {
             } else if value == 0.0 {
                 JointMotion::None
             } else {
-                JointMotion::Constant(joint_motion(info.kind, info.axis, value))
+                JointMotion::Constant(Constant::new(&joint_motion(info.kind, info.axis, value)))
             };
             index[link.0] = steps.len();
             steps.push(Step {
                 link,
                 joint,
                 parent,
-                frame: info.placement,
+                frame: Constant::new(&info.placement),
                 motion,
             });
         }
@@ -294,18 +295,14 @@ impl BatchPlacements {
             // The link's frame: its parent's placement times the joint frame.
             let framed = match &step.parent {
                 Parent::Placed(parent) => {
-                    compose(
-                        &done[*parent],
-                        &Constant::new(&step.frame),
-                        &mut self.framed,
-                    );
+                    compose(&done[*parent], &step.frame, &mut self.framed);
                     &self.framed
                 }
                 Parent::Held(framed) => framed,
             };
             match &step.motion {
                 JointMotion::None => out.clone_from(framed),
-                JointMotion::Constant(motion) => compose(framed, &Constant::new(motion), out),
+                JointMotion::Constant(motion) => compose(framed, motion, out),
                 JointMotion::Revolute(axis) => {
                     for (n, value) in values.iter().enumerate() {
                         let turn = match axis {

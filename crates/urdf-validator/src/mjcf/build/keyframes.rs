@@ -13,6 +13,8 @@
 //! - free: the robot's base stays where `qpos0` puts it (the analyses have no base pose to take); a key
 //!   that moves it gets a note saying the analyses keep it there, upright.
 
+use std::collections::HashMap;
+
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 
 use super::Builder;
@@ -184,20 +186,29 @@ impl<'a> Builder<'a, '_> {
     /// [`OUT_OF_RANGE`]), in `qpos` terms (radians or metres, `ref` included) as the key is written, and
     /// for the limited actuators (of the kinds read) its `ctrl` sets past their `ctrlrange`.
     fn check_key_ranges(&mut self, el: El<'a>, key: &Keyframe) {
+        // By name, once per key: a model has hundreds of joints, and some models dozens of keys.
+        // The first of a repeated name, as a search from the start finds.
+        let mut values: HashMap<&str, f64> = HashMap::new();
+        for (name, q) in &key.joints {
+            values.entry(name.as_str()).or_insert(*q);
+        }
+        let mut ranges: HashMap<&str, Option<(f64, f64)>> = HashMap::new();
+        for j in &self.joints {
+            let range = j
+                .limit
+                .as_ref()
+                .and_then(|l| Some((l.lower.as_ref()?.value, l.upper.as_ref()?.value)));
+            ranges.entry(j.name.value.as_str()).or_insert(range);
+        }
         let mut joints = Vec::new();
         for joint in &self.qpos {
             let QposJoint::Scalar { joint, reference } = joint else {
                 continue;
             };
-            let Some((_, q)) = key.joints.iter().find(|(name, _)| name == joint) else {
+            let Some(q) = values.get(joint.as_str()) else {
                 continue;
             };
-            let range = self
-                .joints
-                .iter()
-                .find(|j| j.name.value == *joint)
-                .and_then(|j| j.limit.as_ref())
-                .and_then(|l| Some((l.lower.as_ref()?.value, l.upper.as_ref()?.value)));
+            let range = ranges.get(joint.as_str()).copied().flatten();
             if let Some(past) = past_range(
                 &format!("joint '{joint}'"),
                 "range",
