@@ -47,7 +47,8 @@ fn run(args: &[&str]) -> Output {
 #[test]
 fn a_file_past_its_time_is_reported_and_the_batch_goes_on() {
     let dir = scratch("batch");
-    // 1,000 links × 2,000,000 samples: minutes of workspace sampling.
+    // 1,000 links × 20,000,000 samples: most of a minute of workspace sampling even on a fast machine (the
+    // sampler does 30,000 in ~70 ms here), so the 1 s limit always falls inside it.
     let slow = dir.join("a_slow.urdf");
     std::fs::write(&slow, chain(1000)).unwrap();
     let quick = dir.join("b_quick.urdf");
@@ -58,7 +59,7 @@ fn a_file_past_its_time_is_reported_and_the_batch_goes_on() {
         quick.to_str().unwrap(),
         "--no-write",
         "--samples",
-        "2000000",
+        "20000000",
         "--timeout",
         "1",
         "--jobs",
