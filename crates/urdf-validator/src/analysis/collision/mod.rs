@@ -34,6 +34,7 @@
 //! (with rayon: `map_init`).
 
 mod held;
+mod inside;
 mod shape;
 
 use std::collections::HashSet;

@@ -10,9 +10,10 @@ use std::cell::Cell;
 use nalgebra::{Isometry3, Matrix3, Point3, SymmetricEigen, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query::details::closest_points_support_map_support_map_with_params;
-use parry3d_f64::query::gjk::{GJKResult, VoronoiSimplex};
+use parry3d_f64::query::gjk::{closest_points, CsoPoint, GJKResult, VoronoiSimplex};
 use parry3d_f64::shape::SupportMap;
 
+use super::inside::Inside;
 use crate::assets::supports::Support;
 use crate::input::mesh::surface::{self, SurfaceEdges};
 
@@ -60,6 +61,10 @@ pub struct Hull {
     /// The vertices by coordinate, for a hull small enough that scanning them all in vector registers
     /// is faster than climbing (and a CPU that has the registers).
     lanes: Option<VertexLanes>,
+    /// The planes of the faces of a checked closed convex triangulation, as (outward unit normal,
+    /// offset): a point `p` is inside when `normal · p <= offset` for every face. Empty when no such
+    /// triangulation could be built (then no sphere is known to be inside, see [`Inside`]).
+    faces: Vec<(Vector, f64)>,
 }
 
 /// Up to this many vertices, a hull's support queries scan every vertex four at a time (AVX2) instead of
@@ -207,16 +212,34 @@ impl Hull {
         } else {
             None
         };
-        let mut hull = built.unwrap_or(Hull {
-            points,
-            offsets: Vec::new(),
-            neighbours: Vec::new(),
-            starts: Vec::new(),
-            cells: 0,
-            lanes: None,
+        let mut hull = built.unwrap_or_else(|| {
+            // Too few points to climb (or no usable triangulation): scanned, with the faces of a
+            // triangulation when one can be built.
+            let faces = Self::triangulated(&points).map_or_else(Vec::new, |h| h.faces);
+            Hull {
+                points,
+                offsets: Vec::new(),
+                neighbours: Vec::new(),
+                starts: Vec::new(),
+                cells: 0,
+                lanes: None,
+                faces,
+            }
         });
         hull.lanes = VertexLanes::of(&hull.points);
         hull
+    }
+
+    /// How deep `point` (shape frame) is inside the hull: the distance to the nearest face plane, at most
+    /// the distance to the surface; negative or zero outside, `-inf` when the faces are unknown.
+    pub fn depth(&self, point: Vector) -> f64 {
+        if self.faces.is_empty() {
+            return f64::NEG_INFINITY;
+        }
+        self.faces
+            .iter()
+            .map(|(normal, offset)| offset - normal.dot(point))
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
@@ -264,6 +287,7 @@ impl Hull {
             offsets,
             neighbours,
         } = SurfaceEdges::of(vertices.len(), triangles)?;
+        let faces = face_planes(&vertices, triangles);
         let mut hull = Hull {
             points: vertices,
             offsets,
@@ -271,6 +295,7 @@ impl Hull {
             starts: Vec::new(),
             cells: 0,
             lanes: None,
+            faces,
         };
         // Each cell's start, climbed to from its neighbour's (cells in order are mostly adjacent).
         let mut previous = 0;
@@ -335,6 +360,29 @@ impl Hull {
     }
 }
 
+/// The planes of a closed convex triangulation's faces, as (outward unit normal, offset), oriented away
+/// from the vertices' centroid (the triangles' winding is not relied on); faces too thin to have a
+/// normal are left out (their neighbours bound the hull there).
+fn face_planes(vertices: &[Vector], triangles: &[[u32; 3]]) -> Vec<(Vector, f64)> {
+    if vertices.is_empty() {
+        return Vec::new();
+    }
+    let centroid = vertices.iter().copied().sum::<Vector>() / vertices.len() as f64;
+    triangles
+        .iter()
+        .filter_map(|&[a, b, c]| {
+            let [a, b, c] = [a, b, c].map(|v| vertices[v as usize]);
+            let normal = (b - a).cross(c - a).try_normalize()?;
+            let normal = if normal.dot(a - centroid) < 0.0 {
+                -normal
+            } else {
+                normal
+            };
+            Some((normal, normal.dot(a)))
+        })
+        .collect()
+}
+
 /// A core whose hull support queries start from the vertex the previous query ended at (successive GJK
 /// directions are close, so the climb is short).
 struct Warm<'a> {
@@ -352,6 +400,23 @@ impl SupportMap for Warm<'_> {
                 hull.points[vertex]
             }
             core => core.local_support_point(dir),
+        }
+    }
+}
+
+impl Core {
+    /// How deep `point` (shape frame) is inside the core: at most the distance to its surface; negative
+    /// or zero outside (`-inf` for a hull whose faces are unknown).
+    pub fn depth(&self, point: Vector) -> f64 {
+        match self {
+            Core::Point => -point.length(),
+            Core::Segment { half } => {
+                -(point - Vector::new(0.0, 0.0, point.z.clamp(-half, *half))).length()
+            }
+            Core::Cylinder { radius, half } => {
+                (radius - point.x.hypot(point.y)).min(half - point.z.abs())
+            }
+            Core::Hull(hull) => hull.depth(point),
         }
     }
 }
@@ -396,6 +461,9 @@ pub struct ConvexShape {
     /// The centre of that box in the shape frame: where a separating axis between two shapes is first
     /// looked for.
     pub inner: Vector,
+    /// Spheres inside the grown core, along the box's longest axis: when they meet another shape's,
+    /// the shapes are in contact without GJK.
+    pub inside: Inside,
 }
 
 /// An oriented box: `frame` places its centre and axes, `half` its half extents along them.
@@ -580,6 +648,17 @@ impl ConvexShape {
             },
         };
         let inner = frame.inverse_transform_point(&Point3::from(obb.frame.translation.vector));
+        let inner = Vector::new(inner.x, inner.y, inner.z);
+        let longest = obb.half.imax();
+        let axis =
+            frame.inverse_transform_vector(&(obb.frame.rotation * Vector3::ith(longest, 1.0)));
+        let inside = Inside::of(
+            &core,
+            radius,
+            inner,
+            Vector::new(axis.x, axis.y, axis.z),
+            obb.half[longest],
+        );
         Some(ConvexShape {
             core,
             radius,
@@ -587,7 +666,8 @@ impl ConvexShape {
             centre,
             bound,
             obb,
-            inner: Vector::new(inner.x, inner.y, inner.z),
+            inner,
+            inside,
         })
     }
 }
@@ -668,10 +748,11 @@ pub enum Proximity {
 /// The proximity of `a` placed at `pose_a` and `b` at `pose_b` (world placements of the shape frames),
 /// exact up to `margin` (distances at or above `margin` are [`Proximity::Beyond`]).
 ///
-/// `axis` is the unit direction from `a` to `b` (in `a`'s frame) that GJK ended with on this pair last
-/// time, zero at first. It is tried first as a separating axis (two support points), then GJK starts
-/// from it; GJK updates it. Pairs tend to be separated along similar directions from pose to pose, so
-/// many are settled without GJK.
+/// An overlap is looked for first without GJK, by the spheres inside both shapes (see
+/// [`Inside`]). Then `axis`, the unit direction from `a` to `b` (in `a`'s frame) that GJK ended with on
+/// this pair last time (zero at first), is tried as a separating axis (two support points), then the
+/// line between the shapes' box centres; GJK starts from `axis` and updates it. Pairs tend to be
+/// separated along similar directions from pose to pose, so many are settled without GJK.
 pub fn proximity(
     a: &ConvexShape,
     pose_a: &Pose,
@@ -686,6 +767,13 @@ pub fn proximity(
         Some(pose_a.translation.distance(pose_b.translation))
     } else {
         let pos12 = pose_a.inv_mul(pose_b);
+        if a.inside.meet(&b.inside, &pos12) {
+            return Proximity::Contact;
+        }
+        // The support points of the two tries below are points of the shapes' difference: when neither
+        // separates the shapes, GJK starts from them instead of querying two fresh ones.
+        let mut tried = [CsoPoint::ZERO; 2];
+        let mut count = 0;
         if *axis != Vector::ZERO {
             // The last separating direction, tried first: two support points settle most pairs.
             let near_a = a.core.local_support_point(*axis);
@@ -693,6 +781,8 @@ pub fn proximity(
             if axis.dot(near_b - near_a) - rounding >= margin {
                 return Proximity::Beyond;
             }
+            tried[count] = CsoPoint::new(near_a, near_b);
+            count += 1;
         }
         // Then the direction from one shape's box centre to the other's: pairs that are far apart for
         // this pose, whatever they were for the last one, are settled by two more support points.
@@ -702,21 +792,36 @@ pub fn proximity(
             if toward.dot(near_b - near_a) - rounding >= margin {
                 return Proximity::Beyond;
             }
+            tried[count] = CsoPoint::new(near_a, near_b);
+            count += 1;
         }
-        match closest_points_support_map_support_map_with_params(
-            &pos12,
-            &Warm {
+        let (warm_a, warm_b) = (
+            Warm {
                 core: &a.core,
                 vertex: Cell::new(usize::MAX),
             },
-            &Warm {
+            Warm {
                 core: &b.core,
                 vertex: Cell::new(usize::MAX),
             },
-            margin + rounding,
-            simplex,
-            (*axis != Vector::ZERO).then_some(-*axis),
-        ) {
+        );
+        let result = if count > 0 {
+            simplex.reset(tried[0]);
+            if count > 1 {
+                simplex.add_point(tried[1]);
+            }
+            closest_points(&pos12, &warm_a, &warm_b, margin + rounding, true, simplex)
+        } else {
+            closest_points_support_map_support_map_with_params(
+                &pos12,
+                &warm_a,
+                &warm_b,
+                margin + rounding,
+                simplex,
+                None,
+            )
+        };
+        match result {
             GJKResult::ClosestPoints(p1, p2, dir) => {
                 *axis = dir;
                 Some(p1.distance(p2))
@@ -844,6 +949,166 @@ mod tests {
             Proximity::Apart(d) => d,
             other => panic!("expected a distance, got {other:?}"),
         }
+    }
+
+    /// Random hulls (point clouds of 4 to 60 points), capsules and cylinders, placed at random.
+    fn random_shapes(rng: &mut SplitMix64) -> Vec<ConvexShape> {
+        let mut shapes = Vec::new();
+        for k in 0..60 {
+            let frame = random_frame(rng);
+            let support = match k % 4 {
+                0 | 1 => {
+                    let n = 4 + (rng.next_u64() % 57) as usize;
+                    let stretch = Vector3::new(
+                        rng.uniform(0.02, 0.4),
+                        rng.uniform(0.02, 0.2),
+                        rng.uniform(0.02, 0.1),
+                    );
+                    let points = (0..n)
+                        .map(|_| {
+                            let p = Vector3::new(
+                                rng.uniform(-1.0, 1.0),
+                                rng.uniform(-1.0, 1.0),
+                                rng.uniform(-1.0, 1.0),
+                            );
+                            frame
+                                .transform_point(&Point3::from(p.component_mul(&stretch)))
+                                .coords
+                        })
+                        .collect();
+                    Support::Points(points)
+                }
+                2 => Support::Rounded {
+                    frame,
+                    radius: rng.uniform(0.01, 0.1),
+                    length: rng.uniform(0.0, 0.5),
+                },
+                _ => Support::Cylinder {
+                    frame,
+                    radius: rng.uniform(0.01, 0.2),
+                    length: rng.uniform(0.01, 0.5),
+                },
+            };
+            shapes.extend(ConvexShape::from_support(&support));
+        }
+        shapes
+    }
+
+    fn random_frame(rng: &mut SplitMix64) -> Isometry3<f64> {
+        let axis = Vector3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        );
+        let t = Vector3::new(
+            rng.uniform(-0.3, 0.3),
+            rng.uniform(-0.3, 0.3),
+            rng.uniform(-0.3, 0.3),
+        );
+        Isometry3::from_parts(
+            Translation3::from(t),
+            UnitQuaternion::from_scaled_axis(axis * 2.0),
+        )
+    }
+
+    /// Every point of every sphere inside a shape is in the shape, as parry's GJK measures the distance
+    /// from the point to the core (an oracle independent of the face planes the spheres come from).
+    /// Fails when the spheres are made 1 % larger.
+    #[test]
+    fn inner_spheres_lie_inside_their_shape() {
+        let mut rng = SplitMix64::new(5);
+        let shapes = random_shapes(&mut rng);
+        let mut simplex = VoronoiSimplex::new();
+        let mut spheres = 0;
+        for shape in &shapes {
+            for (centre, radius) in shape.inside.spheres() {
+                spheres += 1;
+                for k in 0..600 {
+                    let direction = if k < 6 {
+                        let mut axis = Vector::ZERO;
+                        axis[k % 3] = if k < 3 { 1.0 } else { -1.0 };
+                        axis
+                    } else {
+                        Vector::new(
+                            rng.uniform(-1.0, 1.0),
+                            rng.uniform(-1.0, 1.0),
+                            rng.uniform(-1.0, 1.0),
+                        )
+                        .normalize()
+                    };
+                    let point = Pose::from_translation(centre + direction * radius);
+                    let distance = match closest_points_support_map_support_map_with_params(
+                        &point,
+                        &shape.core,
+                        &Core::Point,
+                        f64::INFINITY,
+                        &mut simplex,
+                        None,
+                    ) {
+                        GJKResult::ClosestPoints(p1, p2, _) => p1.distance(p2),
+                        _ => 0.0,
+                    };
+                    assert!(
+                        distance <= shape.radius + 1e-12,
+                        "a point of a sphere inside is {} outside: {shape:?}",
+                        distance - shape.radius
+                    );
+                }
+            }
+        }
+        assert!(
+            spheres >= shapes.len(),
+            "{spheres} spheres in {} shapes",
+            shapes.len()
+        );
+    }
+
+    /// The spheres inside shapes prove only contacts that GJK alone finds, and most of the contacts of
+    /// random overlapping placements: shapes of [`random_shapes`] at random poses, judged by parry's GJK
+    /// on the cores.
+    #[test]
+    fn inner_spheres_prove_only_contacts_gjk_finds() {
+        let mut rng = SplitMix64::new(11);
+        let shapes = random_shapes(&mut rng);
+        let (mut proved, mut contacts) = (0, 0);
+        let mut simplex = VoronoiSimplex::new();
+        for a in &shapes {
+            for b in &shapes {
+                for _ in 0..4 {
+                    let pose_a = to_pose(&random_frame(&mut rng));
+                    let pose_b = to_pose(&random_frame(&mut rng));
+                    let pos12 = pose_a.inv_mul(&pose_b);
+                    let gjk = closest_points_support_map_support_map_with_params(
+                        &pos12,
+                        &a.core,
+                        &b.core,
+                        f64::INFINITY,
+                        &mut simplex,
+                        None,
+                    );
+                    let contact = match gjk {
+                        GJKResult::ClosestPoints(p1, p2, _) => {
+                            p1.distance(p2) - a.radius - b.radius <= CONTACT_DISTANCE
+                        }
+                        GJKResult::Intersection => true,
+                        _ => false,
+                    };
+                    contacts += usize::from(contact);
+                    if a.inside.meet(&b.inside, &pos12) {
+                        proved += 1;
+                        assert!(
+                            contact,
+                            "spheres met where GJK finds no contact: {a:?} {b:?} {pos12:?}"
+                        );
+                    }
+                }
+            }
+        }
+        // Not vacuous: most contacts of these overlapping placements are proved.
+        assert!(
+            proved * 4 > contacts,
+            "{proved} of {contacts} contacts proved"
+        );
     }
 
     #[test]
