@@ -33,6 +33,7 @@
 //! [`CollisionModel`] is immutable during checks and `Sync`; each thread keeps its own [`CheckScratch`]
 //! (with rayon: `map_init`).
 
+mod enclose;
 mod held;
 mod inside;
 mod shape;

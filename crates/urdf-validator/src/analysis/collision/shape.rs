@@ -13,6 +13,7 @@ use parry3d_f64::query::details::closest_points_support_map_support_map_with_par
 use parry3d_f64::query::gjk::{closest_points, CsoPoint, GJKResult, VoronoiSimplex};
 use parry3d_f64::shape::SupportMap;
 
+use super::enclose::{enclose, Enclosure};
 use super::inside::Inside;
 use crate::assets::supports::Support;
 use crate::input::mesh::surface::{self, SurfaceEdges};
@@ -805,6 +806,15 @@ pub fn proximity(
                 vertex: Cell::new(usize::MAX),
             },
         );
+        let seeds: [Vector; 2] = tried.map(|p| p.point);
+        match enclose(&pos12, &warm_a, &warm_b, &seeds[..count], margin + rounding) {
+            Enclosure::Overlap => return Proximity::Contact,
+            Enclosure::Apart(unit) => {
+                *axis = unit;
+                return Proximity::Beyond;
+            }
+            Enclosure::Unknown => {}
+        }
         let result = if count > 0 {
             simplex.reset(tried[0]);
             if count > 1 {
