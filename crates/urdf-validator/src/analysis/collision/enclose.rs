@@ -65,7 +65,9 @@ pub fn enclose(
     };
     for _ in 0..MAX_STEPS {
         let length = direction.length();
-        if !(length * length > DEGENERATE * simplex.scale()) {
+        // Not a number fails the comparison too.
+        let usable = length * length > DEGENERATE * simplex.scale();
+        if !usable {
             return Enclosure::Unknown;
         }
         let unit = direction / length;
