@@ -42,7 +42,7 @@ use std::collections::HashSet;
 use std::ops::Range;
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
-use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::math::Pose;
 use parry3d_f64::query::gjk::VoronoiSimplex;
 use rayon::prelude::*;
 
@@ -59,7 +59,9 @@ pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
 pub const MAX_COLLISION_LINKS: usize = 1024;
 
 use held::{set_bits, HeldBroad, HeldSpheres};
-use shape::{boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, Proximity};
+use shape::{
+    boxes_apart, enclosing_sphere, proximity, to_pose, ConvexShape, PairMemory, Proximity,
+};
 
 /// Why a pair of links is never checked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -263,8 +265,8 @@ pub struct CheckScratch {
     /// Per shape: where it is in the current pose, valid when `stamp` matches.
     placed: Vec<(u32, Placed)>,
     stamp: u32,
-    /// Per pair of the last pair set: the last GJK direction (see [`shape::proximity`]).
-    axis: Vec<Vector>,
+    /// Per pair of the last pair set: what the narrow phase keeps of it (see [`shape::proximity`]).
+    memory: Vec<PairMemory>,
     simplex: VoronoiSimplex,
     sweep: SweepScratch,
     /// With `hold_fixed`: the spheres of the pair set's [`HeldBroad`], and the pairs it keeps in the
@@ -287,7 +289,7 @@ impl CheckScratch {
             centre_stamp: Vec::new(),
             placed: vec![(0, Placed::default()); model.shapes.len()],
             stamp: 0,
-            axis: Vec::new(),
+            memory: Vec::new(),
             simplex: VoronoiSimplex::new(),
             sweep: SweepScratch::default(),
             held_spheres: HeldSpheres::default(),
@@ -789,8 +791,8 @@ impl CollisionModel {
                 })
                 .count();
         }
-        if scratch.axis.len() < pairs.len() {
-            scratch.axis.resize(pairs.len(), Vector::ZERO);
+        if scratch.memory.len() < pairs.len() {
+            scratch.memory.resize(pairs.len(), PairMemory::default());
         }
         let margin = clearance_cutoff.max(CONTACT_DISTANCE);
         // Pairs are visited in set order either way, so the sweep changes no result, only the time. The
@@ -940,15 +942,34 @@ impl CollisionModel {
                 {
                     continue;
                 }
-                match proximity(
-                    sa,
-                    &pa.pose,
-                    sb,
-                    &pb.pose,
-                    margin,
-                    &mut scratch.axis[pair_index],
-                    &mut scratch.simplex,
-                ) {
+                // A shape held in place goes first, so that its support point along the pair's axis
+                // is kept between poses (see `PairMemory`).
+                let memory = &mut scratch.memory[pair_index];
+                let found = if held[1] && !held[0] {
+                    proximity(
+                        sb,
+                        &pb.pose,
+                        sa,
+                        &pa.pose,
+                        margin,
+                        memory,
+                        Some(j),
+                        &mut scratch.simplex,
+                    )
+                } else {
+                    let a_held = held[0].then_some(i);
+                    proximity(
+                        sa,
+                        &pa.pose,
+                        sb,
+                        &pb.pose,
+                        margin,
+                        memory,
+                        a_held,
+                        &mut scratch.simplex,
+                    )
+                };
+                match found {
                     Proximity::Contact => {
                         return Proximity::Contact;
                     }

@@ -746,21 +746,56 @@ pub enum Proximity {
     Beyond,
 }
 
+/// What the narrow phase keeps of a pair from one pose to the next.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PairMemory {
+    /// The unit direction from the first shape to the second (in the first's frame) that the last
+    /// search on this pair ended with; zero at first.
+    axis: Vector,
+    /// When the first shape stays in place between poses: that shape (as the caller numbers it) and its
+    /// support point along `axis`, which does not change until `axis` does.
+    held_support: Option<(usize, Vector)>,
+}
+
+impl PairMemory {
+    fn set_axis(&mut self, axis: Vector) {
+        self.axis = axis;
+        self.held_support = None;
+    }
+
+    /// `shape`'s support point along `axis`, queried once per axis when `shape` is `held` in place.
+    fn first_support(&mut self, shape: &Core, held: Option<usize>) -> Vector {
+        match (held, self.held_support) {
+            (Some(index), Some((cached, point))) if cached == index => point,
+            (Some(index), _) => {
+                let point = shape.local_support_point(self.axis);
+                self.held_support = Some((index, point));
+                point
+            }
+            (None, _) => shape.local_support_point(self.axis),
+        }
+    }
+}
+
 /// The proximity of `a` placed at `pose_a` and `b` at `pose_b` (world placements of the shape frames),
 /// exact up to `margin` (distances at or above `margin` are [`Proximity::Beyond`]).
 ///
-/// An overlap is looked for first without GJK, by the spheres inside both shapes (see
-/// [`Inside`]). Then `axis`, the unit direction from `a` to `b` (in `a`'s frame) that GJK ended with on
-/// this pair last time (zero at first), is tried as a separating axis (two support points), then the
-/// line between the shapes' box centres; GJK starts from `axis` and updates it. Pairs tend to be
-/// separated along similar directions from pose to pose, so many are settled without GJK.
+/// An overlap is looked for first without GJK, by the spheres inside both shapes (see [`Inside`]).
+/// Then `memory`'s axis, the direction from `a` to `b` (in `a`'s frame) the last search on this pair
+/// ended with, is tried as a separating axis (two support points; `a`'s is kept in `memory` when
+/// `a_held` names `a` as a shape that stays in place, so it is queried once per axis), then the line
+/// between the shapes' box centres. Pairs tend to be separated along similar directions from pose to
+/// pose, so many are settled there. Then a yes/no search ([`enclose`]) and, when it cannot tell, GJK,
+/// both starting from those support points; either updates the axis.
+#[allow(clippy::too_many_arguments)]
 pub fn proximity(
     a: &ConvexShape,
     pose_a: &Pose,
     b: &ConvexShape,
     pose_b: &Pose,
     margin: f64,
-    axis: &mut Vector,
+    memory: &mut PairMemory,
+    a_held: Option<usize>,
     simplex: &mut VoronoiSimplex,
 ) -> Proximity {
     let rounding = a.radius + b.radius;
@@ -775,10 +810,11 @@ pub fn proximity(
         // separates the shapes, GJK starts from them instead of querying two fresh ones.
         let mut tried = [CsoPoint::ZERO; 2];
         let mut count = 0;
-        if *axis != Vector::ZERO {
+        let axis = memory.axis;
+        if axis != Vector::ZERO {
             // The last separating direction, tried first: two support points settle most pairs.
-            let near_a = a.core.local_support_point(*axis);
-            let near_b = b.core.support_point(&pos12, -*axis);
+            let near_a = memory.first_support(&a.core, a_held);
+            let near_b = b.core.support_point(&pos12, -axis);
             if axis.dot(near_b - near_a) - rounding >= margin {
                 return Proximity::Beyond;
             }
@@ -810,7 +846,7 @@ pub fn proximity(
         match enclose(&pos12, &warm_a, &warm_b, &seeds[..count], margin + rounding) {
             Enclosure::Overlap => return Proximity::Contact,
             Enclosure::Apart(unit) => {
-                *axis = unit;
+                memory.set_axis(unit);
                 return Proximity::Beyond;
             }
             Enclosure::Unknown => {}
@@ -833,12 +869,12 @@ pub fn proximity(
         };
         match result {
             GJKResult::ClosestPoints(p1, p2, dir) => {
-                *axis = dir;
+                memory.set_axis(dir);
                 Some(p1.distance(p2))
             }
             GJKResult::Intersection => None,
             GJKResult::NoIntersection(dir) | GJKResult::Proximity(dir) => {
-                *axis = dir;
+                memory.set_axis(dir);
                 return Proximity::Beyond;
             }
         }
@@ -949,7 +985,8 @@ mod tests {
             b,
             pb,
             f64::INFINITY,
-            &mut Vector::default(),
+            &mut PairMemory::default(),
+            None,
             &mut VoronoiSimplex::new(),
         )
     }
@@ -1166,6 +1203,59 @@ mod tests {
         );
     }
 
+    /// A first shape held in place keeps its support point along the pair's axis between poses: over a
+    /// sequence of poses of the second shape, four at a time with each of two held first shapes sharing the
+    /// pair's memory, every answer is the one of a query that keeps nothing. Fails when the kept point
+    /// is not tied to its shape or not dropped when the axis changes.
+    #[test]
+    fn a_held_shapes_kept_support_point_changes_no_answer() {
+        let mut rng = SplitMix64::new(17);
+        let shapes = random_shapes(&mut rng);
+        let mut simplex = VoronoiSimplex::new();
+        let (mut memory, mut differing, mut queries) = (PairMemory::default(), 0, 0);
+        let held = [
+            to_pose(&random_frame(&mut rng)),
+            to_pose(&random_frame(&mut rng)),
+        ];
+        for (k, b) in shapes.iter().enumerate().cycle().take(600) {
+            let first = (k / 4) % 2;
+            let a = &shapes[(first * 7) % shapes.len()];
+            let pose_b = to_pose(&random_frame(&mut rng));
+            let margin = [0.05, 1e-6, f64::INFINITY][k % 3];
+            let mut fresh = PairMemory {
+                axis: memory.axis,
+                held_support: None,
+            };
+            let expected = proximity(
+                a,
+                &held[first],
+                b,
+                &pose_b,
+                margin,
+                &mut fresh,
+                None,
+                &mut simplex,
+            );
+            let kept = proximity(
+                a,
+                &held[first],
+                b,
+                &pose_b,
+                margin,
+                &mut memory,
+                Some(first),
+                &mut simplex,
+            );
+            queries += 1;
+            let same = match (expected, kept) {
+                (Proximity::Apart(x), Proximity::Apart(y)) => (x - y).abs() < 1e-9,
+                (x, y) => x == y,
+            };
+            differing += usize::from(!same);
+        }
+        assert_eq!(differing, 0, "{differing} of {queries} answers differ");
+    }
+
     #[test]
     fn a_margin_cuts_the_query_short() {
         let mut simplex = VoronoiSimplex::new();
@@ -1175,7 +1265,8 @@ mod tests {
             &cube(0.5),
             &at(3.0, 0.0, 0.0),
             1.0,
-            &mut Vector::default(),
+            &mut PairMemory::default(),
+            None,
             &mut simplex,
         );
         assert_eq!(far, Proximity::Beyond);
@@ -1185,7 +1276,8 @@ mod tests {
             &cube(0.5),
             &at(1.5, 0.0, 0.0),
             1.0,
-            &mut Vector::default(),
+            &mut PairMemory::default(),
+            None,
             &mut simplex,
         );
         assert!((apart(near) - 0.5).abs() < 1e-9);
