@@ -354,17 +354,7 @@ mod tests {
             Enclosure::Unknown
         );
         // Unit cubes face to face: touching, not overlapping.
-        let cube = |half: f64| {
-            Core::Hull(Hull::new(
-                (0..8)
-                    .map(|i| {
-                        let s = |bit: i32| if i & bit == 0 { -half } else { half };
-                        Vector::new(s(1), s(2), s(4))
-                    })
-                    .collect(),
-                None,
-            ))
-        };
+        let cube = |half: f64| Core::cuboid(Vector::splat(half));
         let touching = Pose::from_translation(Vector::new(1.0, 0.0, 0.0));
         assert_ne!(
             enclose(&touching, &cube(0.5), &cube(0.5), &[], 0.0),

@@ -108,27 +108,13 @@ mod tests {
     use crate::analysis::collision::shape::Hull;
 
     fn cube(half: f64) -> Core {
-        let corners = (0..8)
-            .map(|i| {
-                let sign = |bit: i32| if i & bit == 0 { -half } else { half };
-                Vector::new(sign(1), sign(2), sign(4))
-            })
-            .collect();
-        Core::Hull(Hull::new(corners, None))
+        Core::cuboid(Vector::splat(half))
     }
 
     #[test]
     fn spheres_stay_inside_their_shape() {
         // A 2 × 0.5 × 0.5 box along x (a cube core stretched), a capsule and a cylinder along z.
-        let long_box = {
-            let corners = (0..8)
-                .map(|i| {
-                    let sign = |bit: i32, half: f64| if i & bit == 0 { -half } else { half };
-                    Vector::new(sign(1, 1.0), sign(2, 0.25), sign(4, 0.25))
-                })
-                .collect();
-            Core::Hull(Hull::new(corners, None))
-        };
+        let long_box = Core::cuboid(Vector::new(1.0, 0.25, 0.25));
         let inside = Inside::of(&long_box, 0.0, Vector::ZERO, Vector::X, 1.0);
         assert_eq!(inside.len, 3, "{inside:?}");
         for i in 0..inside.len {

@@ -406,6 +406,18 @@ impl SupportMap for Warm<'_> {
 }
 
 impl Core {
+    /// A box core with half extents `half`, centred on the origin (for tests).
+    #[cfg(test)]
+    pub fn cuboid(half: Vector) -> Core {
+        let corners = (0..8)
+            .map(|i| {
+                let corner = |bit: i32, half: f64| if i & bit == 0 { -half } else { half };
+                Vector::new(corner(1, half.x), corner(2, half.y), corner(4, half.z))
+            })
+            .collect();
+        Core::Hull(Hull::new(corners, None))
+    }
+
     /// How deep `point` (shape frame) is inside the core: at most the distance to its surface; negative
     /// or zero outside (`-inf` for a hull whose faces are unknown).
     pub fn depth(&self, point: Vector) -> f64 {
