@@ -944,31 +944,21 @@ impl CollisionModel {
                 }
                 // A shape held in place goes first, so that its support point along the pair's axis
                 // is kept between poses (see `PairMemory`).
-                let memory = &mut scratch.memory[pair_index];
-                let found = if held[1] && !held[0] {
-                    proximity(
-                        sb,
-                        &pb.pose,
-                        sa,
-                        &pa.pose,
-                        margin,
-                        memory,
-                        Some(j),
-                        &mut scratch.simplex,
-                    )
+                let (first, second, first_held) = if held[1] && !held[0] {
+                    ((sb, &pb.pose), (sa, &pa.pose), Some(j))
                 } else {
-                    let a_held = held[0].then_some(i);
-                    proximity(
-                        sa,
-                        &pa.pose,
-                        sb,
-                        &pb.pose,
-                        margin,
-                        memory,
-                        a_held,
-                        &mut scratch.simplex,
-                    )
+                    ((sa, &pa.pose), (sb, &pb.pose), held[0].then_some(i))
                 };
+                let found = proximity(
+                    first.0,
+                    first.1,
+                    second.0,
+                    second.1,
+                    margin,
+                    &mut scratch.memory[pair_index],
+                    first_held,
+                    &mut scratch.simplex,
+                );
                 match found {
                     Proximity::Contact => {
                         return Proximity::Contact;

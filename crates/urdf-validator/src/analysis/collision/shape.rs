@@ -216,7 +216,9 @@ impl Hull {
         let mut hull = built.unwrap_or_else(|| {
             // Too few points to climb (or no usable triangulation): scanned, with the faces of a
             // triangulation when one can be built.
-            let faces = Self::triangulated(&points).map_or_else(Vec::new, |h| h.faces);
+            let faces = hull_surface(&points).map_or_else(Vec::new, |(vertices, triangles)| {
+                faces_of(&vertices, &triangles)
+            });
             Hull {
                 points,
                 offsets: Vec::new(),
@@ -243,13 +245,10 @@ impl Hull {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// The vertices and edges of a triangulation of the hull by parry's quickhull, when it is closed and
-    /// convex and contains every point to within a nanometre (quickhull can fail on coplanar points).
+    /// The vertices and edges of a triangulation of the hull by parry's quickhull ([`hull_surface`]).
     fn triangulated(points: &[Vector]) -> Option<Hull> {
-        let result =
-            std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
-        let (vertices, triangles) = result.ok()?.ok()?;
-        Self::checked(points, vertices, &triangles)
+        let (vertices, triangles) = hull_surface(points)?;
+        Self::with_edges(vertices, &triangles)
     }
 
     /// The hull of a checked closed convex triangulation given by index into `points`: the points no
@@ -273,22 +272,13 @@ impl Hull {
         Self::with_edges(vertices, &renumbered)
     }
 
-    /// The hull of `vertices` and `triangles` (a triangulation of the hull of `points`) with its edges,
-    /// when the surface is closed and convex and holds every point.
-    fn checked(points: &[Vector], vertices: Vec<Vector>, triangles: &[[u32; 3]]) -> Option<Hull> {
-        if !surface::is_closed_convex(points, &vertices, triangles) {
-            return None;
-        }
-        Self::with_edges(vertices, triangles)
-    }
-
     /// The hull of `vertices` with the edges of `triangles`, a closed convex triangulation of them.
     fn with_edges(vertices: Vec<Vector>, triangles: &[[u32; 3]]) -> Option<Hull> {
         let SurfaceEdges {
             offsets,
             neighbours,
         } = SurfaceEdges::of(vertices.len(), triangles)?;
-        let faces = face_planes(&vertices, triangles);
+        let faces = faces_of(&vertices, triangles);
         let mut hull = Hull {
             points: vertices,
             offsets,
@@ -361,26 +351,21 @@ impl Hull {
     }
 }
 
-/// The planes of a closed convex triangulation's faces, as (outward unit normal, offset), oriented away
-/// from the vertices' centroid (the triangles' winding is not relied on); faces too thin to have a
-/// normal are left out (their neighbours bound the hull there).
-fn face_planes(vertices: &[Vector], triangles: &[[u32; 3]]) -> Vec<(Vector, f64)> {
-    if vertices.is_empty() {
-        return Vec::new();
-    }
-    let centroid = vertices.iter().copied().sum::<Vector>() / vertices.len() as f64;
-    triangles
-        .iter()
-        .filter_map(|&[a, b, c]| {
-            let [a, b, c] = [a, b, c].map(|v| vertices[v as usize]);
-            let normal = (b - a).cross(c - a).try_normalize()?;
-            let normal = if normal.dot(a - centroid) < 0.0 {
-                -normal
-            } else {
-                normal
-            };
-            Some((normal, normal.dot(a)))
-        })
+/// A closed convex triangulation of the hull of `points` by parry's quickhull (its vertices and
+/// triangles), when it contains every point to within a nanometre (quickhull can fail on coplanar points).
+fn hull_surface(points: &[Vector]) -> Option<(Vec<Vector>, Vec<[u32; 3]>)> {
+    let result = std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
+    let (vertices, triangles) = result.ok()?.ok()?;
+    surface::is_closed_convex(points, &vertices, &triangles).then_some((vertices, triangles))
+}
+
+/// The face planes of a closed convex triangulation as [`Hull::faces`] keeps them (faces too thin to
+/// have a normal left out: their neighbours bound the hull there).
+fn faces_of(vertices: &[Vector], triangles: &[[u32; 3]]) -> Vec<(Vector, f64)> {
+    surface::face_planes(vertices, triangles)
+        .into_iter()
+        .flatten()
+        .map(|(normal, corner)| (normal, normal.dot(corner)))
         .collect()
 }
 

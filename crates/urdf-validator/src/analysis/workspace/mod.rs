@@ -1023,7 +1023,7 @@ fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)
 
 #[cfg(test)]
 mod tests {
-    use super::clearance_mm;
+    use super::*;
 
     #[test]
     fn clearances_are_reported_to_the_micrometre() {
@@ -1031,8 +1031,6 @@ mod tests {
         assert_eq!(clearance_mm(0.012_345_6), 12.346);
         assert_eq!(clearance_mm(0.0), 0.0);
     }
-
-    use super::*;
 
     /// Statistics of one chunk of `samples` samples reaching `reach`.
     fn chunk(samples: usize, reach: f64) -> ArmStats {

@@ -72,6 +72,24 @@ impl SurfaceEdges {
     }
 }
 
+/// Per triangle of a surface around `vertices` (indices in range): its plane as (unit normal turned away
+/// from the vertices' centroid, its first corner), or `None` when it is too thin to have a normal. For a
+/// closed convex surface the normals point outwards, whatever the triangles' winding.
+pub fn face_planes(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<Option<(DVec3, DVec3)>> {
+    let centroid = vertices.iter().copied().sum::<DVec3>() / vertices.len().max(1) as f64;
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| vertices[v as usize]);
+            let mut normal = (b - a).cross(c - a);
+            if normal.dot(centroid - a) > 0.0 {
+                normal = -normal;
+            }
+            normal.try_normalize().map(|normal| (normal, a))
+        })
+        .collect()
+}
+
 /// True when `triangles` (indices into `vertices`) form a closed surface that is convex across every edge
 /// and holds every one of `points` (the points the hull was built from; the vertices are among them).
 pub fn is_closed_convex(points: &[DVec3], vertices: &[DVec3], triangles: &[[u32; 3]]) -> bool {
@@ -95,18 +113,7 @@ pub fn is_closed_convex(points: &[DVec3], vertices: &[DVec3], triangles: &[[u32;
     if !closed || n < 4 {
         return false;
     }
-    let centroid = vertices.iter().copied().sum::<DVec3>() / n as f64;
-    let planes: Vec<Option<(DVec3, DVec3)>> = triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| vertices[v as usize]);
-            let mut normal = (b - a).cross(c - a);
-            if normal.dot(centroid - a) > 0.0 {
-                normal = -normal;
-            }
-            normal.try_normalize().map(|normal| (normal, a))
-        })
-        .collect();
+    let planes = face_planes(vertices, triangles);
     let outside = |plane: &Option<(DVec3, DVec3)>, p: DVec3| {
         plane.is_some_and(|(normal, a)| normal.dot(p - a) > OUTSIDE)
     };
