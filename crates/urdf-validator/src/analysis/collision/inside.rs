@@ -16,6 +16,9 @@ const INSIDE: usize = 3;
 /// each end.
 const STEPS: i32 = 10;
 
+/// Centres tried: the box centre and [`STEPS`] each way.
+const TRIED: usize = 2 * STEPS as usize + 1;
+
 /// How much each sphere is shrunk (metres), so that rounding in the face planes can never make a sphere
 /// reach outside its shape; far below [`CONTACT_DISTANCE`](super::CONTACT_DISTANCE).
 const SAFETY: f64 = 1e-9;
@@ -42,11 +45,11 @@ impl Inside {
     /// along the axis while at least half as deep, when it reaches further than the deepest one.
     pub fn of(core: &Core, radius: f64, middle: Vector, axis: Vector, reach: f64) -> Inside {
         let step = reach / f64::from(STEPS);
-        let tried: Vec<(f64, f64)> = (-STEPS..=STEPS)
-            .map(|k| {
-                let along = f64::from(k) * step;
-                (along, core.depth(middle + axis * along) + radius)
-            })
+        let along: [f64; TRIED] = std::array::from_fn(|k| f64::from(k as i32 - STEPS) * step);
+        let depths = core.depths(&along.map(|along| middle + axis * along));
+        let tried: Vec<(f64, f64)> = along
+            .into_iter()
+            .zip(depths.map(|depth| depth + radius))
             .filter(|(_, depth)| depth.is_finite() && *depth > SAFETY)
             .collect();
         let Some(&(deepest_at, deepest)) = tried

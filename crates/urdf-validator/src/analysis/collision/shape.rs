@@ -233,16 +233,31 @@ impl Hull {
         hull
     }
 
-    /// How deep `point` (shape frame) is inside the hull: the distance to the nearest face plane, at most
-    /// the distance to the surface; negative or zero outside, `-inf` when the faces are unknown.
-    pub fn depth(&self, point: Vector) -> f64 {
+    /// How deep each of `points` (shape frame) is inside the hull: the distance to the nearest face
+    /// plane, at most the distance to the surface; negative or zero outside, `-inf` when the faces are
+    /// unknown. Faces outer, points inner: the inner loop runs over the points' coordinates side by
+    /// side, so it is vectorised (hulls have thousands of faces).
+    fn depths<const N: usize>(&self, points: &[Vector; N]) -> [f64; N] {
         if self.faces.is_empty() {
-            return f64::NEG_INFINITY;
+            return [f64::NEG_INFINITY; N];
         }
-        self.faces
-            .iter()
-            .map(|(normal, offset)| offset - normal.dot(point))
-            .fold(f64::INFINITY, f64::min)
+        let [x, y, z] = [0, 1, 2].map(|axis| points.map(|p| p[axis]));
+        let mut depth = [f64::INFINITY; N];
+        for (normal, offset) in &self.faces {
+            for k in 0..N {
+                // As `offset - normal.dot(point)`, term for term.
+                let dot = normal.x * x[k] + normal.y * y[k] + normal.z * z[k];
+                // `f64::min` on non-NaN depths (a NaN plane is skipped as `min` skips it), written as a
+                // comparison the vector minimum instruction computes.
+                let on_plane = offset - dot;
+                depth[k] = if on_plane < depth[k] {
+                    on_plane
+                } else {
+                    depth[k]
+                };
+            }
+        }
+        depth
     }
 
     /// The vertices and edges of a triangulation of the hull by parry's quickhull ([`hull_surface`]).
@@ -403,18 +418,18 @@ impl Core {
         Core::Hull(Hull::new(corners, None))
     }
 
-    /// How deep `point` (shape frame) is inside the core: at most the distance to its surface; negative
-    /// or zero outside (`-inf` for a hull whose faces are unknown).
-    pub fn depth(&self, point: Vector) -> f64 {
+    /// How deep each of `points` (shape frame) is inside the core: at most the distance to its surface;
+    /// negative or zero outside (`-inf` for a hull whose faces are unknown).
+    pub fn depths<const N: usize>(&self, points: &[Vector; N]) -> [f64; N] {
         match self {
-            Core::Point => -point.length(),
-            Core::Segment { half } => {
+            Core::Point => points.map(|point| -point.length()),
+            Core::Segment { half } => points.map(|point| {
                 -(point - Vector::new(0.0, 0.0, point.z.clamp(-half, *half))).length()
-            }
+            }),
             Core::Cylinder { radius, half } => {
-                (radius - point.x.hypot(point.y)).min(half - point.z.abs())
+                points.map(|point| (radius - point.x.hypot(point.y)).min(half - point.z.abs()))
             }
-            Core::Hull(hull) => hull.depth(point),
+            Core::Hull(hull) => hull.depths(points),
         }
     }
 }
