@@ -15,22 +15,54 @@ pub fn closest<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> V
         return Vec::new();
     }
     let limit = (wanted_len / 3).max(2);
+    let wanted_chars: Vec<char> = wanted.chars().collect();
+    let mut candidate_chars = Vec::new();
     let mut scored: Vec<(usize, &str)> = candidates
         .filter(|c| c.len() <= 4 * MAX_NAME_CHARS)
         .filter_map(|c| {
             if c.contains(wanted) || wanted.contains(c) {
                 return Some((edit_distance(wanted, c), c));
             }
-            // The distance is at least the length difference: skip hopeless candidates cheaply.
-            if c.chars().count().abs_diff(wanted_len) > limit {
-                return None;
-            }
-            let distance = edit_distance(wanted, c);
-            (distance <= limit).then_some((distance, c))
+            candidate_chars.clear();
+            candidate_chars.extend(c.chars());
+            distance_within(&wanted_chars, &candidate_chars, limit).map(|d| (d, c))
         })
         .collect();
     scored.sort();
     scored.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+/// The edit distance between `a` and `b` (as [`edit_distance`]) when it is at most `limit`: only the
+/// entries within `limit` of the diagonal are computed (the others exceed it), and a row whose entries
+/// all exceed it ends the search. A robot with many misspelt references asks this of every name.
+fn distance_within(a: &[char], b: &[char], limit: usize) -> Option<usize> {
+    if a.len().abs_diff(b.len()) > limit {
+        return None;
+    }
+    // Entries above the limit are kept as `over`: only whether they exceed it matters.
+    let over = limit + 1;
+    // `row[j]`: the distance between the first `i` characters of `a` and the first `j` of `b`. Entries
+    // right of the band still hold their first row's value, which is `over` there.
+    let mut row: Vec<usize> = (0..=b.len()).map(|j| j.min(over)).collect();
+    for i in 1..=a.len() {
+        let first = i.saturating_sub(limit).max(1);
+        let last = (i + limit).min(b.len());
+        let mut diagonal = row[first - 1];
+        row[first - 1] = if first == 1 { i.min(over) } else { over };
+        let mut lowest = row[first - 1];
+        for j in first..=last {
+            let above = row[j];
+            let substitution = diagonal + usize::from(a[i - 1] != b[j - 1]);
+            let value = substitution.min(above + 1).min(row[j - 1] + 1).min(over);
+            diagonal = above;
+            row[j] = value;
+            lowest = lowest.min(value);
+        }
+        if lowest > limit {
+            return None;
+        }
+    }
+    Some(row[b.len()]).filter(|&d| d <= limit)
 }
 
 /// A help sentence: "did you mean 'a' or 'b'?", or a plain note when nothing is close.
@@ -49,6 +81,31 @@ pub fn did_you_mean<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The banded distance agrees with the full one on random words over a small alphabet (many near
+    /// misses), for every limit: the distance when it is within the limit, nothing otherwise.
+    #[test]
+    fn the_banded_distance_is_the_edit_distance_within_its_limit() {
+        let mut rng = crate::rng::SplitMix64::new(11);
+        let mut word = |rng: &mut crate::rng::SplitMix64| -> Vec<char> {
+            let len = (rng.next_u64() % 9) as usize;
+            (0..len)
+                .map(|_| ['a', 'b', 'c', 'é'][(rng.next_u64() % 4) as usize])
+                .collect()
+        };
+        for _ in 0..5000 {
+            let (a, b) = (word(&mut rng), word(&mut rng));
+            let full = edit_distance(&a.iter().collect::<String>(), &b.iter().collect::<String>());
+            for limit in 0..10 {
+                let expected = (full <= limit).then_some(full);
+                assert_eq!(
+                    distance_within(&a, &b, limit),
+                    expected,
+                    "{a:?} {b:?} {limit}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn distance_and_suggestions() {

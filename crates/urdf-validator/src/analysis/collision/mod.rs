@@ -517,7 +517,11 @@ impl CollisionModel {
     fn pair_set(&self, mut pairs: Vec<(LinkId, LinkId)>, motion: Option<&Motion>) -> PairSet {
         let moves = motion.map(|m| m.links.as_slice());
         let size = |(a, b): (LinkId, LinkId)| self.bodies[a.0].radius + self.bodies[b.0].radius;
-        pairs.sort_by(|p, q| size(*q).total_cmp(&size(*p)));
+        // Largest first, equal sizes in their given order (a stable sort on sizes computed once).
+        let mut sized: Vec<(f64, (LinkId, LinkId))> = pairs.iter().map(|&p| (size(p), p)).collect();
+        sized.sort_by(|p, q| q.0.total_cmp(&p.0));
+        pairs.clear();
+        pairs.extend(sized.into_iter().map(|(_, pair)| pair));
         let mut links: Vec<LinkId> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
         links.sort_unstable();
         links.dedup();
@@ -624,12 +628,18 @@ impl CollisionModel {
 
     /// Every pair of links with geometry that is not allowed to collide.
     pub fn all_pairs(&self) -> PairSet {
-        self.pair_set(
-            self.geometric_pairs()
-                .filter(|&(a, b)| self.allowed(a, b).is_none())
-                .collect(),
-            None,
-        )
+        self.pair_set(self.checked_pairs().collect(), None)
+    }
+
+    /// How many pairs [`all_pairs`](Self::all_pairs) holds, without building the set.
+    pub fn checked_pair_count(&self) -> usize {
+        self.checked_pairs().count()
+    }
+
+    /// The pairs of links with geometry that are not allowed to collide, in index order.
+    fn checked_pairs(&self) -> impl Iterator<Item = (LinkId, LinkId)> + '_ {
+        self.geometric_pairs()
+            .filter(|&(a, b)| self.allowed(a, b).is_none())
     }
 
     /// The pairs whose distance changes with `motion` (some joints varying, and the mimic joints that

@@ -160,9 +160,9 @@ impl CollisionSetup {
             .filter_map(|(a, b)| Some((model.link(a)?, model.link(b)?)))
             .collect();
         collision.allow(&filtered, Allowed::Disabled);
-        let before = collision.all_pairs().len();
+        let before = collision.checked_pair_count();
         let unknown_srdf_links = collision.allow_srdf(model, srdf);
-        let srdf_disabled = before - collision.all_pairs().len();
+        let srdf_disabled = before - collision.checked_pair_count();
         let touching = collision.touching_pairs(&reference.link_placement);
         collision.allow(&touching, Allowed::Touching);
         CollisionSetup {
