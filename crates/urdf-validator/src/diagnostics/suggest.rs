@@ -87,7 +87,7 @@ mod tests {
     #[test]
     fn the_banded_distance_is_the_edit_distance_within_its_limit() {
         let mut rng = crate::rng::SplitMix64::new(11);
-        let mut word = |rng: &mut crate::rng::SplitMix64| -> Vec<char> {
+        let word = |rng: &mut crate::rng::SplitMix64| -> Vec<char> {
             let len = (rng.next_u64() % 9) as usize;
             (0..len)
                 .map(|_| ['a', 'b', 'c', 'é'][(rng.next_u64() % 4) as usize])
