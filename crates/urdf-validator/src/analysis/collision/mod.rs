@@ -262,8 +262,10 @@ pub struct CheckScratch {
     /// Per slot: the pose its `centre` was computed in ([`HELD`]: a held slot's, kept). With the
     /// rigid-group broad phase a moving slot's centre is computed only when one of its pairs is looked at.
     centre_stamp: Vec<u32>,
-    /// Per shape: where it is in the current pose, valid when `stamp` matches.
-    placed: Vec<(u32, Placed)>,
+    /// Per shape: where it is in the current pose. The first stamp tells whether its centre is placed
+    /// for the current pose, the second whether the rest is (most shapes go no further than the sphere
+    /// test).
+    placed: Vec<(u32, u32, Placed)>,
     stamp: u32,
     /// Per pair of the last pair set: what the narrow phase keeps of it (see [`shape::proximity`]).
     memory: Vec<PairMemory>,
@@ -287,7 +289,7 @@ impl CheckScratch {
         CheckScratch {
             centre: Vec::new(),
             centre_stamp: Vec::new(),
-            placed: vec![(0, Placed::default()); model.shapes.len()],
+            placed: vec![(0, 0, Placed::default()); model.shapes.len()],
             stamp: 0,
             memory: Vec::new(),
             simplex: VoronoiSimplex::new(),
@@ -313,7 +315,7 @@ impl CheckScratch {
     fn next_pose(&mut self) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 || self.stamp == HELD {
-            self.placed.iter_mut().for_each(|p| p.0 = 0);
+            self.placed.iter_mut().for_each(|p| (p.0, p.1) = (0, 0));
             self.centre_stamp
                 .iter_mut()
                 .filter(|s| **s != HELD)
@@ -350,12 +352,14 @@ impl Default for Placed {
 
 /// True when a placement can be used: finite and within [`MAX_EXTENT`].
 fn usable(placement: &Isometry3<f64>) -> bool {
-    placement
-        .translation
-        .vector
-        .iter()
-        .all(|v| v.abs() <= MAX_EXTENT)
-        && placement.rotation.coords.iter().all(|v| v.is_finite())
+    let t = &placement.translation.vector;
+    let q = &placement.rotation.coords;
+    // Without short-circuits (the check runs for every moving link of every sampled pose): a NaN fails
+    // each comparison, and a product by zero is zero exactly when the factor is finite.
+    (t.x.abs() <= MAX_EXTENT)
+        & (t.y.abs() <= MAX_EXTENT)
+        & (t.z.abs() <= MAX_EXTENT)
+        & (q.x * 0.0 + q.y * 0.0 + q.z * 0.0 + q.w * 0.0 == 0.0)
 }
 
 impl CollisionModel {
@@ -941,15 +945,18 @@ impl CollisionModel {
     ) -> Proximity {
         let mut best = Proximity::Beyond;
         for i in self.bodies[a.0].shapes.clone() {
-            self.place_shape(i, &placements[a.0], held[0], scratch);
+            let centre_a = self.place_centre(i, &placements[a.0], held[0], scratch);
             for j in self.bodies[b.0].shapes.clone() {
-                self.place_shape(j, &placements[b.0], held[1], scratch);
-                let (pa, pb) = (&scratch.placed[i].1, &scratch.placed[j].1);
+                let centre_b = self.place_centre(j, &placements[b.0], held[1], scratch);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
                 let reach = sa.bound + sb.bound + margin;
-                if (pa.centre - pb.centre).norm_squared() >= reach * reach
-                    || boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin)
-                {
+                if (centre_a - centre_b).norm_squared() >= reach * reach {
+                    continue;
+                }
+                self.place_shape(i, &placements[a.0], held[0], scratch);
+                self.place_shape(j, &placements[b.0], held[1], scratch);
+                let (pa, pb) = (&scratch.placed[i].2, &scratch.placed[j].2);
+                if boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin) {
                     continue;
                 }
                 // A shape held in place goes first, so that its support point along the pair's axis
@@ -999,8 +1006,28 @@ impl CollisionModel {
             .map_or(Vector3::repeat(f64::NAN), |p| self.world_centre(link, p))
     }
 
-    /// Place shape `index` of a link placed at `link` in `scratch.placed`, unless it is there for the
-    /// current pose (or for every pose, when the link is `held` in place).
+    /// The bounding-sphere centre of shape `index` of a link placed at `link`, placed in
+    /// `scratch.placed` unless it is there for the current pose (or for every pose, when the link is
+    /// `held` in place).
+    fn place_centre(
+        &self,
+        index: usize,
+        link: &Isometry3<f64>,
+        held: bool,
+        scratch: &mut CheckScratch,
+    ) -> Vector3<f64> {
+        let (stamp, _, placed) = &mut scratch.placed[index];
+        if *stamp != scratch.stamp && *stamp != HELD {
+            *stamp = if held { HELD } else { scratch.stamp };
+            placed.centre = link
+                .transform_point(&Point3::from(self.shapes[index].centre))
+                .coords;
+        }
+        placed.centre
+    }
+
+    /// Place the rest of shape `index` (its centre placed, see [`place_centre`](Self::place_centre)):
+    /// its frame and its box.
     fn place_shape(
         &self,
         index: usize,
@@ -1008,15 +1035,12 @@ impl CollisionModel {
         held: bool,
         scratch: &mut CheckScratch,
     ) {
-        let (stamp, placed) = &mut scratch.placed[index];
+        let (_, stamp, placed) = &mut scratch.placed[index];
         if *stamp != scratch.stamp && *stamp != HELD {
             let shape = &self.shapes[index];
             *stamp = if held { HELD } else { scratch.stamp };
-            *placed = Placed {
-                pose: to_pose(&(link * shape.frame)),
-                centre: link.transform_point(&Point3::from(shape.centre)).coords,
-                obb: shape.obb.placed(link),
-            };
+            placed.pose = to_pose(&(link * shape.frame));
+            placed.obb = shape.obb.placed(link);
         }
     }
 }
@@ -1027,6 +1051,23 @@ mod tests {
     use crate::analysis::pose::ConfigurationSampler;
     use crate::assets::link_supports;
     use crate::model::{forward_kinematics, Data};
+
+    /// A placement is usable when every number is finite and the origin within reach: a NaN or an
+    /// infinity anywhere, or a coordinate beyond [`MAX_EXTENT`], makes it unusable.
+    #[test]
+    fn usable_placements_are_finite_and_within_reach() {
+        let at = |x: f64| Isometry3::translation(x, 0.5, -0.5);
+        assert!(usable(&at(MAX_EXTENT)));
+        assert!(!usable(&at(MAX_EXTENT * 1.000001)));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!usable(&at(bad)));
+            for k in 0..4 {
+                let mut placement = at(0.0);
+                placement.rotation.as_mut_unchecked().coords[k] = bad;
+                assert!(!usable(&placement), "rotation coordinate {k} = {bad}");
+            }
+        }
+    }
 
     /// A chain of `n` box links 2 cm apart, each joint bending by up to `range` radians.
     fn chain(n: usize, range: f64) -> String {
