@@ -51,18 +51,22 @@ impl SurfaceEdges {
                 }
             }
         }
+        // Each vertex's list without repeats (a neighbour is kept where first seen: `seen` holds the last
+        // vertex it was seen from), then sorted: half as many to sort as with the repeats.
         let mut neighbours = Vec::with_capacity(total / 2);
         let mut compact = Vec::with_capacity(vertices + 1);
+        let mut seen = vec![u32::MAX; vertices];
         compact.push(0);
         for v in 0..vertices {
-            let list = &mut all[offsets[v]..offsets[v + 1]];
-            list.sort_unstable();
             let start = neighbours.len();
-            for &n in list.iter() {
-                if neighbours.len() == start || neighbours.last() != Some(&n) {
+            for &n in &all[offsets[v]..offsets[v + 1]] {
+                let last = &mut seen[n as usize];
+                if *last != v as u32 {
+                    *last = v as u32;
                     neighbours.push(n);
                 }
             }
+            neighbours[start..].sort_unstable();
             compact.push(neighbours.len());
         }
         Some(SurfaceEdges {
@@ -182,6 +186,33 @@ mod tests {
         assert_eq!(edges.offsets, vec![0, 3, 6, 9, 12]);
         assert_eq!(edges.neighbours, vec![1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2]);
         assert_eq!(SurfaceEdges::of(3, &TETRA), None, "vertex 3 out of range");
+    }
+
+    /// On random triangle soups (repeated edges, vertices joined to themselves, vertices in no triangle),
+    /// each vertex's list is the sorted set of vertices an edge joins it to.
+    #[test]
+    fn edges_of_any_triangles_are_each_vertexs_sorted_neighbour_set() {
+        let mut rng = crate::rng::SplitMix64::new(3);
+        for vertices in [1, 2, 5, 12, 40] {
+            for _ in 0..50 {
+                let triangles: Vec<[u32; 3]> = (0..rng.next_u64() % 60)
+                    .map(|_| std::array::from_fn(|_| (rng.next_u64() % vertices) as u32))
+                    .collect();
+                let edges = SurfaceEdges::of(vertices as usize, &triangles).unwrap();
+                let mut expected = vec![std::collections::BTreeSet::new(); vertices as usize];
+                for t in &triangles {
+                    for k in 0..3 {
+                        let (a, b) = (t[k], t[(k + 1) % 3]);
+                        expected[a as usize].insert(b);
+                        expected[b as usize].insert(a);
+                    }
+                }
+                for (v, set) in expected.iter().enumerate() {
+                    let list = &edges.neighbours[edges.offsets[v]..edges.offsets[v + 1]];
+                    assert_eq!(list, set.iter().copied().collect::<Vec<_>>(), "vertex {v}");
+                }
+            }
+        }
     }
 
     #[test]
