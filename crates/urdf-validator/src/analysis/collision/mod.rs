@@ -329,6 +329,16 @@ impl CheckScratch {
 /// [`CheckScratch::holding_fixed`]).
 const HELD: u32 = u32::MAX;
 
+/// True when a placement stamped `stamp` is stale in the pose stamped `current` (one kept across poses
+/// never is); it is then stamped as placed in that pose, or for every pose when its link is `held`.
+fn restamp(stamp: &mut u32, current: u32, held: bool) -> bool {
+    let stale = *stamp != current && *stamp != HELD;
+    if stale {
+        *stamp = if held { HELD } else { current };
+    }
+    stale
+}
+
 /// A shape in the world.
 #[derive(Clone, Copy, Debug)]
 struct Placed {
@@ -1017,8 +1027,7 @@ impl CollisionModel {
         scratch: &mut CheckScratch,
     ) -> Vector3<f64> {
         let (stamp, _, placed) = &mut scratch.placed[index];
-        if *stamp != scratch.stamp && *stamp != HELD {
-            *stamp = if held { HELD } else { scratch.stamp };
+        if restamp(stamp, scratch.stamp, held) {
             placed.centre = link
                 .transform_point(&Point3::from(self.shapes[index].centre))
                 .coords;
@@ -1036,9 +1045,8 @@ impl CollisionModel {
         scratch: &mut CheckScratch,
     ) {
         let (_, stamp, placed) = &mut scratch.placed[index];
-        if *stamp != scratch.stamp && *stamp != HELD {
+        if restamp(stamp, scratch.stamp, held) {
             let shape = &self.shapes[index];
-            *stamp = if held { HELD } else { scratch.stamp };
             placed.pose = to_pose(&(link * shape.frame));
             placed.obb = shape.obb.placed(link);
         }
