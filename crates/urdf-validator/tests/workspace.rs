@@ -673,6 +673,46 @@ fn sampling_is_reproducible_and_independent_of_threads() {
     assert_ne!(other_seed.max_reach, many.max_reach);
 }
 
+/// Chunks share the smallest clearance found so far (a chunk computes no distance that cannot beat it),
+/// whichever thread finds it first: the self-collision results (free fraction, smallest clearance, worst
+/// pair, the whole section) are the same on one thread as on two or four.
+#[test]
+fn self_collision_results_do_not_depend_on_threads() {
+    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
+    // Two balls on their own arcs (see `a_mimic_follower_outside_the_arm_moves_with_it`), both grazing.
+    let urdf = swinging_ball(h, l, r).replace(
+        "</robot>",
+        &format!(
+            r#"<joint name="twin_mount_joint" type="fixed"><parent link="base"/><child link="twin_mount"/><origin xyz="0 0.5 {h}"/></joint>
+  <link name="twin_mount">{m}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="twin_swing" type="continuous"><parent link="twin_mount"/><child link="twin"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/><mimic joint="swing" multiplier="1" offset="1.0"/></joint>
+  <link name="twin">{m}<collision><origin xyz="0 0 {l}"/><geometry><sphere radius="{r}"/></geometry></collision></link>
+</robot>"#,
+            m = inertial(1.0, [0.0; 3])
+        ),
+    );
+    let run = || {
+        let ws = workspace_of(
+            &urdf,
+            declared_arm("mount", "rod"),
+            WorkspaceOptions::default(),
+        );
+        serde_json::to_string(&ws).unwrap()
+    };
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(run)
+    };
+    let one = on(1);
+    assert!(one.contains("self_collision_min_clearance_mm"), "{one}");
+    for threads in [2, 4, 4] {
+        assert_eq!(on(threads), one, "{threads} threads");
+    }
+}
+
 #[test]
 fn tip_samples_are_every_kth_sample_at_most_400_rounded_to_the_mm() {
     let (l1, l2, h) = (0.5, 0.3, 1.0);

@@ -19,6 +19,7 @@ mod verdict;
 pub use verdict::findings;
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -289,6 +290,41 @@ struct SampleContext<'a> {
     options: &'a WorkspaceOptions,
     matcher: Option<OrientationMatcher>,
     collision: Option<&'a CollisionModel>,
+    /// The smallest self-collision clearance any chunk of the arm has found so far: a chunk needs no
+    /// distance at or above it.
+    nearest: SharedMinimum,
+}
+
+impl SampleContext<'_> {
+    /// The clearance below which a pose's distances are worth computing: the smaller of the chunk's
+    /// own smallest (`own`) and the arm's ([`SampleContext::nearest`]). Poses at or above it cannot
+    /// change the arm's smallest clearance, whichever chunk finds which first, so the result does not
+    /// depend on the order in which threads run chunks.
+    fn clearance_cutoff(&self, own: Option<f64>) -> f64 {
+        let shared = self.nearest.get();
+        own.map_or(shared, |own| own.min(shared))
+    }
+}
+
+/// The smallest non-negative number offered so far, from any thread (+∞ before any): kept as the bits of
+/// an `f64`, which order as the values do for non-negative numbers.
+struct SharedMinimum(AtomicU64);
+
+impl SharedMinimum {
+    fn new() -> Self {
+        SharedMinimum(AtomicU64::new(f64::INFINITY.to_bits()))
+    }
+
+    fn get(&self) -> f64 {
+        f64::from_bits(self.0.load(Ordering::Relaxed))
+    }
+
+    /// Offer `value`; negative numbers and NaN are ignored (and -0 is 0).
+    fn offer(&self, value: f64) {
+        if value >= 0.0 {
+            self.0.fetch_min((value + 0.0).to_bits(), Ordering::Relaxed);
+        }
+    }
 }
 
 /// The generator seed of one chunk: the seed, the arm and the chunk hashed in turn, so nearby seeds
@@ -403,7 +439,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                     state.place(scene.model, lanes, &job.chain.sampled);
                 }
                 state.placements.write(k % LANES, &mut state.data);
-                let cutoff = stats.min_clearance.map_or(f64::INFINITY, |c| c.0);
+                let cutoff = ctx.clearance_cutoff(stats.min_clearance.map(|c| c.0));
                 let check = state.model.check(
                     state.pairs,
                     &state.data.link_placement,
@@ -414,6 +450,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                 if free {
                     stats.collision_free += 1;
                     if let Some(clearance) = check.min_clearance {
+                        ctx.nearest.offer(clearance.0);
                         stats.min_clearance = Some(clearance);
                     }
                 }
@@ -613,6 +650,7 @@ pub fn analyse(
                 .orientation
                 .map(|o| o.matcher(&job.approach, tolerance)),
             collision: collision.map(|c| &c.model),
+            nearest: SharedMinimum::new(),
         })
         .collect();
     // Every arm's chunks in one parallel loop (no thread waits for the last chunk of one arm before the
@@ -1024,6 +1062,35 @@ fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Offered from four threads at once, the shared minimum is the smallest non-negative value offered
+    /// (zero, subnormal and infinite values included; negative ones and NaN ignored).
+    #[test]
+    fn the_shared_minimum_is_the_smallest_value_offered() {
+        let shared = SharedMinimum::new();
+        assert_eq!(shared.get(), f64::INFINITY);
+        let values = |thread: u64| {
+            let mut rng = SplitMix64::new(thread);
+            (0..2000).map(move |k| match k % 7 {
+                0 => -rng.uniform(0.0, 1.0),
+                1 => f64::NAN,
+                2 => f64::INFINITY,
+                3 => f64::MIN_POSITIVE / 4.0 * (1.0 + thread as f64),
+                _ => rng.uniform(1e-6, 1.0),
+            })
+        };
+        std::thread::scope(|scope| {
+            for thread in 0..4 {
+                let shared = &shared;
+                scope.spawn(move || values(thread).for_each(|v| shared.offer(v)));
+            }
+        });
+        assert_eq!(shared.get(), f64::MIN_POSITIVE / 4.0);
+        shared.offer(0.0);
+        assert_eq!(shared.get(), 0.0);
+        shared.offer(-0.0);
+        assert_eq!(shared.get().to_bits(), 0.0f64.to_bits());
+    }
 
     #[test]
     fn clearances_are_reported_to_the_micrometre() {
