@@ -281,6 +281,9 @@ pub struct CheckScratch {
     /// With `hold_fixed`: `centre` holds every slot's centre from an earlier check, and whether every
     /// fixed slot's placement was usable.
     fixed_usable: Option<bool>,
+    /// For the next check only: the caller checked that every moving link's placement is usable (see
+    /// [`CheckScratch::vouch_moving_usable`]).
+    moving_vouched: bool,
 }
 
 impl CheckScratch {
@@ -298,6 +301,7 @@ impl CheckScratch {
             held_candidates: Vec::new(),
             hold_fixed: false,
             fixed_usable: None,
+            moving_vouched: false,
         }
     }
 
@@ -309,6 +313,12 @@ impl CheckScratch {
             hold_fixed: true,
             ..CheckScratch::new(model)
         }
+    }
+
+    /// Say that in the next check every link the pair set's joints move has a usable placement
+    /// ([`usable_parts`]; the caller placed them and checked), so the check need not test them again.
+    pub(crate) fn vouch_moving_usable(&mut self) {
+        self.moving_vouched = true;
     }
 
     /// Start a new pose: every cached shape placement becomes stale.
@@ -362,14 +372,19 @@ impl Default for Placed {
 
 /// True when a placement can be used: finite and within [`MAX_EXTENT`].
 fn usable(placement: &Isometry3<f64>) -> bool {
-    let t = &placement.translation.vector;
-    let q = &placement.rotation.coords;
+    let (t, q) = (&placement.translation.vector, &placement.rotation.coords);
+    usable_parts([t.x, t.y, t.z], [q.x, q.y, q.z, q.w])
+}
+
+/// [`usable`] on a placement's translation and rotation quaternion.
+#[inline(always)]
+pub(crate) fn usable_parts([x, y, z]: [f64; 3], [i, j, k, w]: [f64; 4]) -> bool {
     // Without short-circuits (the check runs for every moving link of every sampled pose): a NaN fails
     // each comparison, and a product by zero is zero exactly when the factor is finite.
-    (t.x.abs() <= MAX_EXTENT)
-        & (t.y.abs() <= MAX_EXTENT)
-        & (t.z.abs() <= MAX_EXTENT)
-        & (q.x * 0.0 + q.y * 0.0 + q.z * 0.0 + q.w * 0.0 == 0.0)
+    (x.abs() <= MAX_EXTENT)
+        & (y.abs() <= MAX_EXTENT)
+        & (z.abs() <= MAX_EXTENT)
+        & (i * 0.0 + j * 0.0 + k * 0.0 + w * 0.0 == 0.0)
 }
 
 impl CollisionModel {
@@ -737,6 +752,7 @@ impl CollisionModel {
         on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
     ) -> PoseCheck {
         scratch.next_pose();
+        let vouched = std::mem::take(&mut scratch.moving_vouched);
         let mut result = PoseCheck::default();
         let centre_of = |link: LinkId| {
             placements
@@ -755,11 +771,12 @@ impl CollisionModel {
         let grouped = pairs.held.as_ref().filter(|_| {
             held == Some(true)
                 && pairs.sweep.is_none()
-                && pairs.moving.iter().all(|&slot| {
-                    placements
-                        .get(pairs.links[slot as usize].0)
-                        .is_some_and(usable)
-                })
+                && (vouched
+                    || pairs.moving.iter().all(|&slot| {
+                        placements
+                            .get(pairs.links[slot as usize].0)
+                            .is_some_and(usable)
+                    }))
         });
         let mut all_usable = true;
         if grouped.is_some() {

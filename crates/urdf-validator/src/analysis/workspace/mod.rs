@@ -439,6 +439,9 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                     state.place(scene.model, lanes, &job.chain.sampled);
                 }
                 state.placements.write(k % LANES, &mut state.data);
+                if state.placements.usable(k % LANES) {
+                    state.scratch.vouch_moving_usable();
+                }
                 let cutoff = ctx.clearance_cutoff(stats.min_clearance.map(|c| c.0));
                 let check = state.model.check(
                     state.pairs,

@@ -9,6 +9,7 @@
 
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
+use crate::analysis::collision::usable_parts;
 use crate::model::kinematics::{joint_motion, Data};
 use crate::model::{JointId, LinkId, Model, Motion};
 use crate::urdf::robot::JointKind;
@@ -179,6 +180,8 @@ pub(super) struct BatchPlacements {
     framed: Poses,
     turn: Poses,
     slide: Poses,
+    /// Per lane: whether every link placed there is usable for self-collision ([`usable_parts`]).
+    usable: [bool; LANES],
 }
 
 impl BatchPlacements {
@@ -244,6 +247,7 @@ impl BatchPlacements {
             framed: identity.clone(),
             turn: identity.clone(),
             slide: identity,
+            usable: [false; LANES],
         }
     }
 
@@ -326,6 +330,20 @@ impl BatchPlacements {
                 }
             }
         }
+        let mut usable = [true; LANES];
+        for poses in &self.poses {
+            for (n, usable) in usable.iter_mut().enumerate() {
+                let translation = [poses.x[n], poses.y[n], poses.z[n]];
+                let rotation = [poses.i[n], poses.j[n], poses.k[n], poses.w[n]];
+                *usable &= usable_parts(translation, rotation);
+            }
+        }
+        self.usable = usable;
+    }
+
+    /// Whether every link placed in `lane` has a usable placement for self-collision.
+    pub(super) fn usable(&self, lane: usize) -> bool {
+        self.usable.get(lane).copied().unwrap_or(false)
     }
 
     /// Write sample `lane`'s placements into `data`.
@@ -415,6 +433,16 @@ mod tests {
                     forward_kinematics_links(&model, q, &links, &mut alone);
                     let mut batched = reference.clone();
                     placements.write(lane, &mut batched);
+                    let usable = |link: &LinkId| {
+                        let p = &batched.link_placement[link.0];
+                        let (r, t) = (p.rotation.coords, p.translation.vector);
+                        usable_parts([t.x, t.y, t.z], [r.x, r.y, r.z, r.w])
+                    };
+                    assert_eq!(
+                        placements.usable(lane),
+                        links.iter().all(usable),
+                        "lane {lane} round {round} vector {vector}"
+                    );
                     for link in &links {
                         let bits = |data: &Data| {
                             let p = &data.link_placement[link.0];
