@@ -296,6 +296,11 @@ impl BatchPlacements {
             let out = &mut rest[0];
             let step = &self.steps[s];
             let values = &self.values[s];
+            if let (Parent::Placed(parent), JointMotion::None) = (&step.parent, &step.motion) {
+                // A rigidly attached link (a finger of a held hand): its frame is its placement.
+                compose(&done[*parent], &step.frame, out);
+                continue;
+            }
             // The link's frame: its parent's placement times the joint frame.
             let framed = match &step.parent {
                 Parent::Placed(parent) => {
