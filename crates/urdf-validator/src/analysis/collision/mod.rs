@@ -222,6 +222,12 @@ impl PairSet {
         &self.pairs
     }
 
+    /// The links of the set the set's joints move, in the order [`CheckScratch::vouch_moving`] takes
+    /// their bounding-sphere centres.
+    pub fn moving_links(&self) -> impl Iterator<Item = LinkId> + '_ {
+        self.moving.iter().map(|&slot| self.links[slot as usize])
+    }
+
     /// Number of pairs.
     pub fn len(&self) -> usize {
         self.pairs.len()
@@ -281,8 +287,8 @@ pub struct CheckScratch {
     /// With `hold_fixed`: `centre` holds every slot's centre from an earlier check, and whether every
     /// fixed slot's placement was usable.
     fixed_usable: Option<bool>,
-    /// For the next check only: the caller checked that every moving link's placement is usable (see
-    /// [`CheckScratch::vouch_moving_usable`]).
+    /// For the next check only: the caller checked that every moving link's placement is usable and put
+    /// their bounding-sphere centres in `centre` (see [`CheckScratch::vouch_moving`]).
     moving_vouched: bool,
 }
 
@@ -315,9 +321,25 @@ impl CheckScratch {
         }
     }
 
-    /// Say that in the next check every link the pair set's joints move has a usable placement
-    /// ([`usable_parts`]; the caller placed them and checked), so the check need not test them again.
-    pub(crate) fn vouch_moving_usable(&mut self) {
+    /// For the next check of `pairs` (checks holding the fixed links, after the first): every link the
+    /// set's joints move has a usable placement ([`usable_parts`]), and `centres` are their bounding-sphere
+    /// centres in the world, in [`PairSet::moving_links`] order, computed as the check computes them
+    /// (the placement times [`CollisionModel::sphere_centre`], in nalgebra's order of operations: the
+    /// same bits). The caller placed the links and checked; the check takes its word.
+    pub(crate) fn vouch_moving(
+        &mut self,
+        pairs: &PairSet,
+        centres: impl ExactSizeIterator<Item = Vector3<f64>>,
+    ) {
+        if !self.hold_fixed
+            || self.centre.len() != pairs.links.len()
+            || centres.len() != pairs.moving.len()
+        {
+            return;
+        }
+        for (&slot, centre) in pairs.moving.iter().zip(centres) {
+            self.centre[slot as usize] = centre;
+        }
         self.moving_vouched = true;
     }
 
@@ -780,7 +802,7 @@ impl CollisionModel {
         });
         let mut all_usable = true;
         if grouped.is_some() {
-            // Computed in the scan, as pairs need them.
+            // Vouched for by the caller, or computed in the scan as pairs need them.
         } else if let Some(fixed_usable) = held {
             // Only the moving slots' centres change.
             all_usable = fixed_usable;
@@ -856,14 +878,16 @@ impl CollisionModel {
                 state.margin,
                 &mut kept,
             );
-            self.scan::<true>(
-                pairs,
-                set_bits(&kept),
-                placements,
-                scratch,
-                &mut state,
-                on_contact,
-            );
+            let kept_pairs = set_bits(&kept);
+            if vouched {
+                self.scan::<false>(
+                    pairs, kept_pairs, placements, scratch, &mut state, on_contact,
+                );
+            } else {
+                self.scan::<true>(
+                    pairs, kept_pairs, placements, scratch, &mut state, on_contact,
+                );
+            }
             scratch.held_candidates = kept;
             if !state.in_contact {
                 result.min_clearance = state.nearest;
@@ -1018,6 +1042,11 @@ impl CollisionModel {
         best
     }
 
+    /// The centre of `link`'s bounding sphere, in the link's frame.
+    pub fn sphere_centre(&self, link: LinkId) -> Vector3<f64> {
+        self.bodies[link.0].centre
+    }
+
     /// The world centre of `link`'s bounding sphere, the link at `placement`.
     fn world_centre(&self, link: LinkId, placement: &Isometry3<f64>) -> Vector3<f64> {
         placement
@@ -1156,6 +1185,8 @@ mod tests {
         // Both scratches keep their GJK warm starts from pose to pose, as the sampler's do.
         let mut plain = CheckScratch::new(&collision);
         let mut held = CheckScratch::holding_fixed(&collision);
+        // And one told the moving links' sphere centres (as the workspace sampler's batches tell it).
+        let mut vouched = CheckScratch::holding_fixed(&collision);
         let (mut cutoff, mut contacts) = (f64::INFINITY, 0);
         for _ in 0..400 {
             let mut sample = model.zero_configuration();
@@ -1167,6 +1198,16 @@ mod tests {
             let reused = collision.check(&pairs, &data.link_placement, cutoff, &mut plain);
             let kept = collision.check(&pairs, &data.link_placement, cutoff, &mut held);
             assert_eq!(reused, kept);
+            let centres: Vec<Vector3<f64>> = pairs
+                .moving_links()
+                .map(|link| {
+                    (data.link_placement[link.0] * Point3::from(collision.sphere_centre(link)))
+                        .coords
+                })
+                .collect();
+            vouched.vouch_moving(&pairs, centres.into_iter());
+            let told = collision.check(&pairs, &data.link_placement, cutoff, &mut vouched);
+            assert_eq!(told, kept);
             // And as a scratch that knows nothing of earlier poses finds (up to GJK's warm start).
             let fresh = collision.check(
                 &pairs,

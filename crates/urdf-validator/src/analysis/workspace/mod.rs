@@ -440,7 +440,8 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                 }
                 state.placements.write(k % LANES, &mut state.data);
                 if state.placements.usable(k % LANES) {
-                    state.scratch.vouch_moving_usable();
+                    let centres = state.placements.points(k % LANES);
+                    state.scratch.vouch_moving(state.pairs, centres);
                 }
                 let cutoff = ctx.clearance_cutoff(stats.min_clearance.map(|c| c.0));
                 let check = state.model.check(
@@ -624,11 +625,17 @@ pub fn analyse(
             }
             let motion = model.motion_of(&sampled);
             let moving_links = moved_links(model, &motion);
-            let pairs = collision.map(|c| c.model.pairs_moved_by(&motion));
-            let placements = pairs.as_ref().map(|pairs| {
+            let pairs = collision.map(|c| (c, c.model.pairs_moved_by(&motion)));
+            let placements = pairs.as_ref().map(|(collision, pairs)| {
                 let links = links_to_place(model, &moving_links, pairs);
-                BatchPlacements::new(model, &links, &motion, scene.q, scene.data)
+                // The moving links' bounding-sphere centres, placed with the links for the checks.
+                let centres: Vec<(LinkId, Vector3<f64>)> = pairs
+                    .moving_links()
+                    .map(|link| (link, collision.model.sphere_centre(link)))
+                    .collect();
+                BatchPlacements::new(model, &links, &motion, scene.q, scene.data, &centres)
             });
+            let pairs = pairs.map(|(_, pairs)| pairs);
             Some(ArmJob {
                 arm,
                 chain,

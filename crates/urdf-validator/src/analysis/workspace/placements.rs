@@ -93,28 +93,48 @@ impl Operand for Constant {
     }
 }
 
-/// `a · b` lane by lane, as nalgebra computes `Isometry3 * Isometry3`: the translation is
-/// `a.t + a.r · b.t` (the quaternion turning the vector as `t = (r × v) · 2`, then `t · w + r × t + v`)
-/// and the rotation the quaternion product `a.r ⊗ b.r`.
+/// `a · b` lane by lane, as nalgebra computes `Isometry3 * Isometry3`: the translation is `a` applied to
+/// `b`'s translation ([`place_point`]) and the rotation the quaternion product `a.r ⊗ b.r`.
 #[inline(always)]
 fn compose(a: &Poses, b: &impl Operand, out: &mut Poses) {
     for n in 0..LANES {
         let (ai, aj, ak, aw) = (a.i[n], a.j[n], a.k[n], a.w[n]);
         let [bi, bj, bk, bw, vx, vy, vz] = b.at(n);
-        let tx = (aj * vz - ak * vy) * 2.0;
-        let ty = (ak * vx - ai * vz) * 2.0;
-        let tz = (ai * vy - aj * vx) * 2.0;
-        let cx = aj * tz - ak * ty;
-        let cy = ak * tx - ai * tz;
-        let cz = ai * ty - aj * tx;
-        out.x[n] = a.x[n] + (tx * aw + cx + vx);
-        out.y[n] = a.y[n] + (ty * aw + cy + vy);
-        out.z[n] = a.z[n] + (tz * aw + cz + vz);
+        [out.x[n], out.y[n], out.z[n]] = place_point(a, n, [vx, vy, vz]);
         out.w[n] = aw * bw - ai * bi - aj * bj - ak * bk;
         out.i[n] = aw * bi + ai * bw + aj * bk - ak * bj;
         out.j[n] = aw * bj - ai * bk + aj * bw + ak * bi;
         out.k[n] = aw * bk + ai * bj - aj * bi + ak * bw;
     }
+}
+
+/// `point` placed by `pose` lane by lane (see [`place_point`]).
+#[inline(always)]
+fn transform_point(pose: &Poses, point: &[f64; 3]) -> [Lanes; 3] {
+    let mut out = [[0.0; LANES]; 3];
+    let [xs, ys, zs] = &mut out;
+    for (n, ((x, y), z)) in xs.iter_mut().zip(ys).zip(zs).enumerate() {
+        [*x, *y, *z] = place_point(pose, n, *point);
+    }
+    out
+}
+
+/// Lane `n` of `pose` applied to `[vx, vy, vz]`, as nalgebra computes `Isometry3 * Point3`: the
+/// translation plus the point turned by the quaternion as `t = (r × v) · 2`, then `t · w + r × t + v`.
+#[inline(always)]
+fn place_point(pose: &Poses, n: usize, [vx, vy, vz]: [f64; 3]) -> [f64; 3] {
+    let (ai, aj, ak, aw) = (pose.i[n], pose.j[n], pose.k[n], pose.w[n]);
+    let tx = (aj * vz - ak * vy) * 2.0;
+    let ty = (ak * vx - ai * vz) * 2.0;
+    let tz = (ai * vy - aj * vx) * 2.0;
+    let cx = aj * tz - ak * ty;
+    let cy = ak * tx - ai * tz;
+    let cz = ai * ty - aj * tx;
+    [
+        pose.x[n] + (tx * aw + cx + vx),
+        pose.y[n] + (ty * aw + cy + vy),
+        pose.z[n] + (tz * aw + cz + vz),
+    ]
 }
 
 /// `placed` in the lanes whose joint value is zero (the scalar code composes nothing there), `moved`
@@ -182,18 +202,25 @@ pub(super) struct BatchPlacements {
     slide: Poses,
     /// Per lane: whether every link placed there is usable for self-collision ([`usable_parts`]).
     usable: [bool; LANES],
+    /// Points carried by placed links (a step and a point in its link's frame: the centres of the
+    /// links' bounding spheres; `None` when a point's link is not placed here, then no lane is usable),
+    /// and where they are in each sample.
+    points: Option<Vec<(usize, [f64; 3])>>,
+    placed_points: Vec<[Lanes; 3]>,
 }
 
 impl BatchPlacements {
     /// For `links` (parents first: the moving links self-collision reads and their moving ancestors),
     /// with the joints `motion` varies sampled and every other joint at `q` (mimic relations applied
-    /// here), every other link where `reference` has it.
+    /// here), every other link where `reference` has it; `points` (each a placed link and a point in its
+    /// frame) are placed with them (see [`BatchPlacements::points`]).
     pub(super) fn new(
         model: &Model,
         links: &[LinkId],
         motion: &Motion,
         q: &[f64],
         reference: &Data,
+        points: &[(LinkId, Vector3<f64>)],
     ) -> BatchPlacements {
         let mut q = q.to_vec();
         model.apply_mimic(&mut q);
@@ -239,8 +266,18 @@ impl BatchPlacements {
                 motion,
             });
         }
+        let placed_points = vec![[[0.0; LANES]; 3]; points.len()];
+        let points = points
+            .iter()
+            .map(|(link, p)| {
+                let step = index.get(link.0).copied().filter(|&s| s < steps.len())?;
+                Some((step, [p.x, p.y, p.z]))
+            })
+            .collect();
         let identity = Poses::splat(&Isometry3::identity());
         BatchPlacements {
+            points,
+            placed_points,
             values: vec![[0.0; LANES]; steps.len()],
             poses: vec![identity.clone(); steps.len()],
             steps,
@@ -335,7 +372,7 @@ impl BatchPlacements {
                 }
             }
         }
-        let mut usable = [true; LANES];
+        let mut usable = [self.points.is_some(); LANES];
         for poses in &self.poses {
             for (n, usable) in usable.iter_mut().enumerate() {
                 let translation = [poses.x[n], poses.y[n], poses.z[n]];
@@ -344,9 +381,21 @@ impl BatchPlacements {
             }
         }
         self.usable = usable;
+        for ((step, point), placed) in self.points.iter().flatten().zip(&mut self.placed_points) {
+            *placed = transform_point(&self.poses[*step], point);
+        }
     }
 
-    /// Whether every link placed in `lane` has a usable placement for self-collision.
+    /// The points given to [`BatchPlacements::new`] where sample `lane` puts them, in that order (only
+    /// meaningful when the lane is [`usable`](Self::usable)).
+    pub(super) fn points(&self, lane: usize) -> impl ExactSizeIterator<Item = Vector3<f64>> + '_ {
+        self.placed_points
+            .iter()
+            .map(move |[x, y, z]| Vector3::new(x[lane], y[lane], z[lane]))
+    }
+
+    /// Whether every link placed in `lane` has a usable placement for self-collision, and every point
+    /// given to [`BatchPlacements::new`] is on a placed link.
     pub(super) fn usable(&self, lane: usize) -> bool {
         self.usable.get(lane).copied().unwrap_or(false)
     }
@@ -364,6 +413,7 @@ mod tests {
     use super::*;
     use crate::model::kinematics::{forward_kinematics, forward_kinematics_links};
     use crate::rng::SplitMix64;
+    use nalgebra::Point3;
 
     /// Every kind of step: a revolute joint about a skew axis under a held parent, a continuous one, a
     /// prismatic one, a mimic follower, a fixed link, a revolute joint with a degenerate axis, and one the
@@ -389,6 +439,27 @@ mod tests {
         <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
     </robot>"#;
 
+    /// A point on a link the batch does not place (the held base) is placed nowhere: no lane is usable.
+    #[test]
+    fn a_point_off_the_placed_links_makes_no_lane_usable() {
+        let (robot, _) = crate::urdf::parse_urdf(ARM, std::path::Path::new("arm.urdf")).unwrap();
+        let (model, _) = Model::build(&robot);
+        let sampled = [model.joint("j1").unwrap()];
+        let motion = model.motion_of(&sampled);
+        let links = [model.link("a").unwrap()];
+        let q = model.zero_configuration();
+        let mut reference = Data::new(&model);
+        forward_kinematics(&model, &q, &mut reference);
+        for (point_link, usable) in [("a", true), ("base", false)] {
+            let point = [(model.link(point_link).unwrap(), Vector3::x())];
+            let mut placements =
+                BatchPlacements::new(&model, &links, &motion, &q, &reference, &point);
+            (0..LANES).for_each(|lane| placements.load(lane, &q));
+            placements.place();
+            assert_eq!(placements.usable(0), usable, "{point_link}");
+        }
+    }
+
     /// The batch gives every link the same bits as placing each sample alone, in the vector code the
     /// CPU runs and in the portable code, with joint values that are random, exactly zero or NaN.
     #[test]
@@ -409,9 +480,15 @@ mod tests {
         reference_q[joint("j7").0] = 0.7;
         let mut reference = Data::new(&model);
         forward_kinematics(&model, &reference_q, &mut reference);
-        let mut placements =
-            BatchPlacements::new(&model, &links, &motion, &reference_q, &reference);
         let mut rng = SplitMix64::new(5);
+        // A point on every placed link, two on the last.
+        let points: Vec<(LinkId, Vector3<f64>)> = links
+            .iter()
+            .chain(links.last())
+            .map(|&link| (link, Vector3::from_fn(|_, _| rng.uniform(-0.5, 0.5))))
+            .collect();
+        let mut placements =
+            BatchPlacements::new(&model, &links, &motion, &reference_q, &reference, &points);
         for round in 0..200 {
             let mut rows = Vec::new();
             for lane in 0..LANES {
@@ -448,6 +525,15 @@ mod tests {
                         links.iter().all(usable),
                         "lane {lane} round {round} vector {vector}"
                     );
+                    // Each point where nalgebra's `Isometry3 * Point3` puts it, to the bit.
+                    for (placed, (link, point)) in placements.points(lane).zip(&points) {
+                        let expected = batched.link_placement[link.0] * Point3::from(*point);
+                        assert_eq!(
+                            placed.map(f64::to_bits),
+                            expected.coords.map(f64::to_bits),
+                            "point on {link:?} lane {lane} round {round} vector {vector}"
+                        );
+                    }
                     for link in &links {
                         let bits = |data: &Data| {
                             let p = &data.link_placement[link.0];
