@@ -372,15 +372,27 @@ impl BatchPlacements {
                 }
             }
         }
-        let mut usable = [self.points.is_some(); LANES];
+        // Every placement usable (`usable_parts`) in a lane: its largest translation coordinate is within
+        // the extent, and no coordinate is infinite or NaN (a product by zero is zero exactly when the
+        // factor is finite; NaN sums to NaN). As comparisons, so they vectorise across lanes.
+        let (mut widest, mut finite) = ([0.0f64; LANES], [0.0f64; LANES]);
         for poses in &self.poses {
-            for (n, usable) in usable.iter_mut().enumerate() {
-                let translation = [poses.x[n], poses.y[n], poses.z[n]];
-                let rotation = [poses.i[n], poses.j[n], poses.k[n], poses.w[n]];
-                *usable &= usable_parts(translation, rotation);
+            for n in 0..LANES {
+                for coordinate in [poses.x[n], poses.y[n], poses.z[n]] {
+                    let size = coordinate.abs();
+                    widest[n] = if size > widest[n] { size } else { widest[n] };
+                }
+                for coordinate in [poses.x[n], poses.y[n], poses.z[n]] {
+                    finite[n] += coordinate * 0.0;
+                }
+                for coordinate in [poses.i[n], poses.j[n], poses.k[n], poses.w[n]] {
+                    finite[n] += coordinate * 0.0;
+                }
             }
         }
-        self.usable = usable;
+        self.usable = std::array::from_fn(|n| {
+            self.points.is_some() && usable_parts([widest[n], 0.0, 0.0], [finite[n], 0.0, 0.0, 0.0])
+        });
         for ((step, point), placed) in self.points.iter().flatten().zip(&mut self.placed_points) {
             *placed = transform_point(&self.poses[*step], point);
         }
@@ -497,6 +509,8 @@ mod tests {
                     q[j.0] = match rng.next_u64() % 16 {
                         0 => 0.0,
                         1 if round % 7 == 0 => f64::NAN,
+                        // Far out: a prismatic joint's link beyond the collision extent.
+                        2 if round % 5 == 0 => 1e12,
                         _ => rng.uniform(-4.0, 4.0),
                     };
                 }
