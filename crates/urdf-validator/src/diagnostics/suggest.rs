@@ -16,12 +16,16 @@ pub fn closest<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> V
     }
     let limit = (wanted_len / 3).max(2);
     let wanted_chars: Vec<char> = wanted.chars().collect();
+    let wanted_counts = CharCounts::of(wanted);
     let mut candidate_chars = Vec::new();
     let mut scored: Vec<(usize, &str)> = candidates
         .filter(|c| c.len() <= 4 * MAX_NAME_CHARS)
         .filter_map(|c| {
             if c.contains(wanted) || wanted.contains(c) {
                 return Some((edit_distance(wanted, c), c));
+            }
+            if wanted_counts.bag_distance(c) > limit {
+                return None;
             }
             candidate_chars.clear();
             candidate_chars.extend(c.chars());
@@ -30,6 +34,45 @@ pub fn closest<'a>(wanted: &str, candidates: impl Iterator<Item = &'a str>) -> V
         .collect();
     scored.sort();
     scored.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+/// How many times each character occurs in a name, ASCII characters each on their own and every other
+/// character counted as one (which only lowers the bag distance below).
+struct CharCounts([i16; 128]);
+
+impl CharCounts {
+    fn of(name: &str) -> CharCounts {
+        let mut counts = [0i16; 128];
+        for c in name.chars() {
+            counts[Self::bucket(c)] += 1;
+        }
+        CharCounts(counts)
+    }
+
+    fn bucket(c: char) -> usize {
+        if c.is_ascii() {
+            c as usize
+        } else {
+            0
+        }
+    }
+
+    /// A lower bound of the edit distance to `other` (shorter than 32,768 characters): the
+    /// larger of the characters this name has beyond `other`'s and those `other` has beyond this one's
+    /// (the bag distance; an edit changes each by at most one). Linear in the length, where the edit
+    /// distance is quadratic, so most names are ruled out before it.
+    fn bag_distance(&self, other: &str) -> usize {
+        let mut difference = self.0;
+        for c in other.chars() {
+            difference[Self::bucket(c)] -= 1;
+        }
+        let (mut beyond, mut short) = (0usize, 0usize);
+        for d in difference {
+            beyond += d.max(0) as usize;
+            short += (-d).max(0) as usize;
+        }
+        beyond.max(short)
+    }
 }
 
 /// The edit distance between `a` and `b` (as [`edit_distance`]) when it is at most `limit`: only the
@@ -105,6 +148,28 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The bag distance never exceeds the edit distance (random words, ASCII and not), and is often
+    /// well above the half of it that a single edit could make it.
+    #[test]
+    fn the_bag_distance_is_a_lower_bound_of_the_edit_distance() {
+        let mut rng = crate::rng::SplitMix64::new(12);
+        let word = |rng: &mut crate::rng::SplitMix64| -> String {
+            let len = (rng.next_u64() % 12) as usize;
+            (0..len)
+                .map(|_| ['a', 'b', '_', '1', 'é', 'ü'][(rng.next_u64() % 6) as usize])
+                .collect()
+        };
+        let mut tight = 0;
+        for _ in 0..5000 {
+            let (a, b) = (word(&mut rng), word(&mut rng));
+            let bag = CharCounts::of(&a).bag_distance(&b);
+            let full = edit_distance(&a, &b);
+            assert!(bag <= full, "{a:?} {b:?}: bag {bag} > edit {full}");
+            tight += usize::from(2 * bag >= full);
+        }
+        assert!(tight > 2500, "{tight}");
     }
 
     #[test]
