@@ -16,6 +16,9 @@ use crate::model::LinkId;
 /// branch per sphere).
 const LANES: usize = 8;
 
+/// Blocks per chunk of [`HeldSpheres::block`]: their spheres are tested against a group's at once.
+const BLOCK_LANES: usize = 4;
+
 /// The most rigid groups grouped this way: the group-against-group tests grow with the square of their
 /// number (a long chain, every joint varying, is left to the other broad phases).
 const MAX_GROUPS: usize = 64;
@@ -61,8 +64,10 @@ pub(super) struct HeldSpheres {
     /// Per lane of `held` (block by block): the index of its held slot in [`HeldBroad`]'s `held`.
     held_index: Vec<u32>,
     /// Per block of `held`: a sphere around its spheres (centre, radius; infinite when a lane is not
-    /// finite), tested before its lanes.
-    block: Vec<(Vector3<f64>, f64)>,
+    /// finite), tested before its lanes; [`BLOCK_LANES`] blocks' spheres to a chunk, as x, y, z and
+    /// radius of each (the padding of the last chunk is infinitely far), so that a group is tested
+    /// against several blocks at once.
+    block: Vec<[[f64; BLOCK_LANES]; 4]>,
     /// The held slots near one group (indices into [`HeldBroad`]'s `held`), refilled per group.
     near: Vec<u32>,
 }
@@ -85,8 +90,18 @@ impl HeldSpheres {
                 lanes[3][lane] = r;
             }
             self.held.push(lanes);
-            self.block
-                .push(enclosing(indices.iter().map(|&h| held[h as usize])));
+            let (centre, radius) = enclosing(indices.iter().map(|&h| held[h as usize]));
+            let block = self.held.len() - 1;
+            if block % BLOCK_LANES == 0 {
+                let mut chunk = [[f64::INFINITY; BLOCK_LANES]; 4];
+                chunk[3] = [0.0; BLOCK_LANES];
+                self.block.push(chunk);
+            }
+            if let Some(chunk) = self.block.last_mut() {
+                let lane = block % BLOCK_LANES;
+                (chunk[0][lane], chunk[1][lane], chunk[2][lane]) = (centre.x, centre.y, centre.z);
+                chunk[3][lane] = radius;
+            }
         }
     }
 }
@@ -278,31 +293,39 @@ impl HeldBroad {
 fn held_near(centre: &Vector3<f64>, reach: f64, spheres: &HeldSpheres, near: &mut Vec<u32>) {
     near.clear();
     let (cx, cy, cz) = (centre.x, centre.y, centre.z);
-    for (block, ([x, y, z, radius], (block_centre, block_radius))) in
-        spheres.held.iter().zip(&spheres.block).enumerate()
-    {
+    for (chunk, [bx, by, bz, block_radius]) in spheres.block.iter().enumerate() {
         // A block whose enclosing sphere is beyond the reach holds no sphere within it (the enclosing
         // radius has slack for rounding); NaN and infinite radii fail this test, so their lanes decide.
-        let far = block_radius + reach;
-        if (block_centre - centre).norm_squared() >= far * far {
-            continue;
+        let mut open = 0u32;
+        for block in 0..BLOCK_LANES {
+            let (dx, dy, dz) = (bx[block] - cx, by[block] - cy, bz[block] - cz);
+            let far = block_radius[block] + reach;
+            open |= u32::from(!(dx * dx + dy * dy + dz * dz >= far * far)) << block;
         }
-        // Squared distance less squared reach, lane by lane: negative exactly when the distance is below
-        // the reach (a rounded difference keeps the sign of the exact one).
-        let mut excess = [0.0; LANES];
-        for lane in 0..LANES {
-            let (dx, dy, dz) = (cx - x[lane], cy - y[lane], cz - z[lane]);
-            let lane_reach = reach + radius[lane];
-            excess[lane] = dx * dx + dy * dy + dz * dz - lane_reach * lane_reach;
-        }
-        let mut hits = 0u32;
-        for (lane, excess) in excess.iter().enumerate() {
-            hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
-        }
-        while hits != 0 {
-            let lane = block * LANES + hits.trailing_zeros() as usize;
-            near.extend(spheres.held_index.get(lane));
-            hits &= hits - 1;
+        while open != 0 {
+            let block = chunk * BLOCK_LANES + open.trailing_zeros() as usize;
+            open &= open - 1;
+            // Past the last block: the padding, open only when a value is NaN.
+            let Some([x, y, z, radius]) = spheres.held.get(block) else {
+                break;
+            };
+            // Squared distance less squared reach, lane by lane: negative exactly when the distance is
+            // below the reach (a rounded difference keeps the sign of the exact one).
+            let mut excess = [0.0; LANES];
+            for lane in 0..LANES {
+                let (dx, dy, dz) = (cx - x[lane], cy - y[lane], cz - z[lane]);
+                let lane_reach = reach + radius[lane];
+                excess[lane] = dx * dx + dy * dy + dz * dz - lane_reach * lane_reach;
+            }
+            let mut hits = 0u32;
+            for (lane, excess) in excess.iter().enumerate() {
+                hits |= u32::from(*excess < 0.0 || excess.is_nan()) << lane;
+            }
+            while hits != 0 {
+                let lane = block * LANES + hits.trailing_zeros() as usize;
+                near.extend(spheres.held_index.get(lane));
+                hits &= hits - 1;
+            }
         }
     }
 }
@@ -478,9 +501,15 @@ mod tests {
             let mut spheres = HeldSpheres::default();
             spheres.set_held(&held);
             let mut near = Vec::new();
-            for _ in 0..500 {
-                let centre = Vector3::from_fn(|_, _| rng.uniform(-1.5, 1.5));
-                let reach = rng.uniform(0.0, 0.5);
+            for query in 0..500 {
+                let mut centre = Vector3::from_fn(|_, _| rng.uniform(-1.5, 1.5));
+                let mut reach = rng.uniform(0.0, 0.5);
+                // Unusable values keep every sphere.
+                if query % 50 == 0 {
+                    reach = f64::INFINITY;
+                } else if query % 70 == 1 {
+                    centre.y = f64::NAN;
+                }
                 held_near(&centre, reach, &spheres, &mut near);
                 near.sort_unstable();
                 let every: Vec<u32> = (0..count as u32)
