@@ -300,7 +300,8 @@ fn held_near(centre: &Vector3<f64>, reach: f64, spheres: &HeldSpheres, near: &mu
         for block in 0..BLOCK_LANES {
             let (dx, dy, dz) = (bx[block] - cx, by[block] - cy, bz[block] - cz);
             let far = block_radius[block] + reach;
-            open |= u32::from(!(dx * dx + dy * dy + dz * dz >= far * far)) << block;
+            let beyond = dx * dx + dy * dy + dz * dz >= far * far;
+            open |= u32::from(!beyond) << block;
         }
         while open != 0 {
             let block = chunk * BLOCK_LANES + open.trailing_zeros() as usize;
