@@ -200,7 +200,7 @@ pub(super) struct BatchPlacements {
     framed: Poses,
     turn: Poses,
     slide: Poses,
-    /// Per lane: whether every link placed there is usable for self-collision ([`usable_parts`]).
+    /// Per lane: whether every link carrying a point is usable for self-collision ([`usable_parts`]).
     usable: [bool; LANES],
     /// Points carried by placed links (a step and a point in its link's frame: the centres of the
     /// links' bounding spheres; `None` when a point's link is not placed here, then no lane is usable),
@@ -372,30 +372,32 @@ impl BatchPlacements {
                 }
             }
         }
-        // Every placement usable (`usable_parts`) in a lane: its largest translation coordinate is within
-        // the extent, and no coordinate is infinite or NaN (a product by zero is zero exactly when the
-        // factor is finite; NaN sums to NaN). As comparisons, so they vectorise across lanes.
+        // Every link carrying a point usable (`usable_parts`) in a lane: its largest translation
+        // coordinate is within the extent, and no coordinate is infinite or NaN (a product by zero is
+        // zero exactly when the factor is finite; NaN sums to NaN). As comparisons, so they vectorise
+        // across lanes.
         let (mut widest, mut finite) = ([0.0f64; LANES], [0.0f64; LANES]);
-        for poses in &self.poses {
-            for n in 0..LANES {
-                for coordinate in [poses.x[n], poses.y[n], poses.z[n]] {
-                    let size = coordinate.abs();
-                    widest[n] = if size > widest[n] { size } else { widest[n] };
-                }
-                for coordinate in [poses.x[n], poses.y[n], poses.z[n]] {
-                    finite[n] += coordinate * 0.0;
-                }
-                for coordinate in [poses.i[n], poses.j[n], poses.k[n], poses.w[n]] {
-                    finite[n] += coordinate * 0.0;
+        for ((step, point), placed) in self.points.iter().flatten().zip(&mut self.placed_points) {
+            let poses = &self.poses[*step];
+            // Coordinate by coordinate, each across the lanes (one vector operation per step).
+            for coordinate in [&poses.x, &poses.y, &poses.z] {
+                for (widest, value) in widest.iter_mut().zip(coordinate) {
+                    let size = value.abs();
+                    *widest = if size > *widest { size } else { *widest };
                 }
             }
+            for coordinate in [
+                &poses.x, &poses.y, &poses.z, &poses.i, &poses.j, &poses.k, &poses.w,
+            ] {
+                for (finite, value) in finite.iter_mut().zip(coordinate) {
+                    *finite += value * 0.0;
+                }
+            }
+            *placed = transform_point(poses, point);
         }
         self.usable = std::array::from_fn(|n| {
             self.points.is_some() && usable_parts([widest[n], 0.0, 0.0], [finite[n], 0.0, 0.0, 0.0])
         });
-        for ((step, point), placed) in self.points.iter().flatten().zip(&mut self.placed_points) {
-            *placed = transform_point(&self.poses[*step], point);
-        }
     }
 
     /// The points given to [`BatchPlacements::new`] where sample `lane` puts them, in that order (only
@@ -406,8 +408,8 @@ impl BatchPlacements {
             .map(move |[x, y, z]| Vector3::new(x[lane], y[lane], z[lane]))
     }
 
-    /// Whether every link placed in `lane` has a usable placement for self-collision, and every point
-    /// given to [`BatchPlacements::new`] is on a placed link.
+    /// Whether every point given to [`BatchPlacements::new`] is on a placed link, and every such link
+    /// has a usable placement for self-collision in `lane`.
     pub(super) fn usable(&self, lane: usize) -> bool {
         self.usable.get(lane).copied().unwrap_or(false)
     }
@@ -501,6 +503,10 @@ mod tests {
             .collect();
         let mut placements =
             BatchPlacements::new(&model, &links, &motion, &reference_q, &reference, &points);
+        // Points on the first two links only (above the prismatic joint): only they decide a lane's use.
+        let upper = &points[..2];
+        let mut upper_placements =
+            BatchPlacements::new(&model, &links, &motion, &reference_q, &reference, upper);
         for round in 0..200 {
             let mut rows = Vec::new();
             for lane in 0..LANES {
@@ -516,13 +522,16 @@ mod tests {
                 }
                 model.apply_mimic(&mut q);
                 placements.load(lane, &q);
+                upper_placements.load(lane, &q);
                 rows.push(q);
             }
             for vector in [true, false] {
                 if vector {
                     placements.place();
+                    upper_placements.place();
                 } else {
                     placements.place_lanes();
+                    upper_placements.place_lanes();
                 }
                 for (lane, q) in rows.iter().enumerate() {
                     let mut alone = reference.clone();
@@ -538,6 +547,11 @@ mod tests {
                         placements.usable(lane),
                         links.iter().all(usable),
                         "lane {lane} round {round} vector {vector}"
+                    );
+                    assert_eq!(
+                        upper_placements.usable(lane),
+                        upper.iter().all(|(link, _)| usable(link)),
+                        "upper links, lane {lane} round {round} vector {vector}"
                     );
                     // Each point where nalgebra's `Isometry3 * Point3` puts it, to the bit.
                     for (placed, (link, point)) in placements.points(lane).zip(&points) {
