@@ -55,8 +55,8 @@ pub(super) struct HeldSpheres {
     /// Per group: its sphere's centre in its root link's frame, and its radius (slack included; infinite
     /// when a link of the group had no usable placement then, so that every pair of it is kept).
     group: Vec<(Point3<f64>, f64)>,
-    /// Per group: its sphere's centre in the current pose.
-    group_centre: Vec<Vector3<f64>>,
+    /// Per group: its sphere in the current pose (centre, and radius as in `group`).
+    group_placed: Vec<(Vector3<f64>, f64)>,
     /// The held slots' spheres (they stay where they are), [`LANES`] per block: x, y, z and radius of each
     /// (the padding of the last block is infinitely far). Blocks gather nearby spheres (see
     /// [`spatial_order`]), so most blocks are far from a group as a whole.
@@ -273,16 +273,17 @@ impl HeldBroad {
                 }
             }
         };
-        spheres.group_centre.clear();
+        spheres.group_placed.clear();
         spheres
-            .group_centre
+            .group_placed
             .extend(
-                self.group_root.iter().zip(&spheres.group).map(
-                    |(root, (local, _))| match placements.get(root.0) {
-                        Some(placement) => placement.transform_point(local).coords,
-                        None => Vector3::repeat(f64::NAN),
-                    },
-                ),
+                self.group_root
+                    .iter()
+                    .zip(&spheres.group)
+                    .map(|(root, (local, radius))| match placements.get(root.0) {
+                        Some(placement) => (placement.transform_point(local).coords, *radius),
+                        None => (Vector3::repeat(f64::NAN), *radius),
+                    }),
             );
         let near = |a: &Vector3<f64>, b: &Vector3<f64>, reach: f64| {
             // Infinite reach (a group measured unusable) or a centre gone non-finite: keep the pairs.
@@ -295,10 +296,9 @@ impl HeldBroad {
                 ..offsets.get(i + 1).copied().unwrap_or_default() as usize
         };
         let mut near_held = std::mem::take(&mut spheres.near);
-        for (g, (centre, (_, radius))) in
-            spheres.group_centre.iter().zip(&spheres.group).enumerate()
-        {
-            held_near(centre, radius + margin, spheres, &mut near_held);
+        for g in 0..spheres.group_placed.len() {
+            let (centre, radius) = spheres.group_placed[g];
+            held_near(&centre, radius + margin, spheres, &mut near_held);
             for &h in &near_held {
                 let h = h as usize;
                 if h < held_count {
@@ -310,9 +310,9 @@ impl HeldBroad {
         }
         spheres.near = near_held;
         for &(g, k, start, end) in &self.group_links {
-            let [(one, (_, one_radius)), (other, (_, other_radius))] =
-                [g, k].map(|g| (&spheres.group_centre[g as usize], spheres.group[g as usize]));
-            if near(one, other, one_radius + other_radius + margin) {
+            let (one, one_radius) = spheres.group_placed[g as usize];
+            let (other, other_radius) = spheres.group_placed[k as usize];
+            if near(&one, &other, one_radius + other_radius + margin) {
                 keep(&self.group_pairs[start as usize..end as usize]);
             }
         }
