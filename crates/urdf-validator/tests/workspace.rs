@@ -440,6 +440,22 @@ fn swinging_ball(height: f64, length: f64, radius: f64) -> String {
     )
 }
 
+/// [`swinging_ball`] with a second ball, 0.5 m to the side on its own mount, that follows the swing joint
+/// `offset` radians ahead (a mimic joint outside the arm).
+fn swinging_twins(height: f64, length: f64, radius: f64, offset: f64) -> String {
+    swinging_ball(height, length, radius).replace(
+        "</robot>",
+        &format!(
+            r#"<joint name="twin_mount_joint" type="fixed"><parent link="base"/><child link="twin_mount"/><origin xyz="0 0.5 {height}"/></joint>
+  <link name="twin_mount">{m}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+  <joint name="twin_swing" type="continuous"><parent link="twin_mount"/><child link="twin"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/><mimic joint="swing" multiplier="1" offset="{offset}"/></joint>
+  <link name="twin">{m}<collision><origin xyz="0 0 {length}"/><geometry><sphere radius="{radius}"/></geometry></collision></link>
+</robot>"#,
+            m = inertial(1.0, [0.0; 3])
+        ),
+    )
+}
+
 #[test]
 fn self_collision_fraction_matches_the_colliding_arc() {
     // Ball centre height h + L·cos q hits the base top (z = 0) when h + L·cos q < r, i.e. cos q < (r − h)/L:
@@ -486,17 +502,7 @@ fn a_mimic_follower_outside_the_arm_moves_with_it() {
     // (horizontal, so free, at the reference pose). It hits the base on its own arc, as wide as the first
     // (±0.72 rad) and centred π/2 from it, so the arcs do not overlap: twice the colliding fraction.
     let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
-    let mass = inertial(1.0, [0.0; 3]);
-    let urdf = swinging_ball(h, l, r).replace(
-        "</robot>",
-        &format!(
-            r#"<joint name="twin_mount_joint" type="fixed"><parent link="base"/><child link="twin_mount"/><origin xyz="0 0.5 {h}"/></joint>
-  <link name="twin_mount">{mass}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
-  <joint name="twin_swing" type="continuous"><parent link="twin_mount"/><child link="twin"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/><mimic joint="swing" multiplier="1" offset="1.5707963267948966"/></joint>
-  <link name="twin">{mass}<collision><origin xyz="0 0 {l}"/><geometry><sphere radius="{r}"/></geometry></collision></link>
-</robot>"#
-        ),
-    );
+    let urdf = swinging_twins(h, l, r, std::f64::consts::FRAC_PI_2);
     let colliding = 2.0 * 2.0 * ((h - r) / l).acos() / std::f64::consts::TAU;
     let ws = workspace_of(
         &urdf,
@@ -678,19 +684,8 @@ fn sampling_is_reproducible_and_independent_of_threads() {
 /// pair, the whole section) are the same on one thread as on two or four.
 #[test]
 fn self_collision_results_do_not_depend_on_threads() {
-    let (h, l, r): (f64, f64, f64) = (0.5, 0.6, 0.05);
-    // Two balls on their own arcs (see `a_mimic_follower_outside_the_arm_moves_with_it`), both grazing.
-    let urdf = swinging_ball(h, l, r).replace(
-        "</robot>",
-        &format!(
-            r#"<joint name="twin_mount_joint" type="fixed"><parent link="base"/><child link="twin_mount"/><origin xyz="0 0.5 {h}"/></joint>
-  <link name="twin_mount">{m}<collision><geometry><sphere radius="0.02"/></geometry></collision></link>
-  <joint name="twin_swing" type="continuous"><parent link="twin_mount"/><child link="twin"/><axis xyz="0 1 0"/><limit effort="100" velocity="1"/><mimic joint="swing" multiplier="1" offset="1.0"/></joint>
-  <link name="twin">{m}<collision><origin xyz="0 0 {l}"/><geometry><sphere radius="{r}"/></geometry></collision></link>
-</robot>"#,
-            m = inertial(1.0, [0.0; 3])
-        ),
-    );
+    // Two balls on their own arcs, both grazing the base.
+    let urdf = swinging_twins(0.5, 0.6, 0.05, 1.0);
     let run = || {
         let ws = workspace_of(
             &urdf,
