@@ -222,8 +222,8 @@ impl PairSet {
         &self.pairs
     }
 
-    /// The links of the set the set's joints move, in the order [`CheckScratch::vouch_moving`] takes
-    /// their bounding-sphere centres.
+    /// The links of the set the set's joints move, in slot order (the order in which a caller that
+    /// places them hands their bounding-sphere centres to the check).
     pub fn moving_links(&self) -> impl Iterator<Item = LinkId> + '_ {
         self.moving.iter().map(|&slot| self.links[slot as usize])
     }
