@@ -266,7 +266,8 @@ pub struct CheckScratch {
     /// placement is not usable.
     centre: Vec<Vector3<f64>>,
     /// Per slot: the pose its `centre` was computed in ([`HELD`]: a held slot's, kept). With the
-    /// rigid-group broad phase a moving slot's centre is computed only when one of its pairs is looked at.
+    /// rigid-group broad phase a moving slot's centre is computed only when one of its pairs is looked at
+    /// (unless the caller vouched for the centres, see [`CheckScratch::vouch_moving`]).
     centre_stamp: Vec<u32>,
     /// Per shape: where it is in the current pose. The first stamp tells whether its centre is placed
     /// for the current pose, the second whether the rest is (most shapes go no further than the sphere
@@ -789,7 +790,7 @@ impl CollisionModel {
             _ => None,
         };
         // With the rigid-group broad phase (held links measured, every link usable), the moving slots'
-        // centres are computed as their pairs are looked at.
+        // centres are the caller's (vouched for) or computed as their pairs are looked at.
         let grouped = pairs.held.as_ref().filter(|_| {
             held == Some(true)
                 && pairs.sweep.is_none()
