@@ -269,10 +269,9 @@ pub struct CheckScratch {
     /// rigid-group broad phase a moving slot's centre is computed only when one of its pairs is looked at
     /// (unless the caller vouched for the centres, see [`CheckScratch::vouch_moving`]).
     centre_stamp: Vec<u32>,
-    /// Per shape: where it is in the current pose. The first stamp tells whether its centre is placed
-    /// for the current pose, the second whether the rest is (most shapes go no further than the sphere
-    /// test).
-    placed: Vec<(u32, u32, Placed)>,
+    /// Per shape: where it is in the current pose, placed in stages as the tests reach them (most shapes
+    /// go no further than the sphere test, most of the rest no further than the box test).
+    placed: Vec<Placed>,
     stamp: u32,
     /// Per pair of the last pair set: what the narrow phase keeps of it (see [`shape::proximity`]).
     memory: Vec<PairMemory>,
@@ -299,7 +298,7 @@ impl CheckScratch {
         CheckScratch {
             centre: Vec::new(),
             centre_stamp: Vec::new(),
-            placed: vec![(0, 0, Placed::default()); model.shapes.len()],
+            placed: vec![Placed::default(); model.shapes.len()],
             stamp: 0,
             memory: Vec::new(),
             simplex: VoronoiSimplex::new(),
@@ -348,7 +347,7 @@ impl CheckScratch {
     fn next_pose(&mut self) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 || self.stamp == HELD {
-            self.placed.iter_mut().for_each(|p| (p.0, p.1) = (0, 0));
+            self.placed.iter_mut().for_each(Placed::forget);
             self.centre_stamp
                 .iter_mut()
                 .filter(|s| **s != HELD)
@@ -372,23 +371,36 @@ fn restamp(stamp: &mut u32, current: u32, held: bool) -> bool {
     stale
 }
 
-/// A shape in the world.
+/// A shape in the world. Each part has the stamp of the pose it was placed in (see [`restamp`]).
 #[derive(Clone, Copy, Debug)]
 struct Placed {
-    /// The shape frame, for GJK.
-    pose: Pose,
     /// The bounding-sphere centre.
     centre: Vector3<f64>,
+    centre_stamp: u32,
     /// The bounding box: centre and axes.
     obb: (Vector3<f64>, Matrix3<f64>),
+    obb_stamp: u32,
+    /// The shape frame, for the narrow phase.
+    pose: Pose,
+    pose_stamp: u32,
+}
+
+impl Placed {
+    /// Every part stale.
+    fn forget(&mut self) {
+        (self.centre_stamp, self.obb_stamp, self.pose_stamp) = (0, 0, 0);
+    }
 }
 
 impl Default for Placed {
     fn default() -> Self {
         Placed {
-            pose: Pose::IDENTITY,
             centre: Vector3::zeros(),
+            centre_stamp: 0,
             obb: (Vector3::zeros(), Matrix3::identity()),
+            obb_stamp: 0,
+            pose: Pose::IDENTITY,
+            pose_stamp: 0,
         }
     }
 }
@@ -1005,12 +1017,15 @@ impl CollisionModel {
                 if (centre_a - centre_b).norm_squared() >= reach * reach {
                     continue;
                 }
-                self.place_shape(i, &placements[a.0], held[0], scratch);
-                self.place_shape(j, &placements[b.0], held[1], scratch);
-                let (pa, pb) = (&scratch.placed[i].2, &scratch.placed[j].2);
+                self.place_box(i, &placements[a.0], held[0], scratch);
+                self.place_box(j, &placements[b.0], held[1], scratch);
+                let (pa, pb) = (&scratch.placed[i], &scratch.placed[j]);
                 if boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin) {
                     continue;
                 }
+                self.place_pose(i, &placements[a.0], held[0], scratch);
+                self.place_pose(j, &placements[b.0], held[1], scratch);
+                let (pa, pb) = (&scratch.placed[i], &scratch.placed[j]);
                 // A shape held in place goes first, so that its support point along the pair's axis
                 // is kept between poses (see `PairMemory`).
                 let (first, second, first_held) = if held[1] && !held[0] {
@@ -1073,8 +1088,8 @@ impl CollisionModel {
         held: bool,
         scratch: &mut CheckScratch,
     ) -> Vector3<f64> {
-        let (stamp, _, placed) = &mut scratch.placed[index];
-        if restamp(stamp, scratch.stamp, held) {
+        let placed = &mut scratch.placed[index];
+        if restamp(&mut placed.centre_stamp, scratch.stamp, held) {
             placed.centre = link
                 .transform_point(&Point3::from(self.shapes[index].centre))
                 .coords;
@@ -1082,20 +1097,32 @@ impl CollisionModel {
         placed.centre
     }
 
-    /// Place the rest of shape `index` (its centre placed, see [`place_centre`](Self::place_centre)):
-    /// its frame and its box.
-    fn place_shape(
+    /// Place the box of shape `index` (as [`place_centre`](Self::place_centre) its centre).
+    fn place_box(
         &self,
         index: usize,
         link: &Isometry3<f64>,
         held: bool,
         scratch: &mut CheckScratch,
     ) {
-        let (_, stamp, placed) = &mut scratch.placed[index];
-        if restamp(stamp, scratch.stamp, held) {
-            let shape = &self.shapes[index];
-            placed.pose = to_pose(&(link * shape.frame));
-            placed.obb = shape.obb.placed(link);
+        let placed = &mut scratch.placed[index];
+        if restamp(&mut placed.obb_stamp, scratch.stamp, held) {
+            placed.obb = self.shapes[index].obb.placed(link);
+        }
+    }
+
+    /// Place the frame of shape `index`, for the narrow phase (as [`place_centre`](Self::place_centre)
+    /// its centre).
+    fn place_pose(
+        &self,
+        index: usize,
+        link: &Isometry3<f64>,
+        held: bool,
+        scratch: &mut CheckScratch,
+    ) {
+        let placed = &mut scratch.placed[index];
+        if restamp(&mut placed.pose_stamp, scratch.stamp, held) {
+            placed.pose = to_pose(&(link * self.shapes[index].frame));
         }
     }
 }
