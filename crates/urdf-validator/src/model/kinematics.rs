@@ -2,7 +2,7 @@
 //! and axis and each link's mass; a [`Data`] is the scratch of one evaluation, so evaluations can run in
 //! parallel over one shared model.
 
-use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::{Joint, JointKind, Link, Pose};
@@ -136,10 +136,7 @@ impl JointData {
 pub fn joint_motion(kind: JointKind, axis: Vector3<f64>, q: f64) -> Isometry3<f64> {
     match kind {
         JointKind::Revolute | JointKind::Continuous => match Unit::try_new(axis, 1e-9) {
-            Some(axis) => Isometry3::from_parts(
-                Translation3::identity(),
-                UnitQuaternion::from_axis_angle(&axis, q),
-            ),
+            Some(axis) => Isometry3::from_parts(Translation3::identity(), axis_rotation(&axis, q)),
             None => Isometry3::identity(),
         },
         JointKind::Prismatic => {
@@ -147,6 +144,14 @@ pub fn joint_motion(kind: JointKind, axis: Vector3<f64>, q: f64) -> Isometry3<f6
         }
         JointKind::Fixed | JointKind::Floating | JointKind::Planar => Isometry3::identity(),
     }
+}
+
+/// The rotation by `angle` about the unit `axis`: nalgebra's `UnitQuaternion::from_axis_angle`, with the
+/// half angle's sine and cosine from `libm::sincos` (FreeBSD's msun in Rust: the same bits on every
+/// platform, and what the workspace sampler computes for many samples at once).
+pub fn axis_rotation(axis: &Unit<Vector3<f64>>, angle: f64) -> UnitQuaternion<f64> {
+    let (sine, cosine) = libm::sincos(angle / 2.0);
+    UnitQuaternion::new_unchecked(Quaternion::from_parts(cosine, axis.as_ref() * sine))
 }
 
 /// What a link contributes to the robot's mass.

@@ -4,11 +4,13 @@
 //! links one after the other: two isometry products per moving joint, in scalar registers. Here the
 //! [`LANES`] samples of a batch are placed together, link by link, each product lane by lane (structure
 //! of arrays), so the compiler evaluates several samples per vector register. Every product is written
-//! in nalgebra's order of operations, and each joint's rotation is nalgebra's own
-//! `UnitQuaternion::from_axis_angle`: every placement is the same bits as the scalar code gives.
+//! in nalgebra's order of operations, and each joint's rotation is the scalar code's
+//! [`axis_rotation`](crate::model::kinematics::axis_rotation), its sines and cosines from [`sincos`]
+//! lane by lane: every placement is the same bits as the scalar code gives.
 
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
+use super::sincos::sincos;
 use crate::analysis::collision::usable_parts;
 use crate::model::kinematics::{joint_motion, Data};
 use crate::model::{JointId, LinkId, Model, Motion};
@@ -350,14 +352,16 @@ impl BatchPlacements {
                 JointMotion::None => out.clone_from(framed),
                 JointMotion::Constant(motion) => compose(framed, motion, out),
                 JointMotion::Revolute(axis) => {
-                    for (n, value) in values.iter().enumerate() {
-                        let turn = match axis {
-                            Some(axis) => UnitQuaternion::from_axis_angle(axis, *value),
-                            None => UnitQuaternion::identity(),
+                    // `axis_rotation` lane by lane: the half angles' sines and cosines, the axis scaled
+                    // by the sine (a degenerate axis turns nothing).
+                    let (sines, cosines) = sincos(&values.map(|value| value / 2.0));
+                    for n in 0..LANES {
+                        let (v, w) = match axis {
+                            Some(axis) => (axis.as_ref() * sines[n], cosines[n]),
+                            None => (Vector3::zeros(), 1.0),
                         };
-                        let q = turn.quaternion();
-                        (self.turn.i[n], self.turn.j[n]) = (q.i, q.j);
-                        (self.turn.k[n], self.turn.w[n]) = (q.k, q.w);
+                        (self.turn.i[n], self.turn.j[n]) = (v.x, v.y);
+                        (self.turn.k[n], self.turn.w[n]) = (v.z, w);
                     }
                     compose(framed, &self.turn, out);
                     select_moved(values, framed, out);
@@ -475,7 +479,8 @@ mod tests {
     }
 
     /// The batch gives every link the same bits as placing each sample alone, in the vector code the
-    /// CPU runs and in the portable code, with joint values that are random, exactly zero or NaN.
+    /// CPU runs and in the portable code, with joint values that are random, exactly zero, NaN, tiny, a
+    /// whole turn or several turns (the vector sine and cosine hand some of them to libm).
     #[test]
     fn a_batch_places_every_link_as_the_scalar_kinematics_does() {
         let (robot, _) = crate::urdf::parse_urdf(ARM, std::path::Path::new("arm.urdf")).unwrap();
@@ -517,6 +522,11 @@ mod tests {
                         1 if round % 7 == 0 => f64::NAN,
                         // Far out: a prismatic joint's link beyond the collision extent.
                         2 if round % 5 == 0 => 1e12,
+                        // Half angles the vector sine and cosine leave to libm: next to zero, next to
+                        // π, beyond 5π/4.
+                        3 => rng.uniform(-1e-8, 1e-8),
+                        4 => std::f64::consts::TAU * if round % 2 == 0 { 1.0 } else { -1.0 },
+                        5 => rng.uniform(-12.0, 12.0),
                         _ => rng.uniform(-4.0, 4.0),
                     };
                 }
