@@ -193,8 +193,10 @@ struct Step {
 #[derive(Clone)]
 pub(super) struct BatchPlacements {
     steps: Vec<Step>,
-    /// Per step whose joint varies: its value in each sample.
+    /// Per step: its joint's value in each sample (loaded only where the joint varies).
     values: Vec<Lanes>,
+    /// The steps whose joint varies (a revolute or prismatic motion).
+    varying: Vec<usize>,
     /// Per step: its placement in each sample.
     poses: Vec<Poses>,
     /// Working lanes: a link's frame before its joint's motion; a revolute joint's rotations (no
@@ -281,6 +283,14 @@ impl BatchPlacements {
             points,
             placed_points,
             values: vec![[0.0; LANES]; steps.len()],
+            varying: (0..steps.len())
+                .filter(|&s| {
+                    matches!(
+                        steps[s].motion,
+                        JointMotion::Revolute(_) | JointMotion::Prismatic(_)
+                    )
+                })
+                .collect(),
             poses: vec![identity.clone(); steps.len()],
             steps,
             framed: identity.clone(),
@@ -292,8 +302,8 @@ impl BatchPlacements {
 
     /// Take sample `lane`'s joint values from `q` (a full configuration, mimic relations applied).
     pub(super) fn load(&mut self, lane: usize, q: &[f64]) {
-        for (step, values) in self.steps.iter().zip(&mut self.values) {
-            values[lane] = q.get(step.joint.0).copied().unwrap_or(0.0);
+        for &s in &self.varying {
+            self.values[s][lane] = q.get(self.steps[s].joint.0).copied().unwrap_or(0.0);
         }
     }
 
