@@ -298,21 +298,21 @@ impl ArmChain {
         } else {
             Vector3::zeros()
         });
+        // Per joint: its values, their sines and cosines (filled in place: 64 lanes returned by value
+        // would be copied at every joint).
+        let (mut value, mut s, mut c) = ([0.0; BATCH], [0.0; BATCH], [0.0; BATCH]);
         for joint in self.joints.iter().rev() {
-            let value = joint.values(samples, &self.sampled);
+            joint.values(samples, &self.sampled, &mut value);
             if joint.prismatic {
                 point.add_scaled(&joint.axis, &value);
             } else {
-                let (s, c) = if VECTOR {
-                    sincos(&value)
+                if VECTOR {
+                    sincos(&value, &mut s, &mut c);
                 } else {
-                    let mut sin = [0.0; BATCH];
-                    let mut cos = [0.0; BATCH];
-                    for ((s, c), v) in sin.iter_mut().zip(&mut cos).zip(&value) {
+                    for ((s, c), v) in s.iter_mut().zip(&mut c).zip(&value) {
                         (*s, *c) = libm::sincos(*v);
                     }
-                    (sin, cos)
-                };
+                }
                 joint.rotate(&s, &c, &mut point);
                 if APPROACH {
                     joint.rotate(&s, &c, &mut direction);
@@ -357,9 +357,9 @@ impl ChainJoint {
         }
     }
 
-    /// This joint's value in each sample of a batch.
+    /// This joint's value in each sample of a batch, into `values`.
     #[inline(always)]
-    fn values(&self, samples: &Samples, sampled: &[(JointId, f64, f64)]) -> Lanes {
+    fn values(&self, samples: &Samples, sampled: &[(JointId, f64, f64)], values: &mut Lanes) {
         let (index, multiplier, offset) = match self.source {
             Source::Sampled(i) => (i, 1.0, 0.0),
             Source::Mimic {
@@ -367,9 +367,11 @@ impl ChainJoint {
                 multiplier,
                 offset,
             } => (index, multiplier, offset),
-            Source::Constant(v) => return [v; BATCH],
+            Source::Constant(v) => {
+                *values = [v; BATCH];
+                return;
+            }
         };
-        let mut values = [0.0; BATCH];
         match samples {
             Samples::Rows(q) => {
                 for (value, q) in values.iter_mut().zip(q.iter()) {
@@ -385,11 +387,10 @@ impl ChainJoint {
             }
         }
         if let Source::Mimic { .. } = self.source {
-            for value in &mut values {
+            for value in values.iter_mut() {
                 *value = multiplier * *value + offset;
             }
         }
-        values
     }
 }
 
@@ -445,7 +446,9 @@ mod tests {
         let mut point = chain.tip.translation.vector;
         let mut direction = chain.tip.rotation * approach;
         for joint in chain.joints.iter().rev() {
-            let value = joint.values(&Samples::Rows(&[q; BATCH]), &chain.sampled)[0];
+            let mut values = [0.0; BATCH];
+            joint.values(&Samples::Rows(&[q; BATCH]), &chain.sampled, &mut values);
+            let value = values[0];
             if joint.prismatic {
                 point += joint.axis * value;
             } else {

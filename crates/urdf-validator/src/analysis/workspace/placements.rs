@@ -364,7 +364,8 @@ impl BatchPlacements {
                 JointMotion::Revolute(axis) => {
                     // `axis_rotation` lane by lane: the half angles' sines and cosines, the axis scaled
                     // by the sine (a degenerate axis turns nothing).
-                    let (sines, cosines) = sincos(&values.map(|value| value / 2.0));
+                    let (mut sines, mut cosines) = ([0.0; LANES], [0.0; LANES]);
+                    sincos(&values.map(|value| value / 2.0), &mut sines, &mut cosines);
                     for n in 0..LANES {
                         let (v, w) = match axis {
                             Some(axis) => (axis.as_ref() * sines[n], cosines[n]),

@@ -54,13 +54,12 @@ const FIVE_PIO4: f64 = above(0x400f_6a7a);
 const NEAR_PIO2: (f64, f64) = (at(0x3ff9_21fb), above(0x3ff9_21fb));
 const NEAR_PI: (f64, f64) = (at(0x4009_21fb), above(0x4009_21fb));
 
-/// `(sin x, cos x)` of every lane, each the same bits as `libm::sincos(x)`. Written for the compiler to
-/// vectorise: fast where the caller is compiled for AVX2, slower than `libm::sincos` lane by lane on
-/// plain SSE2 (which has no blend).
+/// `sin x` and `cos x` of every lane into `sin` and `cos`, each the same bits as `libm::sincos(x)`.
+/// Written for the compiler to vectorise: fast where the caller is compiled for AVX2, slower than
+/// `libm::sincos` lane by lane on plain SSE2 (which has no blend). The results go into the caller's
+/// arrays: returned, 64 lanes' worth would be copied out again.
 #[inline(always)]
-pub fn sincos<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
-    let mut sin = [0.0; N];
-    let mut cos = [0.0; N];
+pub fn sincos<const N: usize>(x: &[f64; N], sin: &mut [f64; N], cos: &mut [f64; N]) {
     let mut exact = [0u64; N];
     // Branch-free over the lanes: every condition is a select.
     for k in 0..N {
@@ -111,7 +110,6 @@ pub fn sincos<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
             }
         }
     }
-    (sin, cos)
 }
 
 #[cfg(test)]
@@ -160,7 +158,8 @@ mod tests {
         for lanes in angles.chunks(8) {
             let mut x = [0.3; 8];
             x[..lanes.len()].copy_from_slice(lanes);
-            let (s, c) = sincos(&x);
+            let (mut s, mut c) = ([0.0; 8], [0.0; 8]);
+            sincos(&x, &mut s, &mut c);
             for k in 0..8 {
                 let (es, ec) = libm::sincos(x[k]);
                 assert_eq!(
