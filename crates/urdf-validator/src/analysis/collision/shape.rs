@@ -832,112 +832,98 @@ pub fn proximity(
     a_held: Option<usize>,
     simplex: &mut VoronoiSimplex,
 ) -> Proximity {
-    let found = query(a, pose_a, b, pose_b, margin, memory, a_held, simplex);
-    memory.in_contact = found == Proximity::Contact;
-    found
-}
-
-/// The work of [`proximity`], but for remembering whether it found a contact.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn query(
-    a: &ConvexShape,
-    pose_a: &Pose,
-    b: &ConvexShape,
-    pose_b: &Pose,
-    margin: f64,
-    memory: &mut PairMemory,
-    a_held: Option<usize>,
-    simplex: &mut VoronoiSimplex,
-) -> Proximity {
-    let rounding = a.radius + b.radius;
-    let core_distance = if let (Core::Point, Core::Point) = (&a.core, &b.core) {
-        Some(pose_a.translation.distance(pose_b.translation))
-    } else {
-        let pos12 = pose_a.inv_mul(pose_b);
-        let contact_likely = memory.in_contact || memory.axis == Vector::ZERO;
-        if contact_likely && a.inside.meet(&b.inside, &pos12) {
-            return Proximity::Contact;
-        }
-        // The support points of the two tries below are points of the shapes' difference: when neither
-        // separates the shapes, GJK starts from them instead of querying two fresh ones.
-        let mut tried = [CsoPoint::ZERO; 2];
-        let mut count = 0;
-        let axis = memory.axis;
-        if axis != Vector::ZERO {
-            // The last separating direction, tried first: two support points settle most pairs.
-            let near_a = memory.first_support(&a.core, a_held);
-            let near_b = b.core.support_point(&pos12, -axis);
-            if axis.dot(near_b - near_a) - rounding >= margin {
-                return Proximity::Beyond;
-            }
-            tried[count] = CsoPoint::new(near_a, near_b);
-            count += 1;
-        }
-        // Then the direction from one shape's box centre to the other's: pairs that are far apart for
-        // this pose, whatever they were for the last one, are settled by two more support points.
-        if let Some(toward) = (pos12.transform_point(b.inner) - a.inner).try_normalize() {
-            let near_a = a.core.local_support_point(toward);
-            let near_b = b.core.support_point(&pos12, -toward);
-            if toward.dot(near_b - near_a) - rounding >= margin {
-                return Proximity::Beyond;
-            }
-            tried[count] = CsoPoint::new(near_a, near_b);
-            count += 1;
-        }
-        let (warm_a, warm_b) = (
-            Warm {
-                core: &a.core,
-                vertex: Cell::new(usize::MAX),
-            },
-            Warm {
-                core: &b.core,
-                vertex: Cell::new(usize::MAX),
-            },
-        );
-        let seeds: [Vector; 2] = tried.map(|p| p.point);
-        match enclose(&pos12, &warm_a, &warm_b, &seeds[..count], margin + rounding) {
-            Enclosure::Overlap => return Proximity::Contact,
-            Enclosure::Apart(unit) => {
-                memory.set_axis(unit);
-                return Proximity::Beyond;
-            }
-            Enclosure::Unknown => {}
-        }
-        let result = if count > 0 {
-            simplex.reset(tried[0]);
-            if count > 1 {
-                simplex.add_point(tried[1]);
-            }
-            closest_points(&pos12, &warm_a, &warm_b, margin + rounding, true, simplex)
+    let found = 'query: {
+        let rounding = a.radius + b.radius;
+        let core_distance = if let (Core::Point, Core::Point) = (&a.core, &b.core) {
+            Some(pose_a.translation.distance(pose_b.translation))
         } else {
-            closest_points_support_map_support_map_with_params(
-                &pos12,
-                &warm_a,
-                &warm_b,
-                margin + rounding,
-                simplex,
-                None,
-            )
+            let pos12 = pose_a.inv_mul(pose_b);
+            let contact_likely = memory.in_contact || memory.axis == Vector::ZERO;
+            if contact_likely && a.inside.meet(&b.inside, &pos12) {
+                break 'query Proximity::Contact;
+            }
+            // The support points of the two tries below are points of the shapes' difference: when neither
+            // separates the shapes, GJK starts from them instead of querying two fresh ones.
+            let mut tried = [CsoPoint::ZERO; 2];
+            let mut count = 0;
+            let axis = memory.axis;
+            if axis != Vector::ZERO {
+                // The last separating direction, tried first: two support points settle most pairs.
+                let near_a = memory.first_support(&a.core, a_held);
+                let near_b = b.core.support_point(&pos12, -axis);
+                if axis.dot(near_b - near_a) - rounding >= margin {
+                    break 'query Proximity::Beyond;
+                }
+                tried[count] = CsoPoint::new(near_a, near_b);
+                count += 1;
+            }
+            // Then the direction from one shape's box centre to the other's: pairs that are far apart for
+            // this pose, whatever they were for the last one, are settled by two more support points.
+            if let Some(toward) = (pos12.transform_point(b.inner) - a.inner).try_normalize() {
+                let near_a = a.core.local_support_point(toward);
+                let near_b = b.core.support_point(&pos12, -toward);
+                if toward.dot(near_b - near_a) - rounding >= margin {
+                    break 'query Proximity::Beyond;
+                }
+                tried[count] = CsoPoint::new(near_a, near_b);
+                count += 1;
+            }
+            let (warm_a, warm_b) = (
+                Warm {
+                    core: &a.core,
+                    vertex: Cell::new(usize::MAX),
+                },
+                Warm {
+                    core: &b.core,
+                    vertex: Cell::new(usize::MAX),
+                },
+            );
+            let seeds: [Vector; 2] = tried.map(|p| p.point);
+            match enclose(&pos12, &warm_a, &warm_b, &seeds[..count], margin + rounding) {
+                Enclosure::Overlap => break 'query Proximity::Contact,
+                Enclosure::Apart(unit) => {
+                    memory.set_axis(unit);
+                    break 'query Proximity::Beyond;
+                }
+                Enclosure::Unknown => {}
+            }
+            let result = if count > 0 {
+                simplex.reset(tried[0]);
+                if count > 1 {
+                    simplex.add_point(tried[1]);
+                }
+                closest_points(&pos12, &warm_a, &warm_b, margin + rounding, true, simplex)
+            } else {
+                closest_points_support_map_support_map_with_params(
+                    &pos12,
+                    &warm_a,
+                    &warm_b,
+                    margin + rounding,
+                    simplex,
+                    None,
+                )
+            };
+            match result {
+                GJKResult::ClosestPoints(p1, p2, dir) => {
+                    memory.set_axis(dir);
+                    Some(p1.distance(p2))
+                }
+                GJKResult::Intersection => None,
+                GJKResult::NoIntersection(dir) | GJKResult::Proximity(dir) => {
+                    memory.set_axis(dir);
+                    break 'query Proximity::Beyond;
+                }
+            }
         };
-        match result {
-            GJKResult::ClosestPoints(p1, p2, dir) => {
-                memory.set_axis(dir);
-                Some(p1.distance(p2))
-            }
-            GJKResult::Intersection => None,
-            GJKResult::NoIntersection(dir) | GJKResult::Proximity(dir) => {
-                memory.set_axis(dir);
-                return Proximity::Beyond;
-            }
+        match core_distance.map(|d| d - rounding) {
+            None => Proximity::Contact,
+            Some(d) if d <= CONTACT_DISTANCE => Proximity::Contact,
+            Some(d) if d < margin => Proximity::Apart(d),
+            Some(_) => Proximity::Beyond,
         }
     };
-    match core_distance.map(|d| d - rounding) {
-        None => Proximity::Contact,
-        Some(d) if d <= CONTACT_DISTANCE => Proximity::Contact,
-        Some(d) if d < margin => Proximity::Apart(d),
-        Some(_) => Proximity::Beyond,
-    }
+    memory.in_contact = found == Proximity::Contact;
+    found
 }
 
 #[cfg(test)]
