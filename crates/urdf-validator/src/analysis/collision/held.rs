@@ -8,8 +8,9 @@
 //! pairs behind a test that passes are then tested one by one, exactly and in pair order. This stage
 //! changes which pairs are looked at, never a result.
 
-use nalgebra::{Isometry3, Point3, Vector3};
+use nalgebra::{Point3, Vector3};
 
+use super::LinkPlacements;
 use crate::model::LinkId;
 
 /// Held spheres per block: a group's sphere is tested against a block at once, in straight-line code (no
@@ -186,11 +187,11 @@ impl HeldBroad {
 
     /// Measure the groups and the held slots at the first check: `centre` and `radius` per slot (a NaN
     /// centre: placement not usable), `placements` per link.
-    pub(super) fn load(
+    pub(super) fn load<P: LinkPlacements + ?Sized>(
         &self,
         centre: &[Vector3<f64>],
         radius: &[f64],
-        placements: &[Isometry3<f64>],
+        placements: &P,
         into: &mut HeldSpheres,
     ) {
         let sphere = |slot: u32| {
@@ -211,7 +212,7 @@ impl HeldBroad {
                 .iter()
                 .zip(&self.members)
                 .map(|(root, members)| {
-                    let Some(root) = placements.get(root.0) else {
+                    let Some(root) = placements.placement(*root) else {
                         return (Point3::origin(), f64::INFINITY);
                     };
                     let (centre, radius) = enclosing(members.iter().map(|&slot| {
@@ -226,9 +227,9 @@ impl HeldBroad {
     /// Into `bits` (one per pair of the set), with the links at `placements` (every moving link's
     /// placement usable) and the spheres [`load`](Self::load) measured: every pair that may be within
     /// `margin` of contact (and the pairs no sphere stands for).
-    pub(super) fn candidates(
+    pub(super) fn candidates<P: LinkPlacements + ?Sized>(
         &self,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         spheres: &mut HeldSpheres,
         margin: f64,
         bits: &mut Vec<u64>,
@@ -245,9 +246,9 @@ impl HeldBroad {
     /// same bits).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn candidates_avx2(
+    fn candidates_avx2<P: LinkPlacements + ?Sized>(
         &self,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         spheres: &mut HeldSpheres,
         margin: f64,
         bits: &mut Vec<u64>,
@@ -257,9 +258,9 @@ impl HeldBroad {
 
     /// The work of [`HeldBroad::candidates`], inlined into each instruction set's copy.
     #[inline(always)]
-    fn candidates_lanes(
+    fn candidates_lanes<P: LinkPlacements + ?Sized>(
         &self,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         spheres: &mut HeldSpheres,
         margin: f64,
         bits: &mut Vec<u64>,
@@ -280,10 +281,12 @@ impl HeldBroad {
                 self.group_root
                     .iter()
                     .zip(&spheres.group)
-                    .map(|(root, (local, radius))| match placements.get(root.0) {
-                        Some(placement) => (placement.transform_point(local).coords, *radius),
-                        None => (Vector3::repeat(f64::NAN), *radius),
-                    }),
+                    .map(
+                        |(root, (local, radius))| match placements.placement(*root) {
+                            Some(placement) => (placement.transform_point(local).coords, *radius),
+                            None => (Vector3::repeat(f64::NAN), *radius),
+                        },
+                    ),
             );
         let near = |a: &Vector3<f64>, b: &Vector3<f64>, reach: f64| {
             // Infinite reach (a group measured unusable) or a centre gone non-finite: keep the pairs.
@@ -465,6 +468,7 @@ pub(super) fn set_bits(bits: &[u64]) -> impl Iterator<Item = usize> + '_ {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Isometry3;
 
     #[test]
     fn set_bits_come_in_order() {

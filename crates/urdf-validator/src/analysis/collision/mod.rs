@@ -53,6 +53,28 @@ use crate::urdf::robot::Robot;
 
 pub use shape::{CONTACT_DISTANCE, MAX_EXTENT};
 
+/// Where every link is in the world for a check, by link: a slice of placements indexed by link (as
+/// [`crate::model::kinematics::Data::link_placement`]) is one. A check reads the placements of the links
+/// its tests reach, each at most a few times, so a sampler can hand a view that assembles them on demand.
+pub trait LinkPlacements {
+    /// The placement of `link`; `None` when there is none.
+    fn placement(&self, link: LinkId) -> Option<Isometry3<f64>>;
+}
+
+impl LinkPlacements for [Isometry3<f64>] {
+    #[inline]
+    fn placement(&self, link: LinkId) -> Option<Isometry3<f64>> {
+        self.get(link.0).copied()
+    }
+}
+
+impl LinkPlacements for Vec<Isometry3<f64>> {
+    #[inline]
+    fn placement(&self, link: LinkId) -> Option<Isometry3<f64>> {
+        self.as_slice().placement(link)
+    }
+}
+
 /// The most links a self-collision model is built for: the allowed-collision matrix and the pair lists
 /// grow with the square of it (real robots have at most a few hundred links; a generated 6,000-link
 /// chain took minutes and gigabytes).
@@ -272,6 +294,9 @@ pub struct CheckScratch {
     /// Per shape: where it is in the current pose, placed in stages as the tests reach them (most shapes
     /// go no further than the sphere test, most of the rest no further than the box test).
     placed: Vec<Placed>,
+    /// Per link: its placement, read once per pose (once for all, for a link held in place) when a pair
+    /// of it reaches the narrow phase, and the pose's stamp (see [`restamp`]).
+    link_placed: Vec<(u32, Isometry3<f64>)>,
     stamp: u32,
     /// Per pair of the last pair set: what the narrow phase keeps of it (see [`shape::proximity`]).
     memory: Vec<PairMemory>,
@@ -299,6 +324,7 @@ impl CheckScratch {
             centre: Vec::new(),
             centre_stamp: Vec::new(),
             placed: vec![Placed::default(); model.shapes.len()],
+            link_placed: vec![(0, Isometry3::identity()); model.bodies.len()],
             stamp: 0,
             memory: Vec::new(),
             simplex: VoronoiSimplex::new(),
@@ -343,11 +369,38 @@ impl CheckScratch {
         self.moving_vouched = true;
     }
 
+    /// Read `link`'s placement for the current pose into [`CheckScratch::link_placed`] unless it is
+    /// there (`held`: it stays in place between checks); false when `placements` has none.
+    #[inline(always)]
+    fn fetch_link<P: LinkPlacements + ?Sized>(
+        &mut self,
+        link: LinkId,
+        held: bool,
+        placements: &P,
+    ) -> bool {
+        let Some((stamp, placement)) = self.link_placed.get_mut(link.0) else {
+            return false;
+        };
+        if restamp(stamp, self.stamp, held) {
+            match placements.placement(link) {
+                Some(found) => *placement = found,
+                None => {
+                    *stamp = 0;
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
     /// Start a new pose: every cached shape placement becomes stale.
     fn next_pose(&mut self) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 || self.stamp == HELD {
             self.placed.iter_mut().for_each(Placed::forget);
+            self.link_placed
+                .iter_mut()
+                .for_each(|(stamp, _)| *stamp = 0);
             self.centre_stamp
                 .iter_mut()
                 .filter(|s| **s != HELD)
@@ -750,8 +803,9 @@ impl CollisionModel {
         touching
     }
 
-    /// Check the pairs of `pairs` with the links at `placements` (world placements indexed by link, as
-    /// [`crate::model::kinematics::Data::link_placement`]), stopping at the first pair in contact.
+    /// Check the pairs of `pairs` with the links at `placements` (world placements by link, such as
+    /// [`crate::model::kinematics::Data::link_placement`]; see [`LinkPlacements`]), stopping at the first
+    /// pair in contact.
     ///
     /// Bounding spheres first, then bounding boxes, then GJK on the shapes, each stage only for pairs
     /// that may be closer than the current margin: the smallest distance found so far in this pose,
@@ -759,10 +813,10 @@ impl CollisionModel {
     /// `clearance_cutoff` (`f64::INFINITY` at first; 0 when clearance does not matter): distances are then
     /// only computed for pairs that can beat it, and [`PoseCheck::min_clearance`] is `Some` only when one
     /// does. Pairs with a link whose placement is not usable are skipped and counted.
-    pub fn check(
+    pub fn check<P: LinkPlacements + ?Sized>(
         &self,
         pairs: &PairSet,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         clearance_cutoff: f64,
         scratch: &mut CheckScratch,
     ) -> PoseCheck {
@@ -778,10 +832,10 @@ impl CollisionModel {
 
     /// [`check`](Self::check), calling `on_contact` for each pair in contact and going on while it
     /// returns true (`contact` of the result is left empty).
-    fn check_pairs(
+    fn check_pairs<P: LinkPlacements + ?Sized>(
         &self,
         pairs: &PairSet,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         clearance_cutoff: f64,
         scratch: &mut CheckScratch,
         on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
@@ -791,9 +845,9 @@ impl CollisionModel {
         let mut result = PoseCheck::default();
         let centre_of = |link: LinkId| {
             placements
-                .get(link.0)
-                .filter(|p| usable(p))
-                .map(|p| self.world_centre(link, p))
+                .placement(link)
+                .filter(usable)
+                .map(|p| self.world_centre(link, &p))
         };
         let held = match scratch.fixed_usable {
             Some(usable) if scratch.hold_fixed && scratch.centre.len() == pairs.links.len() => {
@@ -809,8 +863,8 @@ impl CollisionModel {
                 && (vouched
                     || pairs.moving.iter().all(|&slot| {
                         placements
-                            .get(pairs.links[slot as usize].0)
-                            .is_some_and(usable)
+                            .placement(pairs.links[slot as usize])
+                            .is_some_and(|p| usable(&p))
                     }))
         });
         let mut all_usable = true;
@@ -893,11 +947,11 @@ impl CollisionModel {
             );
             let kept_pairs = set_bits(&kept);
             if vouched {
-                self.scan::<false>(
+                self.scan::<false, P>(
                     pairs, kept_pairs, placements, scratch, &mut state, on_contact,
                 );
             } else {
-                self.scan::<true>(
+                self.scan::<true, P>(
                     pairs, kept_pairs, placements, scratch, &mut state, on_contact,
                 );
             }
@@ -916,7 +970,7 @@ impl CollisionModel {
             Some(_) => (SWEEP_AFTER_LINKS * pairs.links.len()).min(pairs.broad.len()),
             None => pairs.broad.len(),
         };
-        let going = self.scan::<false>(
+        let going = self.scan::<false, P>(
             pairs,
             0..scanned,
             placements,
@@ -932,7 +986,7 @@ impl CollisionModel {
                 .iter()
                 .map(|&i| i as usize)
                 .filter(|&i| i >= scanned);
-            self.scan::<false>(pairs, rest, placements, scratch, &mut state, on_contact);
+            self.scan::<false, P>(pairs, rest, placements, scratch, &mut state, on_contact);
         }
         scratch.sweep.candidates = candidates;
         if !state.in_contact {
@@ -943,11 +997,11 @@ impl CollisionModel {
 
     /// Check the pairs at `indices` (increasing) in order, updating `state`; false when `on_contact` stopped
     /// the scan. `LAZY`: a moving slot's centre is computed here when it is not yet for this pose.
-    fn scan<const LAZY: bool>(
+    fn scan<const LAZY: bool, P: LinkPlacements + ?Sized>(
         &self,
         pairs: &PairSet,
         indices: impl Iterator<Item = usize>,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         scratch: &mut CheckScratch,
         state: &mut Scan,
         on_contact: &mut dyn FnMut((LinkId, LinkId)) -> bool,
@@ -998,34 +1052,48 @@ impl CollisionModel {
 
     /// The proximity of two links (both placements usable): the closest of their shape pairs. `held`: per
     /// link, whether it stays in place between checks (its shape placements are then kept).
-    fn link_proximity(
+    fn link_proximity<P: LinkPlacements + ?Sized>(
         &self,
         (a, b): (LinkId, LinkId),
         held: [bool; 2],
         pair_index: usize,
-        placements: &[Isometry3<f64>],
+        placements: &P,
         mut margin: f64,
         scratch: &mut CheckScratch,
     ) -> Proximity {
+        if !(scratch.fetch_link(a, held[0], placements)
+            && scratch.fetch_link(b, held[1], placements))
+        {
+            return Proximity::Beyond;
+        }
+        let CheckScratch {
+            link_placed,
+            placed,
+            stamp,
+            memory,
+            simplex,
+            ..
+        } = scratch;
+        let (link_a, link_b) = (&link_placed[a.0].1, &link_placed[b.0].1);
         let mut best = Proximity::Beyond;
         for i in self.bodies[a.0].shapes.clone() {
-            let centre_a = self.place_centre(i, &placements[a.0], held[0], scratch);
+            let centre_a = self.place_centre(i, link_a, held[0], placed, *stamp);
             for j in self.bodies[b.0].shapes.clone() {
-                let centre_b = self.place_centre(j, &placements[b.0], held[1], scratch);
+                let centre_b = self.place_centre(j, link_b, held[1], placed, *stamp);
                 let (sa, sb) = (&self.shapes[i], &self.shapes[j]);
                 let reach = sa.bound + sb.bound + margin;
                 if (centre_a - centre_b).norm_squared() >= reach * reach {
                     continue;
                 }
-                self.place_box(i, &placements[a.0], held[0], scratch);
-                self.place_box(j, &placements[b.0], held[1], scratch);
-                let (pa, pb) = (&scratch.placed[i], &scratch.placed[j]);
+                self.place_box(i, link_a, held[0], placed, *stamp);
+                self.place_box(j, link_b, held[1], placed, *stamp);
+                let (pa, pb) = (&placed[i], &placed[j]);
                 if boxes_apart(&pa.obb, &sa.obb.half, &pb.obb, &sb.obb.half, margin) {
                     continue;
                 }
-                self.place_pose(i, &placements[a.0], held[0], scratch);
-                self.place_pose(j, &placements[b.0], held[1], scratch);
-                let (pa, pb) = (&scratch.placed[i], &scratch.placed[j]);
+                self.place_pose(i, link_a, held[0], placed, *stamp);
+                self.place_pose(j, link_b, held[1], placed, *stamp);
+                let (pa, pb) = (&placed[i], &placed[j]);
                 // A shape held in place goes first, so that its support point along the pair's axis
                 // is kept between poses (see `PairMemory`).
                 let (first, second, first_held) = if held[1] && !held[0] {
@@ -1039,9 +1107,9 @@ impl CollisionModel {
                     second.0,
                     second.1,
                     margin,
-                    &mut scratch.memory[pair_index],
+                    &mut memory[pair_index],
                     first_held,
-                    &mut scratch.simplex,
+                    simplex,
                 );
                 match found {
                     Proximity::Contact => {
@@ -1072,24 +1140,30 @@ impl CollisionModel {
 
     /// For the lazy scan: the world centre of a link whose placement was found usable (NaN if it is not
     /// there).
-    fn lazy_centre(&self, link: LinkId, placements: &[Isometry3<f64>]) -> Vector3<f64> {
+    fn lazy_centre<P: LinkPlacements + ?Sized>(
+        &self,
+        link: LinkId,
+        placements: &P,
+    ) -> Vector3<f64> {
         placements
-            .get(link.0)
-            .map_or(Vector3::repeat(f64::NAN), |p| self.world_centre(link, p))
+            .placement(link)
+            .map_or(Vector3::repeat(f64::NAN), |p| self.world_centre(link, &p))
     }
 
     /// The bounding-sphere centre of shape `index` of a link placed at `link`, placed in
     /// `scratch.placed` unless it is there for the current pose (or for every pose, when the link is
     /// `held` in place).
+    #[inline(always)]
     fn place_centre(
         &self,
         index: usize,
         link: &Isometry3<f64>,
         held: bool,
-        scratch: &mut CheckScratch,
+        placed: &mut [Placed],
+        stamp: u32,
     ) -> Vector3<f64> {
-        let placed = &mut scratch.placed[index];
-        if restamp(&mut placed.centre_stamp, scratch.stamp, held) {
+        let placed = &mut placed[index];
+        if restamp(&mut placed.centre_stamp, stamp, held) {
             placed.centre = link
                 .transform_point(&Point3::from(self.shapes[index].centre))
                 .coords;
@@ -1098,30 +1172,34 @@ impl CollisionModel {
     }
 
     /// Place the box of shape `index` (as [`place_centre`](Self::place_centre) its centre).
+    #[inline(always)]
     fn place_box(
         &self,
         index: usize,
         link: &Isometry3<f64>,
         held: bool,
-        scratch: &mut CheckScratch,
+        placed: &mut [Placed],
+        stamp: u32,
     ) {
-        let placed = &mut scratch.placed[index];
-        if restamp(&mut placed.obb_stamp, scratch.stamp, held) {
+        let placed = &mut placed[index];
+        if restamp(&mut placed.obb_stamp, stamp, held) {
             placed.obb = self.shapes[index].obb.placed(link);
         }
     }
 
     /// Place the frame of shape `index`, for the narrow phase (as [`place_centre`](Self::place_centre)
     /// its centre).
+    #[inline(always)]
     fn place_pose(
         &self,
         index: usize,
         link: &Isometry3<f64>,
         held: bool,
-        scratch: &mut CheckScratch,
+        placed: &mut [Placed],
+        stamp: u32,
     ) {
-        let placed = &mut scratch.placed[index];
-        if restamp(&mut placed.pose_stamp, scratch.stamp, held) {
+        let placed = &mut placed[index];
+        if restamp(&mut placed.pose_stamp, stamp, held) {
             placed.pose = to_pose(&(link * self.shapes[index].frame));
         }
     }

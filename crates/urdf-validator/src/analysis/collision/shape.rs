@@ -566,6 +566,7 @@ fn box_along(points: &[Vector3<f64>], rotation: UnitQuaternion<f64>) -> Option<O
 
 /// True when a separating axis of the two boxes (centre, axes as columns, half extents) shows them at
 /// least `margin` apart (the separating-axis test of Gottschalk et al. with a gap).
+#[inline(always)]
 pub fn boxes_apart(
     a: &(Vector3<f64>, Matrix3<f64>),
     half_a: &Vector3<f64>,

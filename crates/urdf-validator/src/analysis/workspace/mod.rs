@@ -340,7 +340,6 @@ struct SampleCollision<'a> {
     model: &'a CollisionModel,
     pairs: &'a PairSet,
     q: Configuration,
-    data: Data,
     scratch: CheckScratch,
     placements: BatchPlacements,
 }
@@ -382,7 +381,6 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                 model,
                 pairs,
                 q: scene.q.to_vec(),
-                data: scene.data.clone(),
                 // Only the arm's links move in this chunk: every other link's placement is kept.
                 scratch: CheckScratch::holding_fixed(model),
                 placements: placements.clone(),
@@ -438,7 +436,6 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                     let lanes = &rows[k..(k + LANES).min(batch)];
                     state.place(scene.model, lanes, &job.chain.sampled);
                 }
-                state.placements.write(k % LANES, &mut state.data);
                 if state.placements.usable(k % LANES) {
                     let centres = state.placements.points(k % LANES);
                     state.scratch.vouch_moving(state.pairs, centres);
@@ -446,7 +443,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
                 let cutoff = ctx.clearance_cutoff(stats.min_clearance.map(|c| c.0));
                 let check = state.model.check(
                     state.pairs,
-                    &state.data.link_placement,
+                    &state.placements.lane(k % LANES, &scene.data.link_placement),
                     cutoff,
                     &mut state.scratch,
                 );

@@ -11,7 +11,7 @@
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
 use super::sincos::sincos;
-use crate::analysis::collision::usable_parts;
+use crate::analysis::collision::{usable_parts, LinkPlacements};
 use crate::model::kinematics::{joint_motion, Data};
 use crate::model::{JointId, LinkId, Model, Motion};
 use crate::urdf::robot::JointKind;
@@ -181,7 +181,6 @@ enum JointMotion {
 
 #[derive(Clone, Debug)]
 struct Step {
-    link: LinkId,
     joint: JointId,
     parent: Parent,
     /// The joint frame in the parent link's frame.
@@ -193,6 +192,8 @@ struct Step {
 #[derive(Clone)]
 pub(super) struct BatchPlacements {
     steps: Vec<Step>,
+    /// Per link: its step, `usize::MAX` when it is not placed here.
+    step_of: Vec<usize>,
     /// Per step: its joint's value in each sample (loaded only where the joint varies).
     values: Vec<Lanes>,
     /// The steps whose joint varies (a revolute or prismatic motion).
@@ -263,7 +264,6 @@ impl BatchPlacements {
             };
             index[link.0] = steps.len();
             steps.push(Step {
-                link,
                 joint,
                 parent,
                 frame: Constant::new(&info.placement),
@@ -280,6 +280,7 @@ impl BatchPlacements {
             .collect();
         let identity = Poses::splat(&Isometry3::identity());
         BatchPlacements {
+            step_of: index,
             points,
             placed_points,
             values: vec![[0.0; LANES]; steps.len()],
@@ -429,10 +430,40 @@ impl BatchPlacements {
         self.usable.get(lane).copied().unwrap_or(false)
     }
 
-    /// Write sample `lane`'s placements into `data`.
-    pub(super) fn write(&self, lane: usize, data: &mut Data) {
-        for (step, poses) in self.steps.iter().zip(&self.poses) {
-            data.link_placement[step.link.0] = poses.lane(lane);
+    /// Sample `lane`'s link placements: this batch's for the links it places, `others` (indexed by link)
+    /// for every other link.
+    pub(super) fn lane<'a>(
+        &'a self,
+        lane: usize,
+        others: &'a [Isometry3<f64>],
+    ) -> LanePlacements<'a> {
+        LanePlacements {
+            batch: self,
+            lane,
+            others,
+        }
+    }
+}
+
+/// One sample's link placements ([`BatchPlacements::lane`]), each assembled from the batch's lanes when a
+/// check reads it: a check reaches a few of the links a sample moves, so most are never read.
+pub(super) struct LanePlacements<'a> {
+    batch: &'a BatchPlacements,
+    lane: usize,
+    others: &'a [Isometry3<f64>],
+}
+
+impl LinkPlacements for LanePlacements<'_> {
+    #[inline]
+    fn placement(&self, link: LinkId) -> Option<Isometry3<f64>> {
+        match self
+            .batch
+            .step_of
+            .get(link.0)
+            .and_then(|&s| self.batch.poses.get(s))
+        {
+            Some(poses) => Some(poses.lane(self.lane)),
+            None => self.others.get(link.0).copied(),
         }
     }
 }
@@ -558,7 +589,10 @@ mod tests {
                     let mut alone = reference.clone();
                     forward_kinematics_links(&model, q, &links, &mut alone);
                     let mut batched = reference.clone();
-                    placements.write(lane, &mut batched);
+                    let view = placements.lane(lane, &reference.link_placement);
+                    for (link, placement) in batched.link_placement.iter_mut().enumerate() {
+                        *placement = view.placement(LinkId(link)).unwrap_or(*placement);
+                    }
                     let usable = |link: &LinkId| {
                         let p = &batched.link_placement[link.0];
                         let (r, t) = (p.rotation.coords, p.translation.vector);
