@@ -419,7 +419,6 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             let i = first + k;
             let p = pose.position;
             let offset = p - shoulder;
-            let horizontal = offset.x.hypot(offset.y);
             stats.samples += 1;
             if (start + i) % stride == 0 {
                 stats.tips.push((start + i, round_mm(&p)));
@@ -427,7 +426,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             stats.max_reach = stats.max_reach.max(offset.norm());
             stats.max_height = stats.max_height.max(p.z - scene.ground);
             stats.min_height = stats.min_height.min(p.z - scene.ground);
-            stats.max_horizontal = stats.max_horizontal.max(horizontal);
+            stats.max_horizontal = raise_horizontal(stats.max_horizontal, &offset);
             stats.max_from_base = stats.max_from_base.max(p.norm());
             // Self-collision first: task heights, the band and orientations count feasible poses only.
             let mut free = true;
@@ -470,6 +469,7 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
             let in_band = target_height.map(|h| (p.z - h).abs() <= TASK_BAND);
             if in_band == Some(true) {
                 stats.band_samples += 1;
+                let horizontal = offset.x.hypot(offset.y);
                 if stats.band_best.as_ref().is_none_or(|b| horizontal > b.0) {
                     stats.band_best = Some((horizontal, start + i, q.clone()));
                 }
@@ -676,6 +676,19 @@ pub fn analyse(
         .map(|(_, stats)| stats)
         .collect();
     summarize(scene, &jobs, &per_arm, collision, options)
+}
+
+/// `known` (the largest horizontal distance so far), raised to `offset`'s horizontal distance when that is
+/// larger. `hypot` (exact to the last bit, and slow) runs only where the sum of the squares, within a few
+/// rounding errors of the square of the distance, leaves it a chance (above 1e-100 m, where no square is
+/// subnormal).
+fn raise_horizontal(known: f64, offset: &Vector3<f64>) -> f64 {
+    let squared = offset.x * offset.x + offset.y * offset.y;
+    if known > 1e-100 && squared < known * known * (1.0 - 1e-9) {
+        known
+    } else {
+        known.max(offset.x.hypot(offset.y))
+    }
 }
 
 /// Two runs of consecutive chunks' statistics, each a list of (arm, statistics) in arm order, as one:
@@ -1069,6 +1082,49 @@ fn com_at(scene: &Scene, job: &ArmJob, q_arm: &[f64]) -> Option<(bool, f64, f64)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Raising the largest horizontal distance skips `hypot` only where it could not raise it: the same
+    /// bits as `known.max(hypot)` for distances a hair either side of the known one (the ulps where a
+    /// skip on the sum of squares alone would go wrong), far below and above it, at every scale, and
+    /// for infinite, NaN, subnormal and zero values.
+    #[test]
+    fn raising_the_horizontal_distance_skips_only_what_cannot_raise_it() {
+        let mut rng = SplitMix64::new(7);
+        let scales = [1e-300, 1e-160, 1e-100, 1e-3, 1.0, 1e3, 1e150, 1e300];
+        let specials = [0.0, -0.0, f64::MIN_POSITIVE / 8.0, f64::INFINITY, f64::NAN];
+        let mut skipped = 0;
+        for round in 0..200_000 {
+            let scale = scales[round % scales.len()];
+            let angle = rng.uniform(0.0, std::f64::consts::TAU);
+            let known = match round % 11 {
+                0 => f64::NEG_INFINITY,
+                1 => specials[(round / 11) % specials.len()],
+                _ => scale * rng.uniform(0.1, 10.0),
+            };
+            let length = match round % 5 {
+                // A few ulps either side of the known distance.
+                0 | 1 => {
+                    known * (1.0 + (rng.next_u64() % 9) as f64 * f64::EPSILON - 4.0 * f64::EPSILON)
+                }
+                2 => specials[(round / 5) % specials.len()],
+                _ => scale * rng.uniform(0.0, 10.0),
+            };
+            let offset = Vector3::new(
+                length * angle.cos(),
+                length * angle.sin(),
+                rng.uniform(-1.0, 1.0),
+            );
+            let expected = known.max(offset.x.hypot(offset.y));
+            let raised = raise_horizontal(known, &offset);
+            assert_eq!(
+                raised.to_bits(),
+                expected.to_bits(),
+                "known {known:e}, offset {offset:?}"
+            );
+            skipped += usize::from(known > 1e-100 && raised.to_bits() == known.to_bits());
+        }
+        assert!(skipped > 10_000, "the shortcut was taken {skipped} times");
+    }
 
     /// Offered from four threads at once, the shared minimum is the smallest non-negative value offered
     /// (zero, subnormal and infinite values included; negative ones and NaN ignored).
