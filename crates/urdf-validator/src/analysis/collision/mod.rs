@@ -1150,9 +1150,9 @@ impl CollisionModel {
             .map_or(Vector3::repeat(f64::NAN), |p| self.world_centre(link, &p))
     }
 
-    /// The bounding-sphere centre of shape `index` of a link placed at `link`, placed in
-    /// `scratch.placed` unless it is there for the current pose (or for every pose, when the link is
-    /// `held` in place).
+    /// The bounding-sphere centre of shape `index` of a link placed at `link`, placed in `placed`
+    /// (the scratch's shapes) unless it is there for the pose stamped `stamp` (or for every pose, when
+    /// the link is `held` in place).
     #[inline(always)]
     fn place_centre(
         &self,
