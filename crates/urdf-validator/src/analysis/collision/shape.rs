@@ -64,7 +64,8 @@ pub struct Hull {
     lanes: Option<VertexLanes>,
     /// The planes of the faces of a checked closed convex triangulation, as (outward unit normal,
     /// offset): a point `p` is inside when `normal · p <= offset` for every face. Empty when no such
-    /// triangulation could be built (then no sphere is known to be inside, see [`Inside`]).
+    /// triangulation could be built (then no sphere is known to be inside, see [`Inside`]), and once a
+    /// [`ConvexShape`] has found its inner spheres (their only use).
     faces: Vec<(Vector, f64)>,
 }
 
@@ -615,7 +616,7 @@ pub fn boxes_apart(
 impl ConvexShape {
     /// The collision shape of one [`Support`]; `None` when its numbers are unusable.
     pub fn from_support(support: &Support) -> Option<ConvexShape> {
-        let (core, radius, frame) = match support {
+        let (mut core, radius, frame) = match support {
             Support::Points(points) => {
                 let points: Vec<Vector> =
                     points.iter().map(|p| Vector::new(p.x, p.y, p.z)).collect();
@@ -691,6 +692,12 @@ impl ConvexShape {
             Vector::new(axis.x, axis.y, axis.z),
             obb.half[longest],
         );
+        if let Core::Hull(hull) = &mut core {
+            // The face planes served the inner spheres only: freed, so that the next hull built on this
+            // thread reuses their memory instead of touching fresh pages (page faults are dear on a
+            // virtual machine; g1 with hands' hulls have 3 MB of them).
+            hull.faces = Vec::new();
+        }
         Some(ConvexShape {
             core,
             radius,
