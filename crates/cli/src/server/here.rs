@@ -227,7 +227,7 @@ pub fn resolve_path(
         ));
     }
     match resolver.resolve(value, dir) {
-        Resolution::Found(path) => Ok(path),
+        Resolution::Found(path) | Resolution::Lenient { path, .. } => Ok(path),
         Resolution::NotFound { searched } if searched.is_empty() => {
             Err(format!("{value}: package not found"))
         }

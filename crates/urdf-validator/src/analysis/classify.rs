@@ -628,6 +628,132 @@ fn leaves_named_like_legs(
     legs
 }
 
+/// Longest finger, top joint to fingertip, m (a human hand's middle finger is ~0.1 m, Allegro's 0.16 m).
+const MAX_FINGER_LENGTH: f64 = 0.25;
+
+/// Names that say finger: a cross-check, never enough alone.
+const FINGER_NAMES: [&str; 9] = [
+    "finger", "thumb", "index", "pinky", "phalan", "knuckle", "palm", "hand", "digit",
+];
+
+/// Whether the chains leaving `palm` at `tops` are the fingers of a hand: at least two, none longer than
+/// [`MAX_FINGER_LENGTH`] from its top joint to its farthest link or lowest point, none with a leg-like
+/// name, and one more sign of a hand: a mimic (coupled) joint in a finger, finger-like names on the
+/// fingers or the palm, or at least three fingers of four or more moving joints each (Allegro's and
+/// LEAP's unnamed fingers; a walking robot's legs have three, a humanoid's are longer).
+fn fingers_of_hand(
+    robot: &Robot,
+    model: &Model,
+    data: &Data,
+    palm: LinkId,
+    tops: &[JointId],
+    limb_names: &LimbNames,
+    lowest: &[Option<f64>],
+) -> bool {
+    let fingers: Vec<(Vector3<f64>, Vec<LinkId>)> = tops
+        .iter()
+        .filter_map(|top| model.joint_links[top.0])
+        .map(|(_, child)| {
+            let origin = data.link_placement[child.0].translation.vector;
+            (origin, subtree_links(model, child))
+        })
+        .collect();
+    if fingers.len() < 2 || fingers.len() != tops.len() {
+        return false;
+    }
+    let short = fingers.iter().all(|(origin, links)| {
+        links.iter().all(|l| {
+            let at = data.link_placement[l.0].translation.vector;
+            let low = lowest[l.0].unwrap_or(at.z);
+            (at - origin).norm() <= MAX_FINGER_LENGTH && origin.z - low <= MAX_FINGER_LENGTH
+        })
+    });
+    let leg_named = fingers
+        .iter()
+        .flat_map(|(_, links)| links)
+        .any(|l| limb_names.leg[l.0] > limb_names.leg[palm.0]);
+    if !short || leg_named {
+        return false;
+    }
+    let moving_joints = |links: &[LinkId]| -> Vec<JointId> {
+        links
+            .iter()
+            .filter_map(|l| model.parent_joint[l.0])
+            .filter(|j| model.joint_data[j.0].kind != JointKind::Fixed)
+            .collect()
+    };
+    let coupled = fingers
+        .iter()
+        .flat_map(|(_, links)| moving_joints(links))
+        .any(|j| model.mimic[j.0].is_some());
+    let says = |name: &str| {
+        let name = name.to_ascii_lowercase();
+        FINGER_NAMES.iter().any(|t| name.contains(t))
+    };
+    let named = says(&robot.links[palm.0].name.value)
+        || fingers.iter().flat_map(|(_, links)| links).any(|l| {
+            says(&robot.links[l.0].name.value)
+                || model.parent_joint[l.0].is_some_and(|j| says(&robot.joints[j.0].name.value))
+        });
+    let many_jointed = fingers.len() >= 3
+        && fingers
+            .iter()
+            .all(|(_, links)| moving_joints(links).len() >= 4);
+    coupled || named || many_jointed
+}
+
+/// The palm and the finger count when `legs` are the fingers of a hand hanging from it (a stand-alone
+/// hand with its fingers below the palm stands on its fingertips only on paper): every leg leaves the same
+/// link and [`fingers_of_hand`] says they are fingers.
+fn hand_of_legs(
+    robot: &Robot,
+    model: &Model,
+    data: &Data,
+    legs: &[Leg],
+    chains: &[Chain],
+    limb_names: &LimbNames,
+    lowest: &[Option<f64>],
+) -> Option<(LinkId, usize)> {
+    let palm = chains[legs.first()?.foot.0].body;
+    if legs.iter().any(|leg| chains[leg.foot.0].body != palm) {
+        return None;
+    }
+    let tops: Vec<JointId> = legs.iter().map(|leg| leg.top_joint).collect();
+    fingers_of_hand(robot, model, data, palm, &tops, limb_names, lowest)
+        .then_some((palm, tops.len()))
+}
+
+/// The palm and the finger count of a hand found by its structure alone (no legs, wheels, arms or
+/// rotors were found: fingers of one moving joint each and mimic followers, as the Fourier and Inspire
+/// hands are built): the link with the most moving chains leaving it, when [`fingers_of_hand`] says they
+/// are fingers.
+fn hand_of_structure(
+    robot: &Robot,
+    model: &Model,
+    data: &Data,
+    moving: &[bool],
+    limb_names: &LimbNames,
+    lowest: &[Option<f64>],
+) -> Option<(LinkId, usize)> {
+    let chains_from = |link: usize| -> Vec<JointId> {
+        model.child_joints[link]
+            .iter()
+            .copied()
+            .filter(|j| {
+                model.joint_links[j.0]
+                    .is_some_and(|(_, child)| moving[child.0] || independent_actuated(model, *j))
+            })
+            .collect()
+    };
+    let (palm, tops) = model
+        .topological_order
+        .iter()
+        .map(|l| (*l, chains_from(l.0)))
+        .max_by_key(|(_, tops)| tops.len())?;
+    (tops.len() >= 3 && fingers_of_hand(robot, model, data, palm, &tops, limb_names, lowest))
+        .then_some((palm, tops.len()))
+}
+
 /// Classify at the placements in `data` (a reference pose).
 pub fn classify(
     robot: &Robot,
@@ -796,7 +922,16 @@ pub fn classify(
             by_name = true;
         }
     }
-    let legs = merge_closed_loops(legs, data, supports);
+    let mut legs = merge_closed_loops(legs, data, supports);
+    // Fingers hanging from a hand are no legs: a hand has nothing to stand on.
+    let mut hand = if legs.len() >= 2 && !by_name && !folded {
+        hand_of_legs(robot, model, data, &legs, &chains, &limb_names, &lowest)
+    } else {
+        None
+    };
+    if hand.is_some() {
+        legs.clear();
+    }
     // Wheels: round links touching the ground, turned by a continuous (or unlimited revolute) joint — or
     // named wheels welded by a fixed joint (files prepared for a fixed-base solver do that).
     let wheels: Vec<LinkId> = in_tree
@@ -847,6 +982,9 @@ pub fn classify(
         },
     );
     let arm_count = arms.len();
+    if hand.is_none() && legs.len() < 2 && wheels.is_empty() && arm_count == 0 && rotors == 0 {
+        hand = hand_of_structure(robot, model, data, &moving, &limb_names, &lowest);
+    }
     let actuated = model.joint_data.iter().any(|j| j.is_actuated());
     let named = if by_name {
         " (found by name: the model does not stand on z)"
@@ -855,7 +993,15 @@ pub fn classify(
     } else {
         ""
     };
-    let (robot_type, evidence) = match legs.len() {
+    let (robot_type, evidence) = match (hand, legs.len()) {
+        (Some((palm, fingers)), _) if wheels.is_empty() => (
+            RobotType::ArmOnly,
+            format!(
+                "a hand: {fingers} fingers on '{}' (short jointed chains off one palm), nothing to stand on",
+                robot.links[palm.0].name.value
+            ),
+        ),
+        (_, legs) => match legs {
         2 if arm_count > 0 => (
             RobotType::Humanoid,
             format!("2 legs and {arm_count} arm chain(s){named}"),
@@ -903,6 +1049,7 @@ pub fn classify(
             RobotType::Unknown,
             "no legs, wheels, rotors or arms found".to_string(),
         ),
+        },
     };
     Classification {
         robot_type,

@@ -101,14 +101,32 @@ impl std::fmt::Display for NoGeometry {
 /// The solid `link`'s geometry fills: its collision shapes, else its visuals (Drake's role order), each
 /// placed by its `<origin>`; meshes read through `assets`.
 pub fn of_link(link: &Link, assets: &Assets) -> Result<GeometryInertia, NoGeometry> {
-    let with_geometry = |shapes: &[Shape]| shapes.iter().any(|s| s.geometry.is_some());
-    let (role, shapes) = if with_geometry(&link.collisions) {
-        (Role::Collision, &link.collisions)
-    } else if with_geometry(&link.visuals) {
-        (Role::Visual, &link.visuals)
+    if has_geometry(link, Role::Collision) {
+        of_role(link, Role::Collision, assets)
     } else {
+        of_role(link, Role::Visual, assets)
+    }
+}
+
+/// Whether `link` has a shape of `role` with a geometry.
+fn has_geometry(link: &Link, role: Role) -> bool {
+    shapes_of(link, role).iter().any(|s| s.geometry.is_some())
+}
+
+/// `link`'s shapes of `role`.
+fn shapes_of(link: &Link, role: Role) -> &[Shape] {
+    match role {
+        Role::Collision => &link.collisions,
+        Role::Visual => &link.visuals,
+    }
+}
+
+/// The solid `link`'s shapes of `role` fill (its collision shapes, or its visuals).
+pub fn of_role(link: &Link, role: Role, assets: &Assets) -> Result<GeometryInertia, NoGeometry> {
+    if !has_geometry(link, role) {
         return Err(NoGeometry::NoShapes);
-    };
+    }
+    let shapes = shapes_of(link, role);
     let mut total = VolumeIntegrals::default();
     let mut hulls = Vec::new();
     let mut bounds = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);

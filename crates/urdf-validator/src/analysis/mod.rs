@@ -296,7 +296,10 @@ pub fn analyse(
             (mass, link.and_then(|name| model.link(name)))
         }),
     };
-    let collision = if arms.is_empty() || robot.links.len() > MAX_COLLISION_LINKS {
+    // Built for every robot with collision geometry: the contacts at the reference pose (U601) concern
+    // a quadruped's base and legs (solo12's overlap by 3.5 mm) as much as an arm; only arms are sampled.
+    let has_collisions = robot.links.iter().any(|link| !link.collisions.is_empty());
+    let collision = if !has_collisions || robot.links.len() > MAX_COLLISION_LINKS {
         None
     } else {
         let (setup, setup_findings) = collision_setup(robot, model, &reference_data, inputs)?;
@@ -315,7 +318,7 @@ pub fn analyse(
     ));
     clock.lap("workspace");
     if let Some(c) = &collision {
-        findings.extend(contact_findings(robot, &c.touching));
+        findings.extend(contact_findings(robot, &c.touching, !arms.is_empty()));
     }
     Ok(Physics {
         statics,
@@ -393,8 +396,8 @@ fn collision_setup(
 }
 
 /// One U601 finding per link pair in contact at the reference (clamped zero) pose, at the second link's
-/// collision.
-fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)]) -> Vec<Finding> {
+/// collision; `sampled` when arms are sampled for self-collision (the pair is left out of it).
+fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)], sampled: bool) -> Vec<Finding> {
     touching
         .iter()
         .map(|&(a, b)| {
@@ -404,8 +407,14 @@ fn contact_findings(robot: &Robot, touching: &[(LinkId, LinkId)]) -> Vec<Finding
                 &rules::CONTACT_AT_REFERENCE,
                 span,
                 format!(
-                    "Links '{}' and '{}' have collision geometry in contact at the zero pose — left out of self-collision sampling",
-                    a.name.value, b.name.value
+                    "Links '{}' and '{}' have collision geometry in contact at the zero pose{}",
+                    a.name.value,
+                    b.name.value,
+                    if sampled {
+                        " — left out of self-collision sampling"
+                    } else {
+                        ""
+                    }
                 ),
             )
         })

@@ -96,17 +96,11 @@ impl Assets {
         }
         let meshes: HashMap<PathBuf, OnceLock<LoadedMesh>> = resolutions
             .values()
-            .filter_map(|r| match r {
-                Resolution::Found(path) => Some((path.clone(), OnceLock::new())),
-                _ => None,
-            })
+            .filter_map(|r| r.found().map(|path| (path.clone(), OnceLock::new())))
             .collect();
         let mut needed: Vec<(&PathBuf, &OnceLock<LoadedMesh>)> = support_uris
             .into_iter()
-            .filter_map(|uri| match resolutions.get(uri) {
-                Some(Resolution::Found(path)) => meshes.get_key_value(path),
-                _ => None,
-            })
+            .filter_map(|uri| meshes.get_key_value(resolutions.get(uri)?.found()?))
             .collect();
         needed.sort_unstable_by_key(|(path, _)| *path);
         needed.dedup_by_key(|(path, _)| *path);
@@ -165,10 +159,8 @@ impl Assets {
     }
 
     fn mesh_cell(&self, uri: &str) -> Option<(&PathBuf, &OnceLock<LoadedMesh>)> {
-        match self.resolutions.get(uri)? {
-            Resolution::Found(path) => self.meshes.get_key_value(path),
-            _ => None,
-        }
+        self.meshes
+            .get_key_value(self.resolutions.get(uri)?.found()?)
     }
 
     /// Points of a mesh for contact geometry, in the mesh frame before scale: its convex hull (with the

@@ -33,6 +33,18 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                     Some(Resolution::Found(_)) => {
                         findings.extend(check_mesh(assets, &owner, filename, *scale, robot_size));
                     }
+                    Some(Resolution::Lenient { path, why }) => {
+                        findings.push(Finding::new(
+                            &rules::MESH_NOT_FOUND,
+                            filename.span,
+                            format!(
+                                "{owner}: mesh '{}' cannot be resolved by ROS (RViz, MoveIt): {why}; Pinocchio and MuJoCo load {}, and the analyses here use it",
+                                filename.value,
+                                path.display()
+                            ),
+                        ));
+                        findings.extend(check_mesh(assets, &owner, filename, *scale, robot_size));
+                    }
                     Some(Resolution::NotFound { searched }) => {
                         let looked: Vec<String> =
                             searched.iter().map(|p| p.display().to_string()).collect();

@@ -2,14 +2,15 @@
 //! triangle inequality on the principal moments, and the declared tensor against the link's geometry.
 //! Findings the geometry can resolve carry the fix that writes its inertia ([`super::inertia_fix`]).
 
-use crate::analysis::geometry_inertia::{self, GeometryInertia};
+use crate::analysis::geometry_inertia::{self, GeometryInertia, Role};
 use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
+use crate::input::source::Spanned;
 use crate::input::Format;
 use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
-use crate::urdf::robot::{principal_moments, Inertia, Inertial, Link, Robot};
+use crate::urdf::robot::{principal_moments, Inertia, Inertial, JointKind, Link, Robot};
 
 use super::inertia_fix;
 
@@ -22,6 +23,7 @@ const FAR_FACTOR: f64 = 3.0;
 
 pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
+    let lumps = Lumps::new(robot, model);
     for (i, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
         let moving = model.is_moving(robot, LinkId(i));
@@ -69,6 +71,11 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                 ));
             }
         }
+        // MJCF masses come from the geoms' declared density (ant's 5 kg/m³, a pusher goal's 1e-5 are
+        // the author's choice, and MuJoCo simulates them so); only URDF and SDFormat masses are judged.
+        if let Some(mass) = mass.filter(|m| m.value > 0.0 && robot.format != Format::Mjcf) {
+            findings.extend(implausible_density(link, assets, mass, moving, &owner));
+        }
         let Some(inertia) = inertial.inertia.as_ref() else {
             continue;
         };
@@ -78,7 +85,15 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
             let fix = positive_mass
                 .and_then(|m| inertia_fix::replace_tensor(inertial, inertia, &geometry().ok()?, m));
             findings.push(finding.with_fix_option(fix));
-        } else if let (true, Some(m), Ok(g)) = (moving, positive_mass, geometry()) {
+        } else if let (true, Some(m), Ok(g)) = (lumps.judged(LinkId(i)), positive_mass, geometry())
+        {
+            let owner = match lumps.into[i] {
+                Some(parent) => format!(
+                    "{owner} (welded to '{}': simulators lump its mass and inertia into that link's)",
+                    robot.links[parent.0].name.value
+                ),
+                None => owner,
+            };
             findings.extend(
                 against_geometry(link, assets, inertial, inertia, &g, m, &owner).map(|f| {
                     f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, &g, m))
@@ -89,10 +104,148 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
     findings
 }
 
+/// Densest material, kg/m³, with rounding slack (osmium is 22,590).
+const MAX_DENSITY: f64 = 25_000.0;
+
+/// Lightest plausible solid part, kg/m³ (foams are 20–100).
+const MIN_DENSITY: f64 = 10.0;
+
+/// Geometry below this volume (a 12.6 mm cube) is a marker or a placeholder (PR2's 1 mm sensor boxes
+/// carry 100 g): no density is judged from it, m³.
+const MIN_JUDGED_VOLUME: f64 = 2e-6;
+
+/// U210 when `mass` in the volume of `link`'s geometry is beyond every material: above [`MAX_DENSITY`] in
+/// the larger of its collision and visual volumes (a part is at least as big as either shows it), or, on a
+/// moving link, below [`MIN_DENSITY`] in the smaller (fixed links so often carry placeholder grams for
+/// sensors and frames that only a moving one is judged light). No finding without geometry, or with less
+/// than [`MIN_JUDGED_VOLUME`] of it.
+fn implausible_density(
+    link: &Link,
+    assets: &Assets,
+    mass: &Spanned<f64>,
+    moving: bool,
+    owner: &str,
+) -> Option<Finding> {
+    let volumes: Vec<(Role, f64)> = [Role::Collision, Role::Visual]
+        .into_iter()
+        .filter_map(|role| {
+            let volume = geometry_inertia::of_role(link, role, assets).ok()?.volume();
+            (volume.is_finite() && volume > 0.0).then_some((role, volume))
+        })
+        .collect();
+    let largest = volumes.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    if largest.1 < MIN_JUDGED_VOLUME {
+        return None;
+    }
+    let smallest = volumes.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let (role, volume, bound) = if mass.value / largest.1 > MAX_DENSITY {
+        (
+            largest.0,
+            largest.1,
+            "beyond any material (osmium, the densest, is 22,590 kg/m³)",
+        )
+    } else if moving && mass.value / smallest.1 < MIN_DENSITY {
+        (
+            smallest.0,
+            smallest.1,
+            "lighter than any solid part (foams are 20–100 kg/m³)",
+        )
+    } else {
+        return None;
+    };
+    let density = mass.value / volume;
+    Some(
+        Finding::new(
+            &rules::IMPLAUSIBLE_DENSITY,
+            mass.span,
+            format!(
+                "{owner}: mass {} kg in the {} m³ of its {} geometry is a density of {} kg/m³, {bound}; as plastic (1,000 kg/m³) it would weigh {} kg, as steel (7,850 kg/m³) {} kg",
+                short_number(mass.value),
+                short_number(volume),
+                role.label(),
+                short_number(density),
+                short_number(1000.0 * volume),
+                short_number(7850.0 * volume),
+            ),
+        )
+        .with_help("check the mass's units (g or kg) and that it belongs to this link"),
+    )
+}
+
+/// Share of the lumped body's inertia below which a fixed link's tensor is not judged: a 0.1 g sensor
+/// frame's placeholder tensor changes nothing in the link it is welded to.
+const LUMP_SHARE: f64 = 0.01;
+
+/// Which links' tensors are judged against their geometry, and the link each fixed one is lumped into.
+struct Lumps {
+    /// Per link: the link a fixed link is lumped into (up its fixed joints to the first link that moves, or
+    /// the root); `None` for a moving link, the root, or a link outside the tree.
+    into: Vec<Option<LinkId>>,
+    /// Per link: part of the tree (the root, or a link with a parent joint).
+    in_tree: Vec<bool>,
+    /// Per link: its largest declared principal moment, kg·m² (0 without a tensor).
+    largest: Vec<f64>,
+    /// Per link: the sum of the largest moments of the link and every link lumped into it.
+    lumped: Vec<f64>,
+}
+
+impl Lumps {
+    fn new(robot: &Robot, model: &Model) -> Lumps {
+        let links = robot.links.len();
+        let mut into: Vec<Option<LinkId>> = vec![None; links];
+        for &link in &model.topological_order {
+            let Some(joint) = model.parent_joint[link.0] else {
+                continue;
+            };
+            let Some((parent, _)) = model.joint_links[joint.0] else {
+                continue;
+            };
+            if model.joint_data[joint.0].kind == JointKind::Fixed {
+                into[link.0] = Some(into[parent.0].unwrap_or(parent));
+            }
+        }
+        let largest: Vec<f64> = robot
+            .links
+            .iter()
+            .map(|link| {
+                link.inertial
+                    .as_ref()
+                    .and_then(|i| i.inertia.as_ref())
+                    .and_then(Inertia::principal_moments)
+                    .map_or(0.0, |[_, _, c]| c.max(0.0))
+            })
+            .collect();
+        let mut lumped = largest.clone();
+        for (link, target) in into.iter().enumerate() {
+            if let Some(target) = target {
+                lumped[target.0] += largest[link];
+            }
+        }
+        let in_tree = (0..links)
+            .map(|l| model.parent_joint[l].is_some() || model.root == Some(LinkId(l)))
+            .collect();
+        Lumps {
+            into,
+            in_tree,
+            largest,
+            lumped,
+        }
+    }
+
+    /// Whether `link`'s tensor is judged against its geometry: a moving link or the root (the floating
+    /// base of a simulator), or a fixed link whose tensor is at least [`LUMP_SHARE`] of the body it is
+    /// lumped into (turtlebot3's 5 g caster with I = 0.001 kg·m² is a quarter of its base's).
+    fn judged(&self, link: LinkId) -> bool {
+        self.in_tree[link.0]
+            && self.into[link.0]
+                .is_none_or(|target| self.largest[link.0] >= LUMP_SHARE * self.lumped[target.0])
+    }
+}
+
 /// U209 when the declared tensor cannot be that of a body of mass `mass` inside the geometry's bounding
-/// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's. Only for
-/// moving links, like the other inertia rules: a rigidly attached link's tensor only adds to its parent's
-/// (and markers, sensors and casters attached so often carry placeholders).
+/// box, else U208 when its principal moments are more than [`FAR_FACTOR`] from the geometry's. For the
+/// links [`Lumps::judged`] picks: a fixed link's tensor is lumped into its parent's by every simulator, and
+/// a root without a joint to the world is the floating base.
 #[allow(clippy::too_many_arguments)]
 fn against_geometry(
     link: &Link,

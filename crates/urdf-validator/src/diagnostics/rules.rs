@@ -108,6 +108,11 @@ rules! {
         why: "Robot files from strangers (pull requests, downloads, agents) must not read the machine's files or secrets into reports; what was refused is not checked, so the report is incomplete.",
         fix: "If the file is yours, allow the folder with `--root DIR` (or `--package-path DIR`) and the variable with `--allow-env NAME`, or validate in trusted mode; otherwise the file is trying to read what it should not.",
     }
+    UNBOUND_NAMESPACE_PREFIX = "U014" "unbound-namespace-prefix" Warn {
+        what: "An element or attribute name uses a namespace prefix (`<sensor:camera>`) that no `xmlns:` declaration binds.",
+        why: "urdfdom (TinyXML2), Pinocchio and Gazebo do not check namespaces: they load the file and skip the element as unknown. Namespace-aware XML tools (lxml, Python's xml.dom, xacro, many linters) refuse the whole file as not well-formed.",
+        fix: "Declare the namespace on `<robot>` (`xmlns:sensor=\"http://playerstage.sourceforge.net/gazebo/xmlschema/#sensor\"` in old Gazebo files), or remove the prefixed elements if nothing reads them.",
+    }
     SDF_STRUCTURE = "U020" "sdf-structure" Critical {
         what: "The SDFormat document breaks a rule of its structure that sdformat (libsdformat, which Gazebo and Drake load SDF with) enforces: no `<model>` (or a `<world>` without one), a required element or attribute missing, a name used twice in one model, a reserved name (`world`, `__model__`, names starting and ending with `__`), a joint whose child is `world` or whose parent and child are the same link, a model without links.",
         why: "sdformat refuses the file (`sdf::Errors`), so Gazebo and Drake do not load it; what is read here around the problem may not be what the author meant.",
@@ -269,14 +274,19 @@ rules! {
         fix: "Add an `<inertial>` if the part has a real mass; ignore this if it is a massless marker.",
     }
     INERTIA_FAR_FROM_GEOMETRY = "U208" "inertia-far-from-geometry" Info {
-        what: "A moving link's declared principal moments are more than a factor 3 from those of its geometry (collision shapes, else visuals) filled uniformly at the declared mass.",
+        what: "A link's declared principal moments (a moving link's, or a fixed one's, which simulators lump into the link it is welded to) are more than a factor 3 from those of its geometry (collision shapes, else visuals) filled uniformly at the declared mass.",
         why: "A tensor copied from another part, left at a placeholder (`1 0 0 1 0 1` on a 60 kg base) or in the wrong units makes the simulated link swing and tip unlike the real one; MuJoCo Menagerie re-derived tidybot's from its mesh for this reason.",
         fix: "Use the CAD tensor; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass and moves the inertial origin to the geometry's centroid, as Drake's `fix_inertia` does.",
     }
     INERTIA_OUTSIDE_GEOMETRY = "U209" "inertia-outside-geometry" Warn {
-        what: "A moving link's declared inertia cannot be that of any body of its mass inside the bounding box of its shapes (those its inertia would come from, and when the tensor does not fit there, all its collision and visual shapes, since collision shapes are often smaller than the part): a second moment along a link axis exceeds m·(c − lo)(hi − c) for the declared centre of mass c (the largest any mass distribution on [lo, hi] can have), or the centre of mass is outside the box.",
+        what: "A link's declared inertia (a moving link's, or a fixed one's, which simulators lump into the link it is welded to) cannot be that of any body of its mass inside the bounding box of its shapes (those its inertia would come from, and when the tensor does not fit there, all its collision and visual shapes, since collision shapes are often smaller than the part): a second moment along a link axis exceeds m·(c − lo)(hi − c) for the declared centre of mass c (the largest any mass distribution on [lo, hi] can have), or the centre of mass is outside the box.",
         why: "The tensor is not this link's: usually units (g·mm², kg·mm²), a mass/inertia mix-up or a tensor about the wrong point. Simulators accept it and the link moves as a much larger body would.",
         fix: "Use the CAD tensor in kg·m² about the centre of mass; or apply the fix (`--fix --unsafe-fixes`), which writes the geometry's tensor at the declared mass, as Drake's `fix_inertia` does.",
+    }
+    IMPLAUSIBLE_DENSITY = "U210" "implausible-density" Warn {
+        what: "A link's mass divided by the volume of its geometry (collision shapes and visuals, meshes as the solid they bound) is beyond every material: above 25,000 kg/m³ (osmium, the densest, is 22,590) for the larger volume, or, on a moving link, below 10 kg/m³ (lighter than foam) for the smaller.",
+        why: "Usually a unit slip (grams written as kilograms, a mass in the wrong link, a mesh in millimetres): the robot's weight, centre of mass and every gravity torque follow the wrong mass, and a simulator's contacts with a link a thousand times too heavy or light misbehave.",
+        fix: "Write the link's real mass (from CAD or a scale); the message gives what the part would weigh in plastic and in steel.",
     }
     MISSING_LIMIT = "U301" "missing-limit" Critical {
         what: "A revolute or prismatic joint has no `<limit>`.",

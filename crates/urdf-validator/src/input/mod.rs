@@ -6,6 +6,7 @@ pub mod resolve;
 pub mod sandbox;
 pub mod source;
 pub mod srdf;
+pub mod unbound_prefixes;
 pub mod xacro;
 pub mod xml_files;
 

@@ -58,6 +58,24 @@ pub enum Resolution {
     Unsupported(String),
     /// The file exists but the sandbox does not let it be read (untrusted mode).
     Refused(Refusal),
+    /// ROS refuses the URI (`why`), but Pinocchio, MuJoCo and Gazebo find the file at `path`: the
+    /// analyses read it, and the check says ROS will not.
+    Lenient {
+        /// The file the other loaders read.
+        path: PathBuf,
+        /// Why ROS's resource_retriever refuses the URI, in one sentence.
+        why: String,
+    },
+}
+
+impl Resolution {
+    /// The file the analyses read: a found file, or one found only by the loaders more lenient than ROS.
+    pub fn found(&self) -> Option<&PathBuf> {
+        match self {
+            Resolution::Found(path) | Resolution::Lenient { path, .. } => Some(path),
+            _ => None,
+        }
+    }
 }
 
 /// Why an SDFormat `<include>` gives no file.
@@ -148,6 +166,10 @@ impl PackageResolver {
         match self.resolve_unchecked(uri, urdf_dir) {
             Resolution::Found(path) => match self.sandbox.check_file(&path) {
                 Ok(()) => Resolution::Found(path),
+                Err(refusal) => Resolution::Refused(refusal),
+            },
+            Resolution::Lenient { path, why } => match self.sandbox.check_file(&path) {
+                Ok(()) => Resolution::Lenient { path, why },
                 Err(refusal) => Resolution::Refused(refusal),
             },
             // Untrusted mode says why a device or a FIFO named like a mesh is not read.
@@ -353,9 +375,23 @@ impl PackageResolver {
             // resource_retriever/src/retriever.cpp) takes the package name up to the first '/' and throws
             // "Package name must not be empty" when it is empty; ROS 1 (kinetic-devel at 8a83c6b,
             // src/retriever.cpp) asks `ros::package::getPath("")` and throws "Package [] does not exist".
-            // RViz and MoveIt load meshes through it, so the mesh is not found there: we do not resolve it.
+            // RViz and MoveIt load meshes through it, so the mesh is not found there. Pinocchio joins each
+            // package folder with the rest of the URI (`retrieveResourcePath`: `dir + "/" + path`), so
+            // `package:///pkg/file` is `package://pkg/file` to it (example-robot-data's talos_full_v2 has
+            // 93 such meshes), and MuJoCo's URDF import keeps only the file name: the analyses read that
+            // file, and the check keeps saying that ROS does not.
+            let why = "package:// URI has an empty package name; ROS's resource_retriever refuses it (\"Package name must not be empty\")";
+            let as_package = file.trim_start_matches('/');
+            if !as_package.is_empty() {
+                if let Resolution::Found(path) = self.resolve_package(as_package, urdf_dir) {
+                    return Resolution::Lenient {
+                        path,
+                        why: format!("{why}: write package://{as_package}"),
+                    };
+                }
+            }
             return Resolution::Unsupported(format!(
-                "package:// URI has an empty package name; ROS's resource_retriever refuses it (\"Package name must not be empty\"): write file://{} for an absolute path",
+                "{why}: write file://{} for an absolute path",
                 file_part_for_hint(file)
             ));
         }
@@ -1083,6 +1119,28 @@ mod tests {
             empty_resolver().resolve(&format!("file://{}", mesh.display()), &t.dir("x")),
             Resolution::Found(mesh)
         );
+    }
+
+    #[test]
+    fn empty_package_name_before_a_package_is_found_as_pinocchio_finds_it() {
+        // `package:///pkg/meshes/a.stl`: ROS refuses it, Pinocchio reads package `pkg`'s file.
+        let t = TempTree::new();
+        t.file("pkg/package.xml");
+        let mesh = t.file("pkg/meshes/a.stl");
+        let resolver = PackageResolver::new(vec![t.path("")], None, None);
+        let got = resolver.resolve("package:///pkg/meshes/a.stl", &t.dir("x"));
+        let Resolution::Lenient { path, why } = &got else {
+            panic!("expected Lenient, got {got:?}");
+        };
+        assert_eq!(path, &mesh);
+        assert!(why.contains("resource_retriever"), "{why}");
+        assert!(why.contains("package://pkg/meshes/a.stl"), "{why}");
+        assert_eq!(got.found(), Some(&mesh));
+        // Nothing there: refused as before.
+        assert!(matches!(
+            resolver.resolve("package:///pkg/meshes/b.stl", &t.dir("x")),
+            Resolution::Unsupported(_)
+        ));
     }
 
     #[test]

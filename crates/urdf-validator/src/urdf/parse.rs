@@ -9,6 +9,7 @@ use crate::diagnostics::finding::Finding;
 use crate::diagnostics::fix::{Edit, Fix};
 use crate::diagnostics::rules;
 use crate::input::source::{Span, Spanned};
+use crate::input::unbound_prefixes::rewrite_unbound_prefixes;
 use crate::input::{xml_options, LoadError};
 use crate::urdf::robot::*;
 
@@ -30,7 +31,7 @@ pub struct UrdfText<'t> {
 impl<'t> UrdfText<'t> {
     /// Prepare `text`.
     pub fn new(text: &'t str) -> Self {
-        match late_declaration(text) {
+        let mut prepared = match late_declaration(text) {
             Some((blanked, declaration)) => UrdfText {
                 text: blanked.into(),
                 findings: vec![Finding::new(
@@ -54,7 +55,33 @@ impl<'t> UrdfText<'t> {
                 text: text.into(),
                 findings: Vec::new(),
             },
+        };
+        prepared.unbind_prefixes();
+        prepared
+    }
+
+    /// Undeclared namespace prefixes (`<sensor:camera>` without `xmlns:sensor`), which urdfdom reads as
+    /// unknown elements: their names rewritten in place (offsets unchanged), one finding per prefix.
+    fn unbind_prefixes(&mut self) {
+        let Some((rewritten, prefixes)) = rewrite_unbound_prefixes(&self.text) else {
+            return;
+        };
+        for unbound in prefixes {
+            let prefix = &unbound.prefix;
+            self.findings.push(
+                Finding::new(
+                    &rules::UNBOUND_NAMESPACE_PREFIX,
+                    unbound.span,
+                    format!(
+                        "namespace prefix `{prefix}:` is used without an `xmlns:{prefix}` declaration: urdfdom, Pinocchio and Gazebo read the file and skip its `{prefix}:` elements, namespace-aware XML tools (lxml, xacro, Python's xml.dom) refuse it; read here as unknown elements"
+                    ),
+                )
+                .with_help(format!(
+                    "declare the namespace on <robot> (`xmlns:{prefix}=\"...\"`) or drop the `{prefix}:` prefix"
+                )),
+            );
         }
+        self.text = rewritten.into();
     }
 
     /// The XML document; an error names `path` and where the XML breaks.

@@ -307,9 +307,8 @@ fn finite(v: f64) -> Option<f64> {
 /// The file MuJoCo gets for a mesh URI, and whether it is the file itself (`true`) or our hull; or why
 /// there is none.
 fn mesh_asset<'a>(assets: &'a Assets, uri: &str) -> Result<(&'a Path, bool), String> {
-    let path = match assets.resolution(uri) {
-        Some(Resolution::Found(path)) => path.as_path(),
-        _ => return Err("cannot be found".to_string()),
+    let Some(path) = assets.resolution(uri).and_then(Resolution::found) else {
+        return Err("cannot be found".to_string());
     };
     let mesh = match assets.mesh(uri).map(|m| m.as_ref()) {
         Some(Ok(mesh)) => mesh,

@@ -11,7 +11,8 @@ use nalgebra::Vector3;
 
 use crate::analysis::classify::{Classification, RobotType};
 use crate::analysis::stability::support_polygon::{
-    convex_hull, direction_name, is_polygon, margin, min_width, tipping_angle, Point2,
+    convex_hull, degenerate_width, direction_name, is_polygon, margin, min_width, tipping_angle,
+    Point2,
 };
 use crate::assets::supports::{lowest_points, LinkSupports};
 use crate::diagnostics::{rules, Confidence, Finding, Status};
@@ -209,11 +210,25 @@ pub fn analyse(
     let height = com.z - ground;
     section.com_height = Some(height);
     if !is_polygon(&hull) {
+        let on_a_line = if hull.len() >= 3 {
+            format!(
+                " (they lie on a line: the polygon is {:.3} mm wide)",
+                1000.0 * degenerate_width(&hull)
+            )
+        } else {
+            String::new()
+        };
+        let balancing = match robot_type {
+            t if t.is_legged() => " (a walking robot balances actively)",
+            RobotType::Wheeled | RobotType::GroundVehicle if section.contact_links.len() <= 2 => {
+                " (a two-wheeled robot balances actively)"
+            }
+            _ => "",
+        };
         section.reason = Some(format!(
-            "{} supporting contact point(s) on {} link(s) do not span an area: static stability needs at least 3 non-collinear supports{}",
+            "{} supporting contact point(s) on {} link(s) do not span an area{on_a_line}: static stability needs at least 3 supports off one line{balancing}",
             points.len(),
             section.contact_links.len(),
-            if robot_type.is_legged() { " (a walking robot balances actively)" } else { "" }
         ));
         return section;
     }

@@ -4,8 +4,12 @@
 /// A point on the ground plane (x forward, y left).
 pub type Point2 = [f64; 2];
 
-/// Area below which a hull is degenerate (points collinear), m².
-const MIN_AREA: f64 = 1e-8;
+/// Width below which a hull is a line, m: supports collinear up to rounding (two wheels on one axle whose
+/// contact points differ by nanometres) carry no area, whatever their length.
+const MIN_LINE_WIDTH: f64 = 1e-3;
+
+/// Width below which a hull is a line, as a fraction of its diameter (large robots round coarser).
+const LINE_WIDTH_PER_DIAMETER: f64 = 1e-3;
 
 /// Convex hull, counter-clockwise, without collinear points (Andrew's monotone chain). Fewer than three
 /// points come back as they are (deduplicated).
@@ -39,19 +43,42 @@ pub fn convex_hull(points: &[Point2]) -> Vec<Point2> {
     hull
 }
 
-/// Twice the signed area (positive for counter-clockwise).
-fn doubled_area(hull: &[Point2]) -> f64 {
-    (0..hull.len())
-        .map(|i| {
-            let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
-            a[0] * b[1] - b[0] * a[1]
-        })
-        .sum()
+/// The largest distance between two of the hull's points, metres.
+fn diameter(hull: &[Point2]) -> f64 {
+    hull.iter()
+        .flat_map(|a| hull.iter().map(move |b| (a[0] - b[0]).hypot(a[1] - b[1])))
+        .fold(0.0, f64::max)
 }
 
-/// True when the hull encloses an area (at least three non-collinear points).
+/// The smallest distance between two parallel lines enclosing the hull (0 for fewer than three points).
+fn width(hull: &[Point2]) -> f64 {
+    if hull.len() < 3 {
+        return 0.0;
+    }
+    edges(hull)
+        .map(|(a, _, n)| {
+            hull.iter()
+                .map(|q| -((q[0] - a[0]) * n[0] + (q[1] - a[1]) * n[1]))
+                .fold(0.0, f64::max)
+        })
+        .min_by(f64::total_cmp)
+        .unwrap_or(0.0)
+}
+
+/// The width below which supports count as a line: 1 mm, or a thousandth of the hull's diameter when
+/// that is more.
+fn line_tolerance(hull: &[Point2]) -> f64 {
+    MIN_LINE_WIDTH.max(LINE_WIDTH_PER_DIAMETER * diameter(hull))
+}
+
+/// True when the hull encloses an area: at least three points, wider than [`line_tolerance`].
 pub fn is_polygon(hull: &[Point2]) -> bool {
-    hull.len() >= 3 && doubled_area(hull) / 2.0 > MIN_AREA
+    hull.len() >= 3 && width(hull) > line_tolerance(hull)
+}
+
+/// The width of a hull that [`is_polygon`] refuses (points on a line up to rounding), metres.
+pub fn degenerate_width(hull: &[Point2]) -> f64 {
+    width(hull)
 }
 
 /// Edges as (start, end, outward unit normal).
@@ -110,16 +137,7 @@ pub fn tipping_angle(hull: &[Point2], p: Point2, height: f64) -> Option<f64> {
 
 /// The polygon's minimum width (smallest distance between two parallel supporting lines).
 pub fn min_width(hull: &[Point2]) -> Option<f64> {
-    if !is_polygon(hull) {
-        return None;
-    }
-    edges(hull)
-        .map(|(a, _, n)| {
-            hull.iter()
-                .map(|q| -((q[0] - a[0]) * n[0] + (q[1] - a[1]) * n[1]))
-                .fold(0.0, f64::max)
-        })
-        .min_by(f64::total_cmp)
+    is_polygon(hull).then(|| width(hull))
 }
 
 /// Compass name of a ground-plane direction in the robot frame (x front, y left).
@@ -159,6 +177,29 @@ mod tests {
             [0.0, 0.0],
             [1.0, 0.0],
             [2.0, 0.0]
+        ])));
+    }
+
+    #[test]
+    fn supports_on_a_line_up_to_rounding_are_no_polygon() {
+        // Two wheels on one axle, their rim points 88 nm off the line (the area, 2.6e-8 m², passed the old
+        // area test and gave a margin of -5 mm): a line, like exactly collinear points.
+        let wheels = convex_hull(&[[0.0, -0.16], [0.0, -0.14], [88e-9, 0.14], [88e-9, 0.16]]);
+        assert!(!is_polygon(&wheels));
+        assert!(margin(&wheels, [0.05, 0.0]).is_none());
+        assert!(degenerate_width(&wheels) < 1e-6);
+        // A narrow but real polygon (2 mm by 30 cm) stays one; a 30 m one must be 3 cm wide.
+        assert!(is_polygon(&convex_hull(&[
+            [0.0, -0.15],
+            [0.002, -0.15],
+            [0.0, 0.15],
+            [0.002, 0.15]
+        ])));
+        assert!(!is_polygon(&convex_hull(&[
+            [0.0, -15.0],
+            [0.02, -15.0],
+            [0.0, 15.0],
+            [0.02, 15.0]
         ])));
     }
 
