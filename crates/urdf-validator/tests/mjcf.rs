@@ -587,6 +587,55 @@ fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() 
     }
 }
 
+#[test]
+fn a_ctrlrange_short_of_the_range_by_rounding_is_no_u034() {
+    // SO-ARM101 (TheRobotStudio/SO-ARM100, so101_new_calib.xml): range ±1.919862, ctrlrange ±1.91986.
+    // Before: U034 for a 2 µrad shortfall.
+    let model = |ctrl: &str| {
+        format!(
+            r#"<mujoco><compiler angle="radian"/><worldbody><body name="a"><joint name="j" axis="0 1 0" range="-1.919862 1.919862"/><geom type="box" size="0.1 0.1 0.1"/></body></worldbody><actuator><position joint="j" kp="10" ctrlrange="{ctrl}"/></actuator></mujoco>"#
+        )
+    };
+    let dir = Scratch::new("rounding");
+    let rounded = run(&dir.file("rounded.xml", &model("-1.91986 1.91986")));
+    assert!(
+        findings(&rounded, "U034").is_empty(),
+        "{:?}",
+        findings(&rounded, "U034")
+    );
+    // A thousandth of a radian short is a real shortfall.
+    let short = run(&dir.file("short.xml", &model("-1.918 1.918")));
+    assert_eq!(findings(&short, "U034").len(), 1);
+}
+
+#[test]
+fn an_explicit_geom_mass_counts_when_its_mesh_cannot_be_read() {
+    // psyonicinc/ability-hand-api's MJCF hands name meshes the repository lacks, each geom with an
+    // explicit mass. Before: the mass was dropped (U203 "mass 0", a total mass too low) and MuJoCo's
+    // mjMINVAL refusal (U030 CRITICAL) was claimed for a body whose inertia is unknown, not zero.
+    let dir = Scratch::new("unread_mesh");
+    let path = dir.file(
+        "hand.xml",
+        r#"<mujoco><asset><mesh name="m" file="absent.stl"/></asset><worldbody><body name="base"><geom type="box" size=".05 .05 .05"/>
+<body name="finger" pos="0 0 .1"><joint name="j" type="hinge" axis="0 1 0"/><geom type="mesh" mesh="m" mass="0.01"/></body></body></worldbody></mujoco>"#,
+    );
+    let v = run(&path);
+    for rule in ["U030", "U203", "U204"] {
+        assert!(
+            findings(&v, rule).is_empty(),
+            "{rule}: {:?}",
+            findings(&v, rule)
+        );
+    }
+    let statics = v.report.statics.as_ref().unwrap();
+    assert!(
+        (statics.total_mass.unwrap() - 1.01).abs() < 1e-12,
+        "{statics:?}"
+    );
+    // The missing mesh itself is still said.
+    assert_eq!(findings(&v, "U501").len(), 1, "{:?}", findings(&v, "U501"));
+}
+
 /// Two sibling links overlapping at qpos0, and an arm (so that self-collision is assessed) with a bracket
 /// welded to its forearm overlapping the upper arm the forearm hangs from; `CONTACT` is replaced by each test's filter.
 const OVERLAPPING: &str = r#"<mujoco>

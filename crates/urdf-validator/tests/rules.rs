@@ -254,6 +254,7 @@ const COVERED: &[&str] = &[
     u207_massless_geometry::CODE,
     u208_inertia_far_from_geometry::CODE,
     u209_inertia_outside_geometry::CODE,
+    u210_implausible_density::CODE,
     u301_missing_limit::CODE,
     u302_incomplete_limit::CODE,
     u303_missing_effort_velocity::CODE,
@@ -279,6 +280,7 @@ const COVERED: &[&str] = &[
     u601_links_in_contact_at_reference::CODE,
     u011_unsupported_urdf_version::CODE,
     u012_late_xml_declaration::CODE,
+    u014_unbound_namespace_prefix::CODE,
     "U010", // needs a xacro file: xacro_warnings_are_u010_at_the_xacro_tag below
     "U602", // needs an SRDF file: a_broken_or_stale_srdf_is_u602_and_the_rest_runs below
     // Verdict rules: tests/verdicts.rs (statics, stability, requested checks) and tests/workspace.rs
@@ -869,6 +871,38 @@ rule_case! {
     at: (6, 7, "<inertia"),
     // 0.15: more than 3× the cube's (U208), still possible inside the box (all mass on the faces).
     clean: cube_link("0.15", "0.15", "0.15"),
+}
+
+/// A 0.2 m cube link of `mass` kg (8 dm³) whose tensor is the uniform cube's at that mass.
+fn cube_of_mass(mass: f64) -> String {
+    let moment = mass * 0.04 / 6.0;
+    format!(
+        r#"<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>
+      <mass value="{mass}"/>
+      <inertia ixx="{moment}" ixy="0" ixz="0" iyy="{moment}" iyz="0" izz="{moment}"/>
+    </inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="base"/>
+    <child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1e9" velocity="1"/>
+  </joint>
+</robot>
+"#
+    )
+}
+
+rule_case! {
+    // 8,000 kg in 8 dm³: 1,000,000 kg/m³ (grams written as kilograms); 8 kg is 1,000 kg/m³.
+    u210_implausible_density, "U210",
+    fires: cube_of_mass(8000.0),
+    at: (5, 20, "8000\""),
+    clean: cube_of_mass(8.0),
 }
 
 rule_case! {
@@ -3296,6 +3330,13 @@ rule_case! {
     fires: "\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
     at: (3, 1, "<?xml"),
     clean: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+}
+
+rule_case! {
+    u014_unbound_namespace_prefix, "U014",
+    fires: "<robot name=\"r\">\n  <link name=\"base\"/>\n  <gazebo><sensor:camera name=\"c\"/></gazebo>\n</robot>\n",
+    at: (3, 12, "sensor:camera"),
+    clean: "<robot name=\"r\" xmlns:sensor=\"http://playerstage.sourceforge.net/gazebo/xmlschema/#sensor\">\n  <link name=\"base\"/>\n  <gazebo><sensor:camera name=\"c\"/></gazebo>\n</robot>\n",
 }
 
 /// Untrusted mode refuses a mesh outside its roots at the filename that asked, naming the path as written;

@@ -179,6 +179,9 @@ pub struct Builder<'a, 'r> {
     joint_facts: HashMap<String, actuators::JointFacts>,
     /// What the contact filter needs to know of each body, in document order.
     body_contacts: Vec<contacts::BodyContacts>,
+    /// Bodies with a geom whose mesh could not be read: their mass is partly unknown, so MuJoCo's
+    /// verdict on it (mjMINVAL) is too; the missing file is what it refuses.
+    unread_geoms: HashSet<String>,
     /// Every joint in MuJoCo's qpos order, for the keyframes.
     qpos: Vec<keyframes::QposJoint>,
     /// Every actuator in MuJoCo's order (its name, or `actuator#INDEX`) and its `ctrlrange` when limited
@@ -219,6 +222,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             actuator_force: HashMap::new(),
             joint_facts: HashMap::new(),
             body_contacts: Vec::new(),
+            unread_geoms: HashSet::new(),
             qpos: Vec::new(),
             actuator_ctrl: Vec::new(),
         };
@@ -838,8 +842,11 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mut from_geoms = None;
         let mut filters = Vec::new();
         for (geom_el, geom_class, geom_frame) in &contents.geoms {
-            let (shape, collides, mass) =
+            let (shape, collides, mass, read) =
                 self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
+            if !read {
+                self.unread_geoms.insert(name.clone());
+            }
             if let Some(shape) = shape {
                 match collides {
                     Some(filter) => {
@@ -1079,14 +1086,14 @@ impl<'a, 'r> Builder<'a, 'r> {
     }
 
     /// A geom's shape (in the link frame: `frame` places the geom's written frame there), its `contype`
-    /// and `conaffinity` when it collides (not both 0), and its mass properties when it counts for the
-    /// body's mass.
+    /// and `conaffinity` when it collides (not both 0), its mass properties when it counts for the body's
+    /// mass, and whether its mesh (if it names one) was read.
     fn geom(
         &mut self,
         el: El<'a>,
         class: &str,
         frame: &Isometry3<f64>,
-    ) -> (Option<Shape>, Option<(u32, u32)>, Option<MassProps>) {
+    ) -> (Option<Shape>, Option<(u32, u32)>, Option<MassProps>, bool) {
         let kind = self.word(
             el,
             class,
@@ -1161,13 +1168,25 @@ impl<'a, 'r> Builder<'a, 'r> {
                 mass::primitive(kind, size, self.shell_inertia(el, class)),
             ),
         };
-        let mass = solid.filter(|_| counts).map(|solid: Solid| {
-            let mass = match self.value(el, class, "mass") {
-                Some(_) => self.scalar(el, class, "mass", 0.0),
-                None => self.scalar(el, class, "density", 1000.0) * solid.volume,
-            };
-            solid.with_mass(mass).placed(&at)
-        });
+        // A mesh that cannot be read (the asset checks say why) gives no solid: its explicit `mass` still
+        // counts, as a point at the geom's frame (MuJoCo puts it at the mesh's centroid, unknown here).
+        let explicit = self
+            .value(el, class, "mass")
+            .map(|_| self.scalar(el, class, "mass", 0.0));
+        let unread = solid.is_none() && (kind == "mesh" || self.value(el, class, "mesh").is_some());
+        let mass = match (solid, explicit) {
+            (Some(solid), _) if counts => {
+                let mass = explicit
+                    .unwrap_or_else(|| self.scalar(el, class, "density", 1000.0) * solid.volume);
+                Some(solid.with_mass(mass).placed(&at))
+            }
+            (None, Some(mass)) if counts && unread => Some(MassProps {
+                mass,
+                com: at.translation.vector,
+                inertia: nalgebra::Matrix3::zeros(),
+            }),
+            _ => None,
+        };
         let shape = geometry.map(|geometry| Shape {
             span,
             name: el.attr("name").map(str::to_string),
@@ -1178,7 +1197,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             }),
             material: None,
         });
-        (shape, collides, mass)
+        (shape, collides, mass, !unread)
     }
 
     /// A mesh geom's shape and solid (the mesh file read through the sandbox and the mesh cache).
@@ -1337,7 +1356,12 @@ impl<'a, 'r> Builder<'a, 'r> {
             let props = props.scaled(factor);
             if let Some(link) = self.links.get_mut(i) {
                 let span = link.inertial.as_ref().map_or(link.span, |m| m.span);
-                link.inertial = Some(inertial_of(&props, span));
+                let mut inertial = inertial_of(&props, span);
+                // A mesh not read leaves the tensor unknown (not zero): the mass and centre of mass stand.
+                if self.unread_geoms.contains(&link.name.value) {
+                    inertial.inertia = None;
+                }
+                link.inertial = Some(inertial);
             }
         }
     }
@@ -1368,7 +1392,7 @@ impl Builder<'_, '_> {
         let by_link = contacts::by_link(&self.body_contacts);
         let mut accepted: HashSet<String> = HashSet::new();
         for body in &self.body_contacts {
-            if enough(&body.link) {
+            if enough(&body.link) || self.unread_geoms.contains(&body.link) {
                 accepted.insert(contacts::weld_root(&by_link, &body.link));
             }
         }

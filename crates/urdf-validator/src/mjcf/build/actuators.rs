@@ -113,7 +113,7 @@ impl<'a> Builder<'a, '_> {
     }
 
     /// U034 when the position servo `name` (gear `gear`, control range `ctrl`) cannot command all of
-    /// `joint`'s range: its targets in joint units are `ctrl / gear`.
+    /// `joint`'s range beyond rounding: its targets in joint units are `ctrl / gear`.
     fn check_servo_reach(&mut self, name: &str, joint: &str, gear: f64, ctrl: ((f64, f64), Span)) {
         let Some((lo, hi)) = self.joint_facts.get(joint).and_then(|f| f.range) else {
             return;
@@ -124,7 +124,10 @@ impl<'a> Builder<'a, '_> {
         let ((c_lo, c_hi), span) = ctrl;
         let (a, b) = (c_lo / gear, c_hi / gear);
         let (reach_lo, reach_hi) = (a.min(b), a.max(b));
-        let slack = 1e-9 * (lo.abs().max(hi.abs()) + 1.0);
+        // Numbers written to five or six digits (SO-ARM101's ctrlrange 1.91986 for a range of 1.919862)
+        // fall short by rounding, not by design: a shortfall below 1e-4 of the range's scale is none.
+        let scale = (hi - lo).abs().max(lo.abs()).max(hi.abs());
+        let slack = 1e-4 * scale + 1e-12;
         if reach_lo > lo + slack || reach_hi < hi - slack {
             let message = format!(
                 "position actuator '{name}' commands joint '{joint}' only within [{reach_lo:.6}, {reach_hi:.6}] (ctrlrange / gear {gear}), not its whole range [{lo:.6}, {hi:.6}] (radians or metres: a ctrlrange is not converted from degrees)"
