@@ -588,6 +588,52 @@ fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() 
 }
 
 #[test]
+fn statics_follow_the_models_gravity() {
+    // gymnasium's pusher declares gravity="0 0 0": MuJoCo's motors hold nothing, and U701 failed the arm
+    // under standard gravity. A 1 kg, 0.5 m arm on a 2 N·m motor.
+    let model = |option: &str| {
+        format!(
+            r#"<mujoco>{option}<worldbody><body name="arm"><joint name="shoulder" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.02" mass="1"/></body></worldbody><actuator><motor joint="shoulder" ctrlrange="-2 2"/></actuator></mujoco>"#
+        )
+    };
+    let dir = Scratch::new("gravity");
+    let torque = |v: &Validation| {
+        let statics = v.report.statics.as_ref().unwrap();
+        statics.joints[0].required_torque_gravity.unwrap().abs()
+    };
+    let earth = run(&dir.file("earth.xml", &model("")));
+    assert_eq!(findings(&earth, "U701").len(), 1);
+    assert!(findings(&earth, "U040").is_empty());
+    assert!(
+        (torque(&earth) - 0.25 * 9.81).abs() < 1e-9,
+        "{}",
+        torque(&earth)
+    );
+    for (name, option) in [
+        ("zero", r#"<option gravity="0 0 0"/>"#),
+        ("disabled", r#"<option><flag gravity="disable"/></option>"#),
+    ] {
+        let v = run(&dir.file(&format!("{name}.xml"), &model(option)));
+        assert!(
+            findings(&v, "U701").is_empty(),
+            "{name}: {:?}",
+            findings(&v, "U701")
+        );
+        assert_eq!(torque(&v), 0.0, "{name}");
+        has(&v, "U040", &format!("{name}.xml"), 1, "not the standard");
+    }
+    // The moon's gravity: a sixth of the torque, and the motor holds it.
+    let moon = run(&dir.file("moon.xml", &model(r#"<option gravity="0 0 -1.62"/>"#)));
+    assert!(
+        (torque(&moon) - 0.25 * 1.62).abs() < 1e-9,
+        "{}",
+        torque(&moon)
+    );
+    assert!(findings(&moon, "U701").is_empty());
+    has(&moon, "U040", "moon.xml", 1, "(0, 0, -1.62) m/s²");
+}
+
+#[test]
 fn a_ctrlrange_short_of_the_range_by_rounding_is_no_u034() {
     // SO-ARM101 (TheRobotStudio/SO-ARM100, so101_new_calib.xml): range ±1.919862, ctrlrange ±1.91986.
     // Before: U034 for a 2 µrad shortfall.

@@ -174,8 +174,9 @@ fn vector(value: &Value) -> Vector3<f64> {
 /// The differences between our reading of `model` and MuJoCo's `golden`, one line each.
 fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
     let mut out = Vec::new();
-    // Our statics use standard gravity; MuJoCo's numbers are with the model's (on even where the model
-    // turns it off: the oracle turns it back on).
+    // MuJoCo's numbers are under standard gravity (on even where the model turns it off: the oracle
+    // turns it back on, and records the model's own); our statics follow the model's gravity, which must
+    // be MuJoCo's, and are compared here under the standard one (torques are linear in gravity).
     let gravity = vector(&golden["gravity"]);
     if (gravity - Vector3::new(0.0, 0.0, -9.81)).norm() > 0.0 {
         out.push(format!(
@@ -186,7 +187,19 @@ fn compare(model_path: &Path, golden: &Value) -> Vec<String> {
     let loaded = Loaded::read(model_path, &[], &resolver).expect("the model loads");
     let files = loaded.mjcf().expect("an MJCF model");
     let (robot, _) = urdf_validator::mjcf::parse_mjcf(files, &MeshCache::new(), &resolver);
-    let (model, _) = Model::build(&robot);
+    let (mut model, _) = Model::build(&robot);
+    let declared = if golden["gravity_disabled"].as_bool() == Some(true) {
+        Vector3::zeros()
+    } else {
+        vector(&golden["model_gravity"])
+    };
+    if (model.gravity - declared).norm() > 0.0 {
+        out.push(format!(
+            "gravity read as {:?}, MuJoCo's model has {declared:?}",
+            model.gravity
+        ));
+    }
+    model.gravity = urdf_validator::analysis::statics::gravity::GRAVITY;
     let mass_of = |name: &str| {
         model
             .link(name)

@@ -23,7 +23,7 @@ const FAR_FACTOR: f64 = 3.0;
 
 pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
-    let lumps = Lumps::new(robot, model);
+    let lumps = Lumps::new(robot, model, assets);
     for (i, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
         let moving = model.is_moving(robot, LinkId(i));
@@ -142,13 +142,13 @@ fn implausible_density(
         (
             largest.0,
             largest.1,
-            "beyond any material (osmium, the densest, is 22,590 kg/m³)",
+            "beyond any material (osmium, the densest, is 22,590 kg/m³): the mass is wrong, or the geometry shows only part of the link",
         )
     } else if moving && mass.value / smallest.1 < MIN_DENSITY {
         (
             smallest.0,
             smallest.1,
-            "lighter than any solid part (foams are 20–100 kg/m³)",
+            "lighter than any solid part (foams are 20–100 kg/m³): the mass is wrong, or the geometry is larger than the link",
         )
     } else {
         return None;
@@ -184,13 +184,18 @@ struct Lumps {
     /// Per link: part of the tree (the root, or a link with a parent joint).
     in_tree: Vec<bool>,
     /// Per link: its largest declared principal moment, kg·m² (0 without a tensor).
-    largest: Vec<f64>,
-    /// Per link: the sum of the largest moments of the link and every link lumped into it.
+    declared: Vec<f64>,
+    /// Per link: the largest principal moment of its geometry filled at its declared mass, summed over
+    /// the link and every link lumped into it, kg·m². From masses and shapes only, so a fix that rewrites
+    /// tensors leaves it as it was (the fixes stay idempotent).
     lumped: Vec<f64>,
+    /// The root when it is the world itself (a link named `world`, as Gazebo, the SDFormat reader and
+    /// MJCF's worldbody have it): what is welded to it never moves, and its inertia enters no dynamics.
+    world: Option<LinkId>,
 }
 
 impl Lumps {
-    fn new(robot: &Robot, model: &Model) -> Lumps {
+    fn new(robot: &Robot, model: &Model, assets: &Assets) -> Lumps {
         let links = robot.links.len();
         let mut into: Vec<Option<LinkId>> = vec![None; links];
         for &link in &model.topological_order {
@@ -204,7 +209,7 @@ impl Lumps {
                 into[link.0] = Some(into[parent.0].unwrap_or(parent));
             }
         }
-        let largest: Vec<f64> = robot
+        let declared: Vec<f64> = robot
             .links
             .iter()
             .map(|link| {
@@ -215,30 +220,55 @@ impl Lumps {
                     .map_or(0.0, |[_, _, c]| c.max(0.0))
             })
             .collect();
-        let mut lumped = largest.clone();
+        let mut lumped: Vec<f64> = robot
+            .links
+            .iter()
+            .map(|link| {
+                let mass = link
+                    .inertial
+                    .as_ref()
+                    .and_then(|i| i.mass.as_ref())
+                    .map_or(0.0, |m| m.value);
+                if !(mass.is_finite() && mass > 0.0) {
+                    return 0.0;
+                }
+                geometry_inertia::of_link(link, assets)
+                    .ok()
+                    .and_then(|g| principal_moments(&g.inertia(mass)))
+                    .map_or(0.0, |[_, _, c]| c.max(0.0))
+            })
+            .collect();
         for (link, target) in into.iter().enumerate() {
             if let Some(target) = target {
-                lumped[target.0] += largest[link];
+                lumped[target.0] += lumped[link];
             }
         }
         let in_tree = (0..links)
             .map(|l| model.parent_joint[l].is_some() || model.root == Some(LinkId(l)))
             .collect();
+        let world = model
+            .root
+            .filter(|root| robot.links[root.0].name.value == "world");
         Lumps {
             into,
             in_tree,
-            largest,
+            declared,
             lumped,
+            world,
         }
     }
 
     /// Whether `link`'s tensor is judged against its geometry: a moving link or the root (the floating
-    /// base of a simulator), or a fixed link whose tensor is at least [`LUMP_SHARE`] of the body it is
-    /// lumped into (turtlebot3's 5 g caster with I = 0.001 kg·m² is a quarter of its base's).
+    /// base of a simulator), or a fixed link whose declared tensor is at least [`LUMP_SHARE`] of the body it
+    /// is lumped into (turtlebot3's 5 g caster with I = 0.001 kg·m² is a third of its base's); nothing
+    /// welded to the world.
     fn judged(&self, link: LinkId) -> bool {
         self.in_tree[link.0]
-            && self.into[link.0]
-                .is_none_or(|target| self.largest[link.0] >= LUMP_SHARE * self.lumped[target.0])
+            && self.world != Some(link)
+            && self.into[link.0].is_none_or(|target| {
+                self.world != Some(target)
+                    && self.declared[link.0] >= LUMP_SHARE * self.lumped[target.0]
+            })
     }
 }
 

@@ -213,6 +213,12 @@ rules! {
         why: "MuJoCo loads the key as it is written: a simulation reset to it starts with the joint past its limit, so the limit constraint kicks it back on the first step, and a control outside `ctrlrange` is clamped to it, so the key does not hold the pose it was made for. Analysed at `--pose key:NAME`, the joint is where the key puts it, past its limit.",
         fix: "Move the key's value inside the joint's `range` (or the actuator's `ctrlrange`), or widen the range if the key is the real limit.",
     }
+    MODEL_GRAVITY = "U040" "model-gravity" Info {
+        section: Statics,
+        what: "An MJCF model declares a gravity other than the standard (0, 0, −9.81) m/s²: `<option gravity>` (a planar pusher's 0 0 0, a moon's −1.62, a tilted vector) or `<option><flag gravity=\"disable\"/>`.",
+        why: "MuJoCo simulates the model's own gravity: the torques its motors must hold, the payload they carry and whether it tips follow it, and a zero gravity needs no holding torque at all. The statics here use it too.",
+        fix: "Nothing, if the gravity is meant; `gravity=\"0 0 -9.81\"` (or no attribute) for Earth's.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",

@@ -283,6 +283,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         self.equalities(sections);
         let keyframes = self.keyframes(sections);
         let collision_filtered = self.filtered_pairs(sections);
+        let gravity = self.gravity(sections);
         let span = self.reader.span(root);
         Robot {
             name: root.attr("model").map(|m| Spanned {
@@ -295,8 +296,61 @@ impl<'a, 'r> Builder<'a, 'r> {
             format: crate::input::Format::Mjcf,
             collision_filtered,
             keyframes,
+            gravity,
             ..Robot::default()
         }
+    }
+
+    /// The model's gravity: the last `<option gravity>`, zero when an `<option><flag gravity="disable">`
+    /// says so (MuJoCo then applies none); `None` when the file declares nothing. A U040 when it is not
+    /// the standard one.
+    fn gravity(&mut self, sections: &[El<'a>]) -> Option<Spanned<[f64; 3]>> {
+        let mut gravity = None;
+        let mut disabled = None;
+        for option in sections.iter().filter(|s| s.tag() == "option") {
+            if let Some(text) = option.attr("gravity") {
+                let span = self.reader.attr_span(*option, "gravity");
+                match numbers(text).map(<[f64; 3]>::try_from) {
+                    Ok(Ok(value)) if value.iter().all(|v| v.is_finite()) => {
+                        gravity = Some(Spanned { value, span });
+                    }
+                    _ => self.reader.report(
+                        &rules::MJCF_INVALID_VALUE,
+                        span,
+                        "<option gravity>: 3 finite numbers expected".to_string(),
+                    ),
+                }
+            }
+            for flag in option.node.children().filter(|n| n.has_tag_name("flag")) {
+                let flag = El {
+                    file: option.file,
+                    node: flag,
+                };
+                if flag.attr("gravity").map(str::trim) == Some("disable") {
+                    disabled = Some(Spanned {
+                        value: [0.0; 3],
+                        span: self.reader.attr_span(flag, "gravity"),
+                    });
+                }
+            }
+        }
+        let off = disabled.is_some();
+        let gravity = disabled.or(gravity)?;
+        let standard = crate::analysis::statics::gravity::GRAVITY;
+        let [x, y, z] = gravity.value;
+        if (Vector3::new(x, y, z) - standard).norm() > 1e-9 {
+            let how = if off {
+                "disabled (<flag gravity=\"disable\">)".to_string()
+            } else {
+                format!("({x}, {y}, {z}) m/s² (<option gravity>)")
+            };
+            self.reader.report(
+                &rules::MODEL_GRAVITY,
+                gravity.span,
+                format!("the model's gravity is {how}, not the standard (0, 0, -9.81): gravity torques, payload and stability follow it, as MuJoCo simulates it"),
+            );
+        }
+        Some(gravity)
     }
 
     /// U033 for each plane of the world (the ground) that is not horizontal: the stability analysis
@@ -841,12 +895,11 @@ impl<'a, 'r> Builder<'a, 'r> {
         };
         let mut from_geoms = None;
         let mut filters = Vec::new();
+        let mut all_read = true;
         for (geom_el, geom_class, geom_frame) in &contents.geoms {
             let (shape, collides, mass, read) =
                 self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
-            if !read {
-                self.unread_geoms.insert(name.clone());
-            }
+            all_read &= read;
             if let Some(shape) = shape {
                 match collides {
                     Some(filter) => {
@@ -870,6 +923,9 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mass = match declared {
             Some(props) => Some(props),
             None if self.compiler.inertia_from_geom != InertiaFromGeom::False => {
+                if !all_read {
+                    self.unread_geoms.insert(name.clone());
+                }
                 from_geoms.map(|props| (props, self.reader.span(el)))
             }
             None => None,

@@ -72,6 +72,9 @@ pub struct Model {
     pub up: super::UpAxis,
     link_index: HashMap<String, LinkId>,
     joint_index: HashMap<String, JointId>,
+    /// Gravity in the root frame, m/s² (the file's, else the standard (0, 0, −9.81)), as Pinocchio's
+    /// `model.gravity`.
+    pub gravity: nalgebra::Vector3<f64>,
 }
 
 impl Model {
@@ -91,6 +94,12 @@ impl Model {
         resolve_mimics(robot, &mut model, &mut findings);
         model.joint_data = robot.joints.iter().map(JointData::from_joint).collect();
         model.link_mass = robot.links.iter().map(LinkMass::from_link).collect();
+        model.gravity = robot
+            .gravity
+            .as_ref()
+            .map_or(crate::analysis::statics::gravity::GRAVITY, |g| {
+                nalgebra::Vector3::from(g.value)
+            });
         (model, findings)
     }
 

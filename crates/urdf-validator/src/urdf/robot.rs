@@ -32,6 +32,9 @@ pub struct Robot {
     pub collision_filtered: Vec<(String, String)>,
     /// Named poses the file itself defines (MJCF: `<keyframe><key>`), for `--pose key:NAME`.
     pub keyframes: Vec<Keyframe>,
+    /// The gravity the file declares, m/s² in the root frame (MJCF: `<option gravity>`, zero under
+    /// `<flag gravity="disable">`); `None` for the standard (0, 0, −9.81).
+    pub gravity: Option<Spanned<[f64; 3]>>,
 }
 
 /// A pose the robot file defines (an MJCF `<key>`), already in this robot's joint values.

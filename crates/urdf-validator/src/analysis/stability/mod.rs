@@ -134,6 +134,11 @@ pub fn analyse(
             return section;
         }
     }
+    if placed.model.gravity == Vector3::zeros() {
+        section.status = Status::NotApplicable;
+        section.reason = Some("the model has no gravity: nothing tips over".to_string());
+        return section;
+    }
     let (source, mut candidates) =
         contact_candidates(placed, classification, robot_type, declared_contacts);
     if source != Source::Declared {

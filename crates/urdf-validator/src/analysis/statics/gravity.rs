@@ -12,7 +12,8 @@ use crate::model::kinematics::{forward_kinematics, Configuration, Data, LinkMass
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::JointKind;
 
-/// Gravity in the root frame, m/s² (as Pinocchio and MuJoCo).
+/// The standard gravity in the root frame, m/s² (Pinocchio's and MuJoCo's default); a model may declare
+/// its own ([`Model::gravity`]).
 pub const GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 
 /// Torques below this (N·m or N) are negligible: no margin is computed.
@@ -124,8 +125,8 @@ fn joint_torque(model: &Model, data: &Data, sums: &SubtreeSums, joint: JointId) 
     };
     let mass = sums.mass[child.0];
     match model.joint_data[joint.0].kind {
-        JointKind::Prismatic => -axis.dot(&(GRAVITY * mass)),
-        _ => -axis.dot(&(sums.moment[child.0] - origin * mass).cross(&GRAVITY)),
+        JointKind::Prismatic => -axis.dot(&(model.gravity * mass)),
+        _ => -axis.dot(&(sums.moment[child.0] - origin * mass).cross(&model.gravity)),
     }
 }
 
@@ -163,8 +164,8 @@ pub fn payload_torque_per_kg(model: &Model, data: &Data, link: LinkId) -> Vec<f6
         };
         if let Some((axis, origin)) = joint_axis(model, data, joint) {
             raw[joint.0] = match model.joint_data[joint.0].kind {
-                JointKind::Prismatic => -axis.dot(&GRAVITY),
-                _ => -axis.dot(&(point - origin).cross(&GRAVITY)),
+                JointKind::Prismatic => -axis.dot(&model.gravity),
+                _ => -axis.dot(&(point - origin).cross(&model.gravity)),
             };
         }
         match model.joint_links[joint.0] {
