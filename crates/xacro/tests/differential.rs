@@ -119,6 +119,57 @@ fn hector_quadrotor() {
     check_all(&oracle, &cases, &env_for(&prefix));
 }
 
+/// `python.set` / `python.frozenset` as shadow-robot/sr_common uses them (issue 42): membership, `len`,
+/// `sorted`, `| & - ^`, the methods, and sets passed to macros to validate parameters, on valid and invalid
+/// parameters (an unknown one reaches `xacro.error`; a bool in the error text fails in both).
+#[test]
+fn python_sets_like_sr_common() {
+    let Some(oracle) = oracle() else { return };
+    let file = fixtures().join("sets.xacro");
+    let cases: Vec<(PathBuf, Vec<(&str, &str)>)> = [
+        vec![],
+        vec![
+            ("side", "left"),
+            ("fingers", "th lf rf"),
+            ("mounting_plate", "true"),
+        ],
+        vec![("side", "middle"), ("fingers", "th zz")],
+        vec![("mounting_plate", "maybe")],
+    ]
+    .into_iter()
+    .map(|args| (file.clone(), args))
+    .collect();
+    check_all(&oracle, &cases, &[]);
+}
+
+/// `python.isinstance` as shadow-robot/sr_common normalises its parameters (issue 42): fingers given as
+/// `all` or a string, sensors as a string, a list or a dict, the built-in classes (bool an int, tuples of
+/// classes), and the failures: an unknown finger reaches `xacro.fatal`, a non-class is a `TypeError`.
+#[test]
+fn python_isinstance_like_sr_common() {
+    let Some(oracle) = oracle() else { return };
+    let file = fixtures().join("isinstance.xacro");
+    let cases: Vec<(PathBuf, Vec<(&str, &str)>)> = [
+        vec![],
+        vec![
+            ("fingers", "TH,ff"),
+            ("tip_sensors", "th=BT_SP, ff=pst"),
+            ("kind", "seq"),
+        ],
+        vec![
+            ("fingers", "th mf"),
+            ("tip_sensors", "bt_2p"),
+            ("kind", "dict"),
+        ],
+        vec![("fingers", "th,zz")],
+        vec![("kind", "bad")],
+    ]
+    .into_iter()
+    .map(|args| (file.clone(), args))
+    .collect();
+    check_all(&oracle, &cases, &[]);
+}
+
 /// `fixtures/*.xacro`; a `NAME.args` file beside one holds `name:=value` arguments, one per line.
 #[test]
 fn fixtures_match_python_xacro() {

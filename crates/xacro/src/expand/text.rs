@@ -261,7 +261,11 @@ impl Expander<'_> {
             Value::Str(s) if s.len() > self.opts.limits.max_output_bytes => return Err(too_long()),
             // Containers share their items, so a short expression can build a list whose text is
             // exponentially long: make sure it fits before it is used as text anywhere.
-            Value::List(_) | Value::Tuple(_) | Value::Dict(_) => {
+            Value::List(_)
+            | Value::Tuple(_)
+            | Value::Dict(_)
+            | Value::Set(_)
+            | Value::FrozenSet(_) => {
                 self.text_within_limit(&value)?;
             }
             _ => {}

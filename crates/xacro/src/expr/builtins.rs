@@ -5,10 +5,12 @@
 use std::cmp::Ordering;
 use std::rc::Rc;
 
+use super::classes;
 use super::eval::{add, Args, Ctx};
 use super::format;
 use super::math;
 use super::ops::{check_items, check_str_len, int_divmod, int_overflow, too_large, MAX_STR_BYTES};
+use super::sets;
 use super::value::{as_num, py_cmp, py_eq, Num, TWO_POW_63};
 use super::{EvalError, Value};
 
@@ -58,17 +60,7 @@ const PYTHON: &[&str] = &[
 
 /// Python builtins that exist in xacro but that this evaluator does not implement (they need object
 /// types it does not model).
-const PYTHON_UNSUPPORTED: &[&str] = &[
-    "complex",
-    "frozenset",
-    "hash",
-    "isinstance",
-    "issubclass",
-    "slice",
-    "set",
-    "type",
-    "vars",
-];
+const PYTHON_UNSUPPORTED: &[&str] = &["complex", "hash", "issubclass", "slice", "type", "vars"];
 
 /// Functions under `xacro.`.
 const XACRO: &[&str] = &[
@@ -224,13 +216,20 @@ pub(crate) fn is_method(obj: &Value, name: &str) -> bool {
         Value::Dict(_) => DICT_METHODS,
         Value::Float(_) => FLOAT_METHODS,
         Value::Int(_) | Value::Bool(_) => INT_METHODS,
+        Value::Set(_) => return sets::METHODS.contains(&name) || sets::MUTATORS.contains(&name),
+        Value::FrozenSet(_) => sets::METHODS,
         _ => &[],
     };
     table.contains(&name)
 }
 
 /// Check positional/keyword argument counts; returns the positional arguments.
-fn arity<'v>(args: &'v Args, name: &str, min: usize, max: usize) -> Result<&'v [Value], EvalError> {
+pub(crate) fn arity<'v>(
+    args: &'v Args,
+    name: &str,
+    min: usize,
+    max: usize,
+) -> Result<&'v [Value], EvalError> {
     if !args.kw.is_empty() {
         return Err(type_err(format!("{name}() takes no keyword arguments")));
     }
@@ -291,10 +290,12 @@ pub(crate) fn int_arg(v: &Value) -> Result<i64, EvalError> {
     }
 }
 
-/// The items of an iterable (list, tuple, str characters, dict keys).
+/// The items of an iterable (list, tuple, set, str characters, dict keys).
 pub(crate) fn iterate(v: &Value) -> Result<Vec<Value>, EvalError> {
     match v {
-        Value::List(items) | Value::Tuple(items) => Ok(items.to_vec()),
+        Value::List(items) | Value::Tuple(items) | Value::Set(items) | Value::FrozenSet(items) => {
+            Ok(items.to_vec())
+        }
         Value::Str(s) => {
             // One item per character: a long string is a long list (and one allocation per item).
             check_items(s.chars().count())?;
@@ -308,10 +309,11 @@ pub(crate) fn iterate(v: &Value) -> Result<Vec<Value>, EvalError> {
     }
 }
 
-/// Dict keys must be hashable (no lists or dicts, also inside tuples).
+/// Dict keys and set items must be hashable (no lists, dicts or sets, also inside tuples; a frozenset's
+/// items are hashable).
 pub(crate) fn check_hashable(k: &Value) -> Result<(), EvalError> {
     match k {
-        Value::List(_) | Value::Dict(_) => {
+        Value::List(_) | Value::Dict(_) | Value::Set(_) => {
             Err(type_err(format!("unhashable type: '{}'", k.type_name())))
         }
         Value::Tuple(items) => items.iter().try_for_each(check_hashable),
@@ -706,20 +708,18 @@ fn sort_values(
         }
         _ => items.clone(),
     };
-    let mut order: Vec<usize> = (0..items.len()).collect();
     let mut failure: Option<EvalError> = None;
-    order.sort_by(|&a, &b| {
+    let order = merge_sort(items.len(), &mut |a, b| {
         let (x, y) = if reverse {
             (&keys[b], &keys[a])
         } else {
             (&keys[a], &keys[b])
         };
         match py_cmp(x, y, "<") {
-            Ok(Some(o)) => o,
-            Ok(None) => Ordering::Equal,
+            Ok(o) => o == Some(Ordering::Less),
             Err(e) => {
                 failure.get_or_insert(e);
-                Ordering::Equal
+                false
             }
         }
     });
@@ -727,6 +727,38 @@ fn sort_values(
         return Err(e);
     }
     Ok(order.into_iter().map(|i| items[i].clone()).collect())
+}
+
+/// The positions `0..n` in stable sorted order by `less` alone, as Python sorts with `<`. Unlike
+/// `slice::sort_by` (which may panic), an inconsistent order (NaN, sets ordered by inclusion) only gives
+/// some order.
+fn merge_sort(n: usize, less: &mut dyn FnMut(usize, usize) -> bool) -> Vec<usize> {
+    let mut src: Vec<usize> = (0..n).collect();
+    let mut dst = Vec::with_capacity(n);
+    let mut width = 1;
+    while width < n {
+        dst.clear();
+        for start in (0..n).step_by(2 * width) {
+            let mid = (start + width).min(n);
+            let end = (start + 2 * width).min(n);
+            let (mut i, mut j) = (start, mid);
+            while i < mid && j < end {
+                // The right item goes first only when strictly less: equal items keep their order.
+                if less(src[j], src[i]) {
+                    dst.push(src[j]);
+                    j += 1;
+                } else {
+                    dst.push(src[i]);
+                    i += 1;
+                }
+            }
+            dst.extend_from_slice(&src[i..mid]);
+            dst.extend_from_slice(&src[j..end]);
+        }
+        std::mem::swap(&mut src, &mut dst);
+        width = width.saturating_mul(2);
+    }
+    src
 }
 
 fn min_max(ctx: &mut Ctx, name: &str, args: &Args, want: Ordering) -> Result<Value, EvalError> {
@@ -800,6 +832,11 @@ fn call_python(ctx: &mut Ctx, name: &str, args: Args) -> Result<Value, EvalError
                 Value::tuple(items)
             })
         }
+        "set" | "frozenset" => {
+            let pos = arity(&args, name, 0, 1)?;
+            sets::construct(name == "frozenset", pos.first())
+        }
+        "isinstance" => classes::isinstance(&args),
         "dict" => {
             let pos = positional(&args, name, 0, 1)?;
             let base = match pos.first() {
@@ -866,7 +903,7 @@ fn call_python(ctx: &mut Ctx, name: &str, args: Args) -> Result<Value, EvalError
             let pos = arity(&args, name, 1, 1)?;
             let n = match &pos[0] {
                 Value::Str(s) => s.chars().count(),
-                Value::List(v) | Value::Tuple(v) => v.len(),
+                Value::List(v) | Value::Tuple(v) | Value::Set(v) | Value::FrozenSet(v) => v.len(),
                 Value::Dict(v) => v.len(),
                 other => {
                     return Err(type_err(format!(
@@ -1187,6 +1224,7 @@ pub(crate) fn call_method(
 ) -> Result<Value, EvalError> {
     match obj {
         Value::Str(s) => str_method(s, name, &args),
+        Value::Set(items) | Value::FrozenSet(items) => sets::call_method(obj, items, name, &args),
         Value::List(items) | Value::Tuple(items) => {
             let what = obj.type_name();
             match name {

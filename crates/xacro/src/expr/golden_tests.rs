@@ -14,7 +14,7 @@ const KNOWN_DIVERGENCES: &[(&str, &str)] = &[
     ("f'{n}'", "f-strings are not supported (and cannot appear inside ${...}, which ends at the first '}')"),
     ("b'abc'", "bytes literals are not supported"),
     ("1j", "complex numbers are not supported"),
-    ("{1, 2}", "sets are not supported (and cannot appear inside ${...})"),
+    ("{1, 2}", "set displays are not supported (and cannot appear inside ${...}); python.set() is"),
     ("l[1:2, 3]", "extended slicing is a SyntaxError natively, a TypeError at run time in Python"),
 ];
 

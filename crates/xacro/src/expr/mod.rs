@@ -21,7 +21,20 @@
 //! - Deliberate differences: integers are 64-bit (`OverflowError` beyond); `range`, `map`, `zip`,
 //!   `enumerate`, `filter`, `reversed`, `dict.keys()/values()/items()` produce lists; every dict allows
 //!   `d.key` (xacro's YAML wrapper) and a missing key is `KeyError` on `d[k]`, `AttributeError` on `d.k`;
-//!   `lambda`, f-strings, bytes, complex numbers, sets and `math.erf/erfc/gamma/lgamma` are not supported.
+//!   `lambda`, f-strings, bytes, complex numbers, set displays (`{1, 2}`, which cannot appear inside
+//!   `${...}` anyway) and `math.erf/erfc/gamma/lgamma` are not supported.
+//! - Sets: `python.set(...)` / `python.frozenset(...)` with `in`, `len`, iteration, `==`, subset
+//!   comparisons, `| & - ^` and the non-mutating methods; mutating methods (`add`, `update`, ...) are
+//!   refused (values are immutable). A set iterates and prints in insertion order (the first of equal
+//!   items kept), where Python's order is hash-based and, for strings, differs from run to run: the text
+//!   of a set with several items (and the order of `list(s)`, `', '.join(s)`) is the one place the result
+//!   may differ from Python's.
+//! - Classes: `list dict str float int bool` (bare and under `python.`) and `python.tuple/set/frozenset/
+//!   type/...` are constructors and, for `python.isinstance(x, cls)` (`cls` a class or a tuple of them),
+//!   classes; they print as `<class 'list'>`. As `range`, `zip`, `dict.keys()`, ... make lists,
+//!   `python.isinstance(x, list)` is `True` for their results (`False` in Python); `isinstance` against
+//!   `python.range/zip/map/filter/enumerate/reversed` or `xacro.dotify` (whose instances are lists and dicts
+//!   here), type unions (`int | None`), `python.type(x)` and `python.issubclass` are refused.
 //! - Safety: there is nothing that can run code, open files or reach object internals; names or
 //!   attributes starting with `__` are refused at parse time (`XacroException`, as xacro's `safe_eval`),
 //!   other `_x` attributes do not exist. Nesting is limited to 200 levels, results to 16 MiB / 1M items,
@@ -30,6 +43,7 @@
 use std::rc::Rc;
 
 mod builtins;
+mod classes;
 mod eval;
 mod format;
 #[cfg(test)]
@@ -38,6 +52,7 @@ mod lexer;
 mod math;
 mod ops;
 mod parser;
+mod sets;
 #[cfg(test)]
 mod tests;
 mod value;
@@ -62,7 +77,13 @@ pub enum Value {
     /// A Python `dict` in insertion order (YAML maps, `dict(...)` literals). Keys are values; lookups
     /// compare with Python equality. Attribute access `d.key` works on dicts (xacro's YAML wrapper).
     Dict(Rc<Vec<(Value, Value)>>),
-    /// A callable built-in or host function, by its qualified name (e.g. `"math.sin"`, `"xacro.load_yaml"`).
+    /// A Python `set` (`python.set(...)`): distinct hashable items, in insertion order (see
+    /// [`Value::set`]). Values are immutable, so sets have no mutating methods.
+    Set(Rc<Vec<Value>>),
+    /// A Python `frozenset` (`python.frozenset(...)`), as [`Value::Set`] but hashable.
+    FrozenSet(Rc<Vec<Value>>),
+    /// A callable built-in or host function, by its qualified name (e.g. `"math.sin"`, `"xacro.load_yaml"`);
+    /// the built-in classes (`"python.list"`, ...) are also classes for `python.isinstance`.
     Function(Rc<str>),
     /// A namespace such as `math`, `python` or `xacro`, whose attributes are functions or constants.
     Namespace(Rc<str>),

@@ -4,7 +4,7 @@ use std::rc::Rc;
 
 use super::parser::{BinOp, UnOp};
 use super::value::{as_num, py_eq, Num};
-use super::{format, EvalError, Value};
+use super::{classes, format, sets, EvalError, Value};
 
 /// Longest string result in bytes.
 pub(crate) const MAX_STR_BYTES: usize = 16 * 1024 * 1024;
@@ -261,6 +261,12 @@ pub(crate) fn binary(op: BinOp, a: &Value, b: &Value) -> Result<Value, EvalError
             },
         };
     }
+    if let Some(r) = sets::binary(op, a, b) {
+        return r;
+    }
+    if let Some(e) = classes::union(op, a, b) {
+        return Err(e);
+    }
     match (op, a, b) {
         (BinOp::Add, Value::Str(x), Value::Str(y)) => {
             check_str_len(x.len() + y.len())?;
@@ -375,6 +381,7 @@ pub(crate) fn contains(haystack: &Value, needle: &Value) -> Result<bool, EvalErr
         },
         Value::List(items) | Value::Tuple(items) => Ok(items.iter().any(|x| py_eq(x, needle))),
         Value::Dict(items) => Ok(items.iter().any(|(k, _)| py_eq(k, needle))),
+        Value::Set(items) | Value::FrozenSet(items) => sets::contains(items, needle),
         _ => Err(EvalError::new(
             "TypeError",
             format!(
@@ -394,6 +401,9 @@ pub(crate) fn is_same(a: &Value, b: &Value) -> bool {
         (Value::Str(x), Value::Str(y)) => Rc::ptr_eq(x, y) || (x == y && x.len() <= 1),
         (Value::List(x), Value::List(y)) | (Value::Tuple(x), Value::Tuple(y)) => Rc::ptr_eq(x, y),
         (Value::Dict(x), Value::Dict(y)) => Rc::ptr_eq(x, y),
+        (Value::Set(x), Value::Set(y)) | (Value::FrozenSet(x), Value::FrozenSet(y)) => {
+            Rc::ptr_eq(x, y)
+        }
         (Value::Function(x), Value::Function(y)) | (Value::Namespace(x), Value::Namespace(y)) => {
             x == y
         }

@@ -8,7 +8,8 @@ use super::{EvalError, Value};
 
 impl Value {
     /// Python's `str(value)`: floats as `repr` (`1.0`, `0.1`, `1e-05`, `inf`), `True`/`False`, lists as
-    /// `[1, 'a']`, dicts as `{'a': 1}`.
+    /// `[1, 'a']`, dicts as `{'a': 1}`, sets as `{1, 'a'}` / `set()` / `frozenset({1})` (in insertion
+    /// order, where Python's is hash-based).
     ///
     /// Unbounded: containers share their items, so a value built by a short expression can have an
     /// exponentially long `str`. For values from untrusted input use [`Value::to_xacro_string_within`].
@@ -86,12 +87,31 @@ impl Value {
                 }
                 out.push('}');
             }
-            Value::Function(name) => {
-                let short = name.rsplit('.').next().unwrap_or(name);
-                out.push_str("<built-in function ");
-                out.push_str(short);
-                out.push('>');
+            Value::Set(items) if items.is_empty() => out.push_str("set()"),
+            Value::FrozenSet(items) if items.is_empty() => out.push_str("frozenset()"),
+            Value::Set(items) => {
+                out.push('{');
+                write_items(items, out, limit)?;
+                out.push('}');
             }
+            Value::FrozenSet(items) => {
+                out.push_str("frozenset({");
+                write_items(items, out, limit)?;
+                out.push_str("})");
+            }
+            Value::Function(name) => match super::classes::class_name(name) {
+                Some(class) => {
+                    out.push_str("<class '");
+                    out.push_str(class);
+                    out.push_str("'>");
+                }
+                None => {
+                    let short = name.rsplit('.').next().unwrap_or(name);
+                    out.push_str("<built-in function ");
+                    out.push_str(short);
+                    out.push('>');
+                }
+            },
             Value::Namespace(name) => {
                 out.push_str("<namespace ");
                 out.push_str(name);
@@ -112,7 +132,7 @@ impl Value {
             Value::Int(i) => *i != 0,
             Value::Float(f) => *f != 0.0,
             Value::Str(s) => !s.is_empty(),
-            Value::List(v) | Value::Tuple(v) => !v.is_empty(),
+            Value::List(v) | Value::Tuple(v) | Value::Set(v) | Value::FrozenSet(v) => !v.is_empty(),
             Value::Dict(v) => !v.is_empty(),
             Value::Function(_) | Value::Namespace(_) => true,
         }
@@ -129,6 +149,9 @@ impl Value {
             Value::List(_) => "list",
             Value::Tuple(_) => "tuple",
             Value::Dict(_) => "dict",
+            Value::Set(_) => "set",
+            Value::FrozenSet(_) => "frozenset",
+            Value::Function(name) if super::classes::class_name(name).is_some() => "type",
             Value::Function(_) => "builtin_function_or_method",
             Value::Namespace(_) => "NameSpace",
         }
@@ -152,34 +175,26 @@ impl Value {
     /// A `dict` value from key/value pairs in insertion order (later duplicates replace earlier values, as in
     /// Python).
     pub fn dict(pairs: Vec<(Value, Value)>) -> Value {
-        // Numbers and strings are found through a hash map (a linear search made building a large dict
-        // quadratic); other keys (tuples, NaN, functions) are compared with each earlier such key.
         let mut out: Vec<(Value, Value)> = Vec::with_capacity(pairs.len());
-        let mut hashed: HashMap<KeyHash, usize> = HashMap::new();
-        let mut others: Vec<usize> = Vec::new();
+        let mut index = KeyIndex::default();
         for (k, v) in pairs {
-            let found = match KeyHash::of(&k) {
-                Some(h) => match hashed.entry(h) {
-                    Entry::Occupied(e) => Some(*e.get()),
-                    Entry::Vacant(e) => {
-                        e.insert(out.len());
-                        None
-                    }
-                },
-                None => {
-                    let found = others.iter().copied().find(|&i| py_eq(&out[i].0, &k));
-                    if found.is_none() {
-                        others.push(out.len());
-                    }
-                    found
-                }
-            };
-            match found {
+            match index.insert(&k, out.len()) {
                 Some(i) => out[i].1 = v,
                 None => out.push((k, v)),
             }
         }
         Value::Dict(Rc::new(out))
+    }
+
+    /// A `set` value of the distinct `items` in insertion order (of equal items the first is kept, as in
+    /// Python). The items must be hashable (the caller checks).
+    pub fn set(items: Vec<Value>) -> Value {
+        Value::Set(Rc::new(distinct(items)))
+    }
+
+    /// A `frozenset` value, as [`Value::set`].
+    pub fn frozenset(items: Vec<Value>) -> Value {
+        Value::FrozenSet(Rc::new(distinct(items)))
     }
 
     /// Python `==` (numbers compare across `bool`/`int`/`float`, containers element-wise).
@@ -236,6 +251,70 @@ fn write_items(items: &[Value], out: &mut String, limit: usize) -> Result<(), Ev
         v.write_repr(out, limit)?;
     }
     Ok(())
+}
+
+/// The distinct values of `items` under Python `==`, first occurrences in order.
+pub(crate) fn distinct(items: Vec<Value>) -> Vec<Value> {
+    let mut index = KeyIndex::default();
+    let mut out = Vec::with_capacity(items.len());
+    for v in items {
+        if index.insert(&v, out.len()).is_none() {
+            out.push(v);
+        }
+    }
+    out
+}
+
+/// Positions of distinct dict keys or set items, found by Python `==`: numbers and strings through a hash
+/// map (a linear search made building a large dict quadratic), other values (tuples, NaN, frozensets) by
+/// comparing with each earlier such value.
+#[derive(Default)]
+pub(crate) struct KeyIndex {
+    hashed: HashMap<KeyHash, usize>,
+    others: Vec<(Value, usize)>,
+}
+
+impl KeyIndex {
+    /// An index of `items` (distinct values) at their positions.
+    pub(crate) fn of(items: &[Value]) -> KeyIndex {
+        let mut index = KeyIndex::default();
+        for (i, v) in items.iter().enumerate() {
+            index.insert(v, i);
+        }
+        index
+    }
+
+    /// The position of the value equal to `k`.
+    pub(crate) fn find(&self, k: &Value) -> Option<usize> {
+        match KeyHash::of(k) {
+            Some(h) => self.hashed.get(&h).copied(),
+            None => self
+                .others
+                .iter()
+                .find(|(v, _)| py_eq(v, k))
+                .map(|(_, i)| *i),
+        }
+    }
+
+    /// The position of the value equal to `k`, or `None` after recording `k` at position `at`.
+    pub(crate) fn insert(&mut self, k: &Value, at: usize) -> Option<usize> {
+        match KeyHash::of(k) {
+            Some(h) => match self.hashed.entry(h) {
+                Entry::Occupied(e) => Some(*e.get()),
+                Entry::Vacant(e) => {
+                    e.insert(at);
+                    None
+                }
+            },
+            None => {
+                let found = self.find(k);
+                if found.is_none() {
+                    self.others.push((k.clone(), at));
+                }
+                found
+            }
+        }
+    }
 }
 
 /// A dict key's identity under Python `==`, for the keys that have a simple one: `True == 1 == 1.0`.
@@ -437,11 +516,26 @@ pub(crate) fn py_eq(a: &Value, b: &Value) -> bool {
                 && x.iter()
                     .all(|(k, v)| y.iter().any(|(k2, v2)| py_eq(k, k2) && py_eq(v, v2)))
         }
+        (Value::Set(x) | Value::FrozenSet(x), Value::Set(y) | Value::FrozenSet(y)) => {
+            x.len() == y.len() && is_subset(x, y)
+        }
         (Value::Function(x), Value::Function(y)) | (Value::Namespace(x), Value::Namespace(y)) => {
             x == y
         }
         _ => false,
     }
+}
+
+/// Whether every item of set `x` is in set `y`.
+///
+/// Costs a step of the running evaluation's budget per item; when it runs out the answer is `false` and
+/// the evaluation fails.
+pub(crate) fn is_subset(x: &[Value], y: &[Value]) -> bool {
+    if x.len() > y.len() || !super::eval::charge(x.len() + y.len()) {
+        return false;
+    }
+    let index = KeyIndex::of(y);
+    x.iter().all(|v| index.find(v).is_some())
 }
 
 /// Python ordering (`<` and friends); `None` for incomparable values (NaN), a `TypeError` for
@@ -462,6 +556,15 @@ pub(crate) fn py_cmp(a: &Value, b: &Value, op: &str) -> Result<Option<Ordering>,
                 }
             }
             Ok(Some(x.len().cmp(&y.len())))
+        }
+        // Sets are ordered by inclusion: `Less` is a proper subset, `None` neither subset nor superset.
+        (Value::Set(x) | Value::FrozenSet(x), Value::Set(y) | Value::FrozenSet(y)) => {
+            Ok(match (is_subset(x, y), is_subset(y, x)) {
+                (true, true) => Some(Ordering::Equal),
+                (true, false) => Some(Ordering::Less),
+                (false, true) => Some(Ordering::Greater),
+                (false, false) => None,
+            })
         }
         _ => Err(EvalError::new(
             "TypeError",
@@ -517,6 +620,16 @@ mod tests {
             Value::dict(vec![(Value::str("a"), Value::Int(1))]).to_xacro_string(),
             "{'a': 1}"
         );
+        assert_eq!(Value::set(vec![]).to_xacro_string(), "set()");
+        assert_eq!(
+            Value::set(vec![Value::str("b"), Value::str("a"), Value::str("b")]).to_xacro_string(),
+            "{'b', 'a'}"
+        );
+        assert_eq!(Value::frozenset(vec![]).to_xacro_string(), "frozenset()");
+        assert_eq!(
+            Value::frozenset(vec![Value::Int(1), Value::Float(1.0), Value::Bool(true)]).repr(),
+            "frozenset({1})"
+        );
         assert_eq!(Value::None.to_xacro_string(), "None");
         assert_eq!(Value::Bool(true).to_xacro_string(), "True");
     }
@@ -530,6 +643,17 @@ mod tests {
         assert_eq!(cmp_int_float(3, 3.5), Some(Ordering::Less));
         assert_eq!(cmp_int_float(-3, -3.5), Some(Ordering::Greater));
         assert!(py_cmp(&Value::Int(1), &Value::str("a"), "<").is_err());
+        let (a, ab) = (
+            Value::set(vec![Value::str("a")]),
+            Value::frozenset(vec![Value::str("b"), Value::str("a")]),
+        );
+        assert_eq!(py_cmp(&a, &ab, "<").ok(), Some(Some(Ordering::Less)));
+        assert_eq!(py_cmp(&ab, &a, "<").ok(), Some(Some(Ordering::Greater)));
+        assert_eq!(
+            py_cmp(&a, &Value::set(vec![Value::str("b")]), "<").ok(),
+            Some(None)
+        );
+        assert!(ab.py_eq(&Value::set(vec![Value::str("a"), Value::str("b")])));
         assert!(Value::dict(vec![
             (Value::Int(1), Value::Int(2)),
             (Value::Float(1.0), Value::Int(3))
