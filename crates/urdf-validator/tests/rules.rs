@@ -835,12 +835,17 @@ rule_case! {
 
 /// A 0.2 × 0.2 × 0.2 m, 8 kg cube (geometry's moments 0.0533 kg·m²) with the declared tensor `ixx iyy izz`.
 fn cube_link(ixx: &str, iyy: &str, izz: &str) -> String {
+    cube_of_mass("8", ixx, iyy, izz)
+}
+
+/// A 0.2 m cube link (8 dm³) of `mass` kg with the declared tensor `ixx iyy izz`.
+fn cube_of_mass(mass: &str, ixx: &str, iyy: &str, izz: &str) -> String {
     format!(
         r#"<robot name="r">
   <link name="base"/>
   <link name="arm">
     <inertial>
-      <mass value="8"/>
+      <mass value="{mass}"/>
       <inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>
     </inertial>
     <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
@@ -875,36 +880,12 @@ rule_case! {
     clean: cube_link("0.15", "0.15", "0.15"),
 }
 
-/// A 0.2 m cube link of `mass` kg (8 dm³) whose tensor is the uniform cube's at that mass.
-fn cube_of_mass(mass: f64) -> String {
-    let moment = mass * 0.04 / 6.0;
-    format!(
-        r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="{mass}"/>
-      <inertia ixx="{moment}" ixy="0" ixz="0" iyy="{moment}" iyz="0" izz="{moment}"/>
-    </inertial>
-    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="1e9" velocity="1"/>
-  </joint>
-</robot>
-"#
-    )
-}
-
 rule_case! {
     // 8,000 kg in 8 dm³: 1,000,000 kg/m³ (grams written as kilograms); 8 kg is 1,000 kg/m³.
     u210_implausible_density, "U210",
-    fires: cube_of_mass(8000.0),
+    fires: cube_of_mass("8000", "53.3", "53.3", "53.3"),
     at: (5, 20, "8000\""),
-    clean: cube_of_mass(8.0),
+    clean: cube_link("0.0533", "0.0533", "0.0533"),
 }
 
 rule_case! {
