@@ -157,8 +157,9 @@ fn two_wheeler(offset: &str) -> String {
 
 #[test]
 fn wheels_collinear_up_to_rounding_balance_actively_and_do_not_tip_over() {
-    // Before: an 88 nm wide polygon counted as an area, and U710 failed the robot by ~5 mm.
-    for offset in ["0", "0.000000088"] {
+    // Before: a polygon a micrometre wide (an area of 1.7e-7 m², above the old 1e-8 m² floor) counted as
+    // an area, and U710 failed the robot by 4.2 mm (a public two-wheeler's, 88 nm wide, by 5 mm).
+    for offset in ["0", "0.000000088", "0.000001"] {
         let report = report(&two_wheeler(offset));
         assert_eq!(report.robot_type, Some(RobotType::Wheeled), "{offset}");
         assert!(

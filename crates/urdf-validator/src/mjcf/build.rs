@@ -897,8 +897,12 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mut filters = Vec::new();
         let mut all_read = true;
         for (geom_el, geom_class, geom_frame) in &contents.geoms {
-            let (shape, collides, mass, read) =
-                self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
+            let GeomParts {
+                shape,
+                collides,
+                mass,
+                read,
+            } = self.geom(*geom_el, geom_class, &(body_in_link * geom_frame));
             all_read &= read;
             if let Some(shape) = shape {
                 match collides {
@@ -1141,15 +1145,9 @@ impl<'a, 'r> Builder<'a, 'r> {
         .placed(&placement)
     }
 
-    /// A geom's shape (in the link frame: `frame` places the geom's written frame there), its `contype`
-    /// and `conaffinity` when it collides (not both 0), its mass properties when it counts for the body's
-    /// mass, and whether its mesh (if it names one) was read.
-    fn geom(
-        &mut self,
-        el: El<'a>,
-        class: &str,
-        frame: &Isometry3<f64>,
-    ) -> (Option<Shape>, Option<(u32, u32)>, Option<MassProps>, bool) {
+    /// A geom's shape (in the link frame: `frame` places the geom's written frame there), collision
+    /// filter, mass properties and whether its mesh was read.
+    fn geom(&mut self, el: El<'a>, class: &str, frame: &Isometry3<f64>) -> GeomParts {
         let kind = self.word(
             el,
             class,
@@ -1253,7 +1251,12 @@ impl<'a, 'r> Builder<'a, 'r> {
             }),
             material: None,
         });
-        (shape, collides, mass, !unread)
+        GeomParts {
+            shape,
+            collides,
+            mass,
+            read: !unread,
+        }
     }
 
     /// A mesh geom's shape and solid (the mesh file read through the sandbox and the mesh cache).
@@ -1471,6 +1474,18 @@ impl Builder<'_, '_> {
             self.reader.report(&rules::MJCF_STRUCTURE, span, message);
         }
     }
+}
+
+/// What a geom element turns into.
+struct GeomParts {
+    /// Its shape in the link frame.
+    shape: Option<Shape>,
+    /// Its `contype` and `conaffinity` when it collides (not both 0).
+    collides: Option<(u32, u32)>,
+    /// Its mass properties when it counts for the body's mass.
+    mass: Option<MassProps>,
+    /// Whether its mesh (if it names one) was read.
+    read: bool,
 }
 
 /// What a joint element turns into: one URDF joint per axis (three for a ball).
