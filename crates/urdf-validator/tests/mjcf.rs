@@ -588,6 +588,21 @@ fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() 
 }
 
 #[test]
+fn a_body_inside_an_ancestor_of_its_own_name_is_refused_and_does_not_hang() {
+    // dm_control's reacher with its `finger` renamed `hand`, the name of the body it hangs from (MuJoCo:
+    // "repeated name 'hand' in body"). Before: the weld-group walk followed the name back to itself forever.
+    let dir = Scratch::new("repeated_body");
+    let path = dir.file(
+        "reacher.xml",
+        r#"<mujoco><worldbody><body name="arm"><joint name="shoulder" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 0.1 0 0" size="0.01"/><body name="hand" pos="0.1 0 0"><joint name="wrist" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 0.1 0 0" size="0.01"/><body name="hand" pos="0.1 0 0"><geom type="sphere" size="0.01"/></body></body></body></worldbody></mujoco>"#,
+    );
+    let v = run(&path);
+    let repeated = findings(&v, "U101");
+    assert_eq!(repeated.len(), 1, "{repeated:?}");
+    assert!(repeated[0].2.contains("'hand'"), "{repeated:?}");
+}
+
+#[test]
 fn statics_follow_the_models_gravity() {
     // gymnasium's pusher declares gravity="0 0 0": MuJoCo's motors hold nothing, and U701 failed the arm
     // under standard gravity. A 1 kg, 0.5 m arm on a 2 N·m motor.
@@ -652,6 +667,27 @@ fn a_ctrlrange_short_of_the_range_by_rounding_is_no_u034() {
     // A thousandth of a radian short is a real shortfall.
     let short = run(&dir.file("short.xml", &model("-1.918 1.918")));
     assert_eq!(findings(&short, "U034").len(), 1);
+    // Past the range by rounding (ur5e's 9e-5 rad): no U041 either.
+    let over = run(&dir.file("over.xml", &model("-1.91995 1.91995")));
+    assert!(
+        findings(&over, "U041").is_empty(),
+        "{:?}",
+        findings(&over, "U041")
+    );
+}
+
+#[test]
+fn a_ctrlrange_past_the_joint_range_is_u041() {
+    // Menagerie's anymal_c: HAA servos with ctrlrange ±6.28 on a joint of range [-0.72, 0.49]. Before:
+    // only the opposite direction (U034) was checked.
+    let dir = Scratch::new("beyond");
+    let path = dir.file(
+        "anymal.xml",
+        r#"<mujoco><compiler angle="radian"/><worldbody><body name="hip"><joint name="LF_HAA" axis="1 0 0" range="-0.72 0.49"/><geom type="box" size="0.1 0.1 0.1"/></body></worldbody><actuator><position joint="LF_HAA" kp="100" ctrlrange="-6.28 6.28"/></actuator></mujoco>"#,
+    );
+    let v = run(&path);
+    has(&v, "U041", "anymal.xml", 1, "90 % of the control range");
+    assert!(findings(&v, "U034").is_empty());
 }
 
 #[test]

@@ -213,6 +213,11 @@ rules! {
         why: "MuJoCo loads the key as it is written: a simulation reset to it starts with the joint past its limit, so the limit constraint kicks it back on the first step, and a control outside `ctrlrange` is clamped to it, so the key does not hold the pose it was made for. Analysed at `--pose key:NAME`, the joint is where the key puts it, past its limit.",
         fix: "Move the key's value inside the joint's `range` (or the actuator's `ctrlrange`), or widen the range if the key is the real limit.",
     }
+    MJCF_CTRLRANGE_BEYOND_RANGE = "U041" "mjcf-ctrlrange-beyond-range" Warn {
+        what: "A position servo's `ctrlrange`, divided by its `gear`, reaches past its joint's `range` (by more than 1e-4 of the range's scale: rounding is not a finding).",
+        why: "The servo is asked for targets the joint cannot reach: it drives into the limit and pushes against it, and a policy whose actions span the control range spends that share of them outside the joint (Menagerie's anymal_c hip servos: ±6.28 rad on a [−0.72, 0.49] rad joint, 90 % outside).",
+        fix: "Narrow the `ctrlrange` to the joint's range times the gear (or set `ctrlrange` from the joint with `<position ... inheritrange=\"1\">`).",
+    }
     MODEL_GRAVITY = "U040" "model-gravity" Info {
         section: Statics,
         what: "An MJCF model declares a gravity other than the standard (0, 0, −9.81) m/s²: `<option gravity>` (a planar pusher's 0 0 0, a moon's −1.62, a tilted vector) or `<option><flag gravity=\"disable\"/>`.",

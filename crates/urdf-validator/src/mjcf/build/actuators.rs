@@ -113,7 +113,8 @@ impl<'a> Builder<'a, '_> {
     }
 
     /// U034 when the position servo `name` (gear `gear`, control range `ctrl`) cannot command all of
-    /// `joint`'s range beyond rounding: its targets in joint units are `ctrl / gear`.
+    /// `joint`'s range, U041 when it commands past it, each beyond rounding: its targets in joint units are
+    /// `ctrl / gear`.
     fn check_servo_reach(&mut self, name: &str, joint: &str, gear: f64, ctrl: ((f64, f64), Span)) {
         let Some((lo, hi)) = self.joint_facts.get(joint).and_then(|f| f.range) else {
             return;
@@ -134,6 +135,20 @@ impl<'a> Builder<'a, '_> {
             );
             self.reader
                 .report(&rules::MJCF_CTRLRANGE_SHORT, span, message);
+        }
+        if reach_lo < lo - slack || reach_hi > hi + slack {
+            let overlap = (reach_hi.min(hi) - reach_lo.max(lo)).max(0.0);
+            let width = reach_hi - reach_lo;
+            let outside = if width > 0.0 {
+                100.0 * (1.0 - overlap / width)
+            } else {
+                0.0
+            };
+            let message = format!(
+                "position actuator '{name}' commands joint '{joint}' within [{reach_lo:.6}, {reach_hi:.6}] (ctrlrange / gear {gear}), beyond its range [{lo:.6}, {hi:.6}]: {outside:.0} % of the control range drives the servo into the joint's limit"
+            );
+            self.reader
+                .report(&rules::MJCF_CTRLRANGE_BEYOND_RANGE, span, message);
         }
     }
 

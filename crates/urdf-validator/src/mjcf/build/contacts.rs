@@ -28,11 +28,16 @@ pub(super) fn by_link(bodies: &[BodyContacts]) -> HashMap<&str, &BodyContacts> {
 }
 
 /// The weld root of the body whose link is `link`: itself when it moves, else its parent's (the world's
-/// link name for none): MuJoCo's `body_weldid`.
+/// link name for none): MuJoCo's `body_weldid`. Names are keys, and a file may repeat one (a body inside an
+/// ancestor of its own name, which MuJoCo refuses and U101 reports): the walk stops after as many steps as
+/// there are bodies, so a name that leads back to itself cannot hold it forever.
 pub(super) fn weld_root(by_link: &HashMap<&str, &BodyContacts>, link: &str) -> String {
     let mut at = link;
-    while let Some(body) = by_link.get(at).filter(|b| !b.moving) {
-        at = &body.parent;
+    for _ in 0..=by_link.len() {
+        match by_link.get(at).filter(|b| !b.moving) {
+            Some(body) => at = &body.parent,
+            None => break,
+        }
     }
     at.to_string()
 }
