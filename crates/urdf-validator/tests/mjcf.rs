@@ -603,6 +603,55 @@ fn a_body_inside_an_ancestor_of_its_own_name_is_refused_and_does_not_hang() {
 }
 
 #[test]
+fn a_file_included_twice_is_refused_at_the_second_include() {
+    // MuJoCo 4.0: "File 'part.xml' already included". Before: read once, and only the duplicate names
+    // it seemed to define said something was wrong.
+    let dir = Scratch::new("included_twice");
+    dir.file(
+        "part.xml",
+        r#"<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom type="box" size=".1 .1 .1"/></body></worldbody></mujoco>"#,
+    );
+    let path = dir.file(
+        "twice.xml",
+        "<mujoco>\n  <include file=\"part.xml\"/>\n  <include file=\"part.xml\"/>\n</mujoco>\n",
+    );
+    let v = run(&path);
+    has(&v, "U031", "twice.xml", 3, "already included (first at ");
+    assert_eq!(findings(&v, "U031").len(), 1, "{:?}", findings(&v, "U031"));
+    assert!(
+        findings(&v, "U101").is_empty(),
+        "{:?}",
+        findings(&v, "U101")
+    );
+}
+
+#[test]
+fn an_inertial_without_a_tensor_is_accepted_as_mujoco_accepts_it() {
+    // MuJoCo 4.0 takes a zero tensor for an <inertial> with neither diaginertia nor fullinertia: a welded
+    // body loads (checked with MjModel.from_xml_path), a moving one is refused for mjMINVAL. Before: a
+    // CRITICAL "needs diaginertia" on both.
+    let dir = Scratch::new("inertial_without_tensor");
+    let welded = dir.file(
+        "welded.xml",
+        r#"<mujoco><worldbody><body name="a"><joint name="j" axis="0 1 0"/><geom type="box" size=".1 .1 .1"/><body name="b" pos="0 0 .3"><inertial pos="0 0 0" mass="1"/></body></body></worldbody></mujoco>"#,
+    );
+    let v = run(&welded);
+    assert!(
+        findings(&v, "U030").is_empty(),
+        "{:?}",
+        findings(&v, "U030")
+    );
+    let moving = dir.file(
+        "moving.xml",
+        r#"<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><inertial pos="0 0 0" mass="1"/><geom type="box" size=".1 .1 .1"/></body></worldbody></mujoco>"#,
+    );
+    let v = run(&moving);
+    let refused = findings(&v, "U030");
+    assert_eq!(refused.len(), 1, "{refused:?}");
+    assert!(refused[0].2.contains("mjMINVAL"), "{refused:?}");
+}
+
+#[test]
 fn statics_follow_the_models_gravity() {
     // gymnasium's pusher declares gravity="0 0 0": MuJoCo's motors hold nothing, and U701 failed the arm
     // under standard gravity. A 1 kg, 0.5 m arm on a 2 N·m motor.

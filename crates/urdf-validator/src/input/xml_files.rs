@@ -176,6 +176,24 @@ impl XmlFiles {
         }
     }
 
+    /// Where file `index` was first included, as " (first at FILE:LINE:COL)", or nothing for the entry
+    /// file.
+    fn first_include_site(&self, index: usize) -> String {
+        let Some((from, at, _)) = self.files.get(index).and_then(|f| f.included_at.clone()) else {
+            return String::new();
+        };
+        let Some(file) = self.files.get(from) else {
+            return String::new();
+        };
+        let (line, column) = file
+            .source
+            .line_col(at.start.saturating_sub(file.base) as usize);
+        format!(
+            " (first at {}:{line}:{column})",
+            file.source.path().display()
+        )
+    }
+
     fn read_include(
         &mut self,
         from: usize,
@@ -212,6 +230,14 @@ impl XmlFiles {
             ));
         }
         if let Some(&index) = self.read.get(&key) {
+            // MuJoCo refuses a file included twice ("File 'part.xml' already included"); SDFormat
+            // includes a model as often as it is asked.
+            if self.syntax == IncludeSyntax::Mjcf {
+                return IncludeTarget::Unresolved(format!(
+                    "'{uri}' is already included{}: MuJoCo refuses a file included twice (\"File '{uri}' already included\")",
+                    self.first_include_site(index)
+                ));
+            }
             return IncludeTarget::File(index);
         }
         if chain.len() > MAX_INCLUDE_DEPTH {

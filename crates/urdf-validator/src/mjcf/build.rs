@@ -1128,11 +1128,14 @@ impl<'a, 'r> Builder<'a, 'r> {
             (None, Some([xx, yy, zz, xy, xz, yz])) => {
                 nalgebra::Matrix3::new(*xx, *xy, *xz, *xy, *yy, *yz, *xz, *yz, *zz)
             }
+            // Neither: MuJoCo 4.0 takes a zero tensor (a moving body is then refused for mjMINVAL, which
+            // refuse_massless_moving_bodies says; a welded one is accepted).
+            (None, None) => nalgebra::Matrix3::zeros(),
             _ => {
                 self.problem(
                     &rules::MJCF_STRUCTURE,
                     el,
-                    "<inertial> needs diaginertia (3 numbers) or fullinertia (6), one of them (MuJoCo refuses it)".to_string(),
+                    "<inertial> takes diaginertia (3 numbers) or fullinertia (6), not both and no other count (MuJoCo refuses it)".to_string(),
                 );
                 nalgebra::Matrix3::zeros()
             }
