@@ -373,11 +373,14 @@ def values_at(model: mujoco.MjModel, configuration: dict[str, float]) -> dict:
         if not name:
             unnamed += 1
             continue
+        # What the motors hold: qfrc_bias less body gravcomp's passive force (not subtracted where the
+        # joint routes it through its actuators, `actuatorgravcomp`).
+        passive = 0.0 if model.jnt_actgravcomp[j] else 1.0
         if kind == int(mujoco.mjtJoint.mjJNT_BALL):
             for k, axis in enumerate("xyz"):
-                forces[f"{name}_{axis}"] = float(data.qfrc_bias[dof + k])
+                forces[f"{name}_{axis}"] = float(data.qfrc_bias[dof + k] - passive * data.qfrc_gravcomp[dof + k])
         else:
-            forces[name] = float(data.qfrc_bias[dof])
+            forces[name] = float(data.qfrc_bias[dof] - passive * data.qfrc_gravcomp[dof])
     fold_couplings(model, forces)
     return {
         "mass": float(sum(model.body_mass)),

@@ -6,7 +6,7 @@ body's mass and principal moments of inertia (`body_mass`, `body_inertia`) and, 
 `qpos0`, at two seeded random configurations and at each keyframe (`key:NAME`: the key's qpos, free joints
 left at qpos0 as `--pose key:NAME` leaves the base): per-body mass and world centre of mass (`body_mass`,
 `xipos`), the total mass and centre of mass (`subtree_com` of the world body), and the generalized gravity
-forces (`qfrc_bias` at zero velocity: what the actuators must apply to hold the pose) by joint, under
+forces (`qfrc_bias` at zero velocity less body `gravcomp`'s passive `qfrc_gravcomp`: what the actuators must apply to hold the pose) by joint, under
 standard gravity (0, 0, -9.81) whatever the model says: on even where the model turns it off
 (`<flag gravity="disable"/>`, recorded as `gravity_disabled`), and standard where `<option gravity>` is
 another (gymnasium's pusher has none, its inverted double pendulum a tilt of 1e-5; recorded as
@@ -46,6 +46,16 @@ DM_CONTROL = "dm-control==1.0.50"
 SEED = 7
 RANDOM_CONFIGURATIONS = 2
 STANDARD_GRAVITY = (0.0, 0.0, -9.81)
+
+
+def held_force(model, data, joint, dof):
+    """What the motors hold at dof `dof` of joint `joint`: qfrc_bias, less the force body `gravcomp`
+    applies passively (`qfrc_gravcomp`; routed through the actuators instead when the joint has
+    `actuatorgravcomp`, then the motors hold it too)."""
+    force = data.qfrc_bias[dof].item()
+    if not model.jnt_actgravcomp[joint]:
+        force -= data.qfrc_gravcomp[dof].item()
+    return force
 
 
 def dm_control_suite() -> Path:
@@ -158,8 +168,8 @@ def golden(path: Path, root: Path) -> dict:
                 "body_com": {bodies[b]: data.xipos[b].tolist() for b in range(1, model.nbody)},
                 "total_com": data.subtree_com[0].tolist(),
                 "gravity_force": {
-                    j["name"]: data.qfrc_bias[j["dof"]].item()
-                    for j in joints
+                    j["name"]: held_force(model, data, index, j["dof"])
+                    for index, j in enumerate(joints)
                     if j["type"] in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
                 },
             }

@@ -652,6 +652,44 @@ fn an_inertial_without_a_tensor_is_accepted_as_mujoco_accepts_it() {
 }
 
 #[test]
+fn gravcomp_bodies_weigh_on_no_motor() {
+    // MuJoCo 4.0 on this model: qfrc_bias (-16.1865, -3.924), qfrc_gravcomp (-8.3385, -0.981); what the
+    // motors hold is the difference, (-7.848, -2.943). Before: the full -16.1865 and -3.924.
+    let dir = Scratch::new("gravcomp");
+    let path = dir.file(
+        "arm.xml",
+        r#"<mujoco><worldbody><body name="upper" gravcomp="1"><joint name="shoulder" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.02" mass="2"/><body name="fore" pos="0.5 0 0" gravcomp="0.5"><joint name="elbow" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.02" mass="1"/><body name="hand" pos="0.4 0 0"><geom type="sphere" size="0.03" mass="0.5"/></body></body></body></worldbody><actuator><motor joint="shoulder" ctrlrange="-50 50"/><motor joint="elbow" ctrlrange="-50 50"/></actuator></mujoco>"#,
+    );
+    let v = run(&path);
+    let statics = v.report.statics.as_ref().unwrap();
+    let torque = |name: &str| {
+        let joint = statics.joints.iter().find(|j| j.name == name).unwrap();
+        (
+            joint.required_torque_gravity.unwrap(),
+            joint.summary.clone(),
+        )
+    };
+    let (shoulder, summary) = torque("shoulder");
+    assert!((shoulder + 7.848).abs() < 1e-9, "{shoulder}");
+    assert!(
+        summary.contains("gravcomp carries 2.500 of the 3.500 kg below"),
+        "{summary}"
+    );
+    let (elbow, _) = torque("elbow");
+    assert!((elbow + 2.943).abs() < 1e-9, "{elbow}");
+    assert!(
+        statics
+            .notes
+            .iter()
+            .any(|n| n.contains("upper (100 %), fore (50 %)")),
+        "{:?}",
+        statics.notes
+    );
+    // The robot's mass and centre of mass are the whole robot's.
+    assert!((statics.total_mass.unwrap() - 3.5).abs() < 1e-12);
+}
+
+#[test]
 fn statics_follow_the_models_gravity() {
     // gymnasium's pusher declares gravity="0 0 0": MuJoCo's motors hold nothing, and U701 failed the arm
     // under standard gravity. A 1 kg, 0.5 m arm on a 2 N·m motor.

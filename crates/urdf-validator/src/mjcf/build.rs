@@ -179,6 +179,8 @@ pub struct Builder<'a, 'r> {
     joint_facts: HashMap<String, actuators::JointFacts>,
     /// What the contact filter needs to know of each body, in document order.
     body_contacts: Vec<contacts::BodyContacts>,
+    /// Bodies whose weight MuJoCo carries (`gravcomp`), by link name.
+    gravity_compensation: Vec<(String, Spanned<f64>)>,
     /// Bodies with a geom whose mesh could not be read: their mass is partly unknown, so MuJoCo's
     /// verdict on it (mjMINVAL) is too; the missing file is what it refuses.
     unread_geoms: HashSet<String>,
@@ -223,6 +225,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             joint_facts: HashMap::new(),
             body_contacts: Vec::new(),
             unread_geoms: HashSet::new(),
+            gravity_compensation: Vec::new(),
             qpos: Vec::new(),
             actuator_ctrl: Vec::new(),
         };
@@ -297,6 +300,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             collision_filtered,
             keyframes,
             gravity,
+            gravity_compensation: self.gravity_compensation,
             ..Robot::default()
         }
     }
@@ -775,6 +779,22 @@ impl<'a, 'r> Builder<'a, 'r> {
         let mut parent_link = parent.link.clone();
         let mut body_in_link = Isometry3::identity();
         let count = contents.joints.len();
+        if let Some(text) = el.attr("gravcomp") {
+            let span = self.reader.attr_span(el, "gravcomp");
+            match text.trim().parse::<f64>() {
+                Ok(share) if share.is_finite() => {
+                    if share != 0.0 {
+                        self.gravity_compensation
+                            .push((name.clone(), Spanned { value: share, span }));
+                    }
+                }
+                _ => self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    span,
+                    format!("<body gravcomp=\"{text}\">: a finite number expected"),
+                ),
+            }
+        }
         if count == 0 {
             self.joints.push(Joint {
                 name: Spanned {

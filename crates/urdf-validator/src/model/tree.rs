@@ -75,6 +75,9 @@ pub struct Model {
     /// Gravity in the root frame, m/s² (the file's, else the standard (0, 0, −9.81)), as Pinocchio's
     /// `model.gravity`.
     pub gravity: nalgebra::Vector3<f64>,
+    /// Per link, the share of its weight the simulator carries (MJCF `gravcomp`); empty when no link has
+    /// one.
+    pub weight_carried: Vec<f64>,
 }
 
 impl Model {
@@ -100,6 +103,15 @@ impl Model {
             .map_or(crate::analysis::statics::gravity::GRAVITY, |g| {
                 nalgebra::Vector3::from(g.value)
             });
+        if !robot.gravity_compensation.is_empty() {
+            let mut carried = vec![0.0; robot.links.len()];
+            for (name, share) in &robot.gravity_compensation {
+                if let Some(link) = model.link_index.get(name) {
+                    carried[link.0] = share.value;
+                }
+            }
+            model.weight_carried = carried;
+        }
         (model, findings)
     }
 

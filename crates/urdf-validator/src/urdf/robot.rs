@@ -35,6 +35,8 @@ pub struct Robot {
     /// The gravity the file declares, m/s² in the root frame (MJCF: `<option gravity>`, zero under
     /// `<flag gravity="disable">`); `None` for the standard (0, 0, −9.81).
     pub gravity: Option<Spanned<[f64; 3]>>,
+    /// Bodies whose weight the simulator carries (MJCF `gravcomp`: 1 carries all of it), by link name.
+    pub gravity_compensation: Vec<(String, Spanned<f64>)>,
 }
 
 /// A pose the robot file defines (an MJCF `<key>`), already in this robot's joint values.

@@ -36,6 +36,9 @@ pub struct SubtreeSums {
     pub moment: Vec<Vector3<f64>>,
     /// Links in the subtree with geometry but no usable mass.
     pub unknown: Vec<usize>,
+    /// The mass of the subtree whose weight the motors hold (what `gravcomp` leaves), and its Σ m·c;
+    /// empty when the model compensates no body (then it is `mass` and `moment`).
+    pub held: Vec<(f64, Vector3<f64>)>,
 }
 
 /// Scratch for one statics evaluation: kinematics plus subtree sums.
@@ -62,6 +65,11 @@ impl StaticsData {
                 mass: vec![0.0; links],
                 moment: vec![Vector3::zeros(); links],
                 unknown: vec![0; links],
+                held: if model.weight_carried.is_empty() {
+                    Vec::new()
+                } else {
+                    vec![(0.0, Vector3::zeros()); links]
+                },
             },
             raw_torque: vec![0.0; joints],
             torque: vec![0.0; joints],
@@ -94,6 +102,10 @@ fn subtree_sums(model: &Model, data: &Data, sums: &mut SubtreeSums) {
         sums.mass[link.0] = mass;
         sums.moment[link.0] = moment;
         sums.unknown[link.0] = unknown;
+        if let Some(held) = sums.held.get_mut(link.0) {
+            let share = 1.0 - model.weight_carried[link.0];
+            *held = (share * mass, share * moment);
+        }
     }
     for &link in model.topological_order.iter().rev() {
         let Some((parent, _)) = model.parent_joint[link.0].and_then(|j| model.joint_links[j.0])
@@ -104,6 +116,10 @@ fn subtree_sums(model: &Model, data: &Data, sums: &mut SubtreeSums) {
         let moment = sums.moment[link.0];
         sums.moment[parent.0] += moment;
         sums.unknown[parent.0] += sums.unknown[link.0];
+        if let Some(&(mass, moment)) = sums.held.get(link.0) {
+            sums.held[parent.0].0 += mass;
+            sums.held[parent.0].1 += moment;
+        }
     }
 }
 
@@ -123,10 +139,14 @@ fn joint_torque(model: &Model, data: &Data, sums: &SubtreeSums, joint: JointId) 
     else {
         return 0.0;
     };
-    let mass = sums.mass[child.0];
+    let (mass, moment) = sums
+        .held
+        .get(child.0)
+        .copied()
+        .unwrap_or((sums.mass[child.0], sums.moment[child.0]));
     match model.joint_data[joint.0].kind {
         JointKind::Prismatic => -axis.dot(&(model.gravity * mass)),
-        _ => -axis.dot(&(sums.moment[child.0] - origin * mass).cross(&model.gravity)),
+        _ => -axis.dot(&(moment - origin * mass).cross(&model.gravity)),
     }
 }
 

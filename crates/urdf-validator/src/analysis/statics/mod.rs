@@ -146,7 +146,15 @@ pub fn analyse(
         };
         let mass_below = data.sums.mass[child.0];
         let unknown_below = data.sums.unknown[child.0];
-        let graded = grade(torque, info.effort, mass_below, unknown_below);
+        let mut graded = grade(torque, info.effort, mass_below, unknown_below);
+        if let Some(&(held, _)) = data.sums.held.get(child.0) {
+            let carried = mass_below - held;
+            if carried > 0.0 {
+                graded.summary.push_str(&format!(
+                    " (MuJoCo's gravcomp carries {carried:.3} of the {mass_below:.3} kg below)"
+                ));
+            }
+        }
         let at = VerdictContext {
             joint,
             prismatic: info.kind == crate::urdf::robot::JointKind::Prismatic,
@@ -236,11 +244,23 @@ pub fn analyse(
     } else {
         Confidence::Missing
     };
+    let mut notes = resolved.notes;
+    if !robot.gravity_compensation.is_empty() {
+        let bodies: Vec<String> = robot
+            .gravity_compensation
+            .iter()
+            .map(|(name, share)| format!("{name} ({:.0} %)", 100.0 * share.value))
+            .collect();
+        notes.push(format!(
+            "MuJoCo's gravcomp carries the weight of {}: the torques count only what the motors hold",
+            bodies.join(", ")
+        ));
+    }
     let section = StaticsSection {
         status,
         pose: options.pose.kind.label(),
         configuration: named_configuration(robot, model, &resolved.q),
-        notes: resolved.notes,
+        notes,
         full_body_com: com.map(|c| [c.x, c.y, c.z]),
         com_height_above_ground: com.map(|c| c.z),
         com_confidence: if com.is_some() {
