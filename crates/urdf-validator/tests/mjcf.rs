@@ -690,6 +690,30 @@ fn gravcomp_bodies_weigh_on_no_motor() {
 }
 
 #[test]
+fn a_huge_nkey_is_refused_not_built() {
+    // Found by the mjcf fuzz target: <size nkey="1e308"> made the reader build keys without end (3.7 GB in
+    // 6 s). MuJoCo reads nkey as an int and refuses the model.
+    let model = |nkey: &str| {
+        format!(
+            r#"<mujoco><size nkey="{nkey}"/><worldbody><body name="b"><joint name="j"/><geom type="sphere" size="0.1" mass="1"/></body></worldbody></mujoco>"#
+        )
+    };
+    let dir = Scratch::new("nkey");
+    for huge in ["1e308", "4294967296", "1.5"] {
+        let v = run(&dir.file("huge.xml", &model(huge)));
+        assert_eq!(
+            findings(&v, "U032").len(),
+            1,
+            "{huge}: {:?}",
+            findings(&v, "U032")
+        );
+    }
+    // A large int: the first 1,000 keys are poses, with a note.
+    let v = run(&dir.file("large.xml", &model("100000")));
+    has(&v, "U033", "large.xml", 1, "only the first 1000");
+}
+
+#[test]
 fn statics_follow_the_models_gravity() {
     // gymnasium's pusher declares gravity="0 0 0": MuJoCo's motors hold nothing, and U701 failed the arm
     // under standard gravity. A 1 kg, 0.5 m arm on a 2 N·m motor.

@@ -24,6 +24,9 @@ use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
 use crate::urdf::robot::Keyframe;
 
+/// Most keys `<size nkey>` makes poses of (the ones past the written ones are all qpos0).
+const MAX_SIZED_KEYS: usize = 1_000;
+
 /// A joint as MuJoCo lays it out in `qpos`.
 pub(super) enum QposJoint {
     /// A free joint (7 numbers) and its `qpos0`: position, quaternion w x y z.
@@ -150,7 +153,25 @@ impl<'a> Builder<'a, '_> {
                 )
             });
         if let Some((count, span)) = sized {
-            while (keys.len() as f64) < count {
+            // MuJoCo reads an int: 1e308 or 2^31 is refused, not a billion keys to build (a fuzzed
+            // nkey="1e308" grew the process without end).
+            if !(count.fract() == 0.0 && (0.0..=f64::from(i32::MAX)).contains(&count)) {
+                self.reader.report(
+                    &rules::MJCF_INVALID_VALUE,
+                    span,
+                    format!("<size nkey=\"{count}\">: a non-negative int expected (MuJoCo refuses the model)"),
+                );
+                return keys;
+            }
+            // Keys past the written ones are all qpos0: the first MAX_SIZED_KEYS stand for the rest.
+            if count > MAX_SIZED_KEYS as f64 && keys.len() < MAX_SIZED_KEYS {
+                self.reader.report(
+                    &rules::MJCF_NOT_READ,
+                    span,
+                    format!("<size nkey=\"{count}\">: the keys past the written ones are all at qpos0; only the first {MAX_SIZED_KEYS} are made poses (key:0 ... key:{})", MAX_SIZED_KEYS - 1),
+                );
+            }
+            while keys.len() < MAX_SIZED_KEYS && (keys.len() as f64) < count {
                 let name = keys.len().to_string();
                 keys.push(self.pose_of(name, span, &[]));
             }
