@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use mutate::{Bytes, Dict, Includes, Mutator, Pools};
-use tree::{Child, Tree};
+use tree::Tree;
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::{validate_text, Options};
 
@@ -317,6 +317,7 @@ pub fn run(format: Format, data: &[u8]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tree::Child;
 
     #[test]
     fn every_seed_round_trips_through_the_serializer() {
