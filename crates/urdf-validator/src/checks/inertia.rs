@@ -23,11 +23,17 @@ const FAR_FACTOR: f64 = 3.0;
 
 pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Finding> {
     let mut findings = Vec::new();
-    let lumps = Lumps::new(robot, model, assets);
+    // Each link's geometry solid once: the lumped shares, the checks and the fixes all read it.
+    let geometries: Vec<Result<GeometryInertia, _>> = robot
+        .links
+        .iter()
+        .map(|link| geometry_inertia::of_link(link, assets))
+        .collect();
+    let lumps = Lumps::new(robot, model, &geometries);
     for (i, link) in robot.links.iter().enumerate() {
         let owner = format!("Link '{}'", link.name.value);
         let moving = model.is_moving(robot, LinkId(i));
-        let geometry = || geometry_inertia::of_link(link, assets);
+        let geometry = || geometries[i].as_ref();
         let Some(inertial) = &link.inertial else {
             // An MJCF link without mass or shapes chains a body's joints (MuJoCo has no such body).
             let joint_chain = robot.format == Format::Mjcf && link.is_bare();
@@ -41,7 +47,7 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                     .with_fix_option(
                         geometry()
                             .ok()
-                            .map(|g| inertia_fix::insert_inertial(link, &g)),
+                            .map(|g| inertia_fix::insert_inertial(link, g)),
                     ),
                 );
             } else if !link.visuals.is_empty() || !link.collisions.is_empty() {
@@ -83,7 +89,7 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
         let positive_mass = mass.map(|m| m.value).filter(|&m| m > 0.0);
         if let Some(finding) = check_tensor(inertia, &owner, moving && massive) {
             let fix = positive_mass
-                .and_then(|m| inertia_fix::replace_tensor(inertial, inertia, &geometry().ok()?, m));
+                .and_then(|m| inertia_fix::replace_tensor(inertial, inertia, geometry().ok()?, m));
             findings.push(finding.with_fix_option(fix));
         } else if let (true, Some(m), Ok(g)) = (lumps.judged(LinkId(i)), positive_mass, geometry())
         {
@@ -95,8 +101,8 @@ pub(super) fn check(robot: &Robot, model: &Model, assets: &Assets) -> Vec<Findin
                 None => owner,
             };
             findings.extend(
-                against_geometry(link, assets, inertial, inertia, &g, m, &owner).map(|f| {
-                    f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, &g, m))
+                against_geometry(link, assets, inertial, inertia, g, m, &owner).map(|f| {
+                    f.with_fix_option(inertia_fix::replace_tensor(inertial, inertia, g, m))
                 }),
             );
         }
@@ -195,7 +201,11 @@ struct Lumps {
 }
 
 impl Lumps {
-    fn new(robot: &Robot, model: &Model, assets: &Assets) -> Lumps {
+    fn new(
+        robot: &Robot,
+        model: &Model,
+        geometries: &[Result<GeometryInertia, geometry_inertia::NoGeometry>],
+    ) -> Lumps {
         let links = robot.links.len();
         let mut into: Vec<Option<LinkId>> = vec![None; links];
         for &link in &model.topological_order {
@@ -223,7 +233,8 @@ impl Lumps {
         let mut lumped: Vec<f64> = robot
             .links
             .iter()
-            .map(|link| {
+            .zip(geometries)
+            .map(|(link, geometry)| {
                 let mass = link
                     .inertial
                     .as_ref()
@@ -232,7 +243,8 @@ impl Lumps {
                 if !(mass.is_finite() && mass > 0.0) {
                     return 0.0;
                 }
-                geometry_inertia::of_link(link, assets)
+                geometry
+                    .as_ref()
                     .ok()
                     .and_then(|g| principal_moments(&g.inertia(mass)))
                     .map_or(0.0, |[_, _, c]| c.max(0.0))
