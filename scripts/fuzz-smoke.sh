@@ -22,14 +22,20 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
 fi
 
 summary=()
+# TARGET MAX_LEN [SEEDS [DICT]]: SEEDS (default fuzz/seeds/TARGET) is the committed corpus, DICT (default
+# fuzz/urdf.dict, "" for none) the libFuzzer dictionary. The structure-aware targets (mjcf, sdf) embed their
+# seed models (fuzz/seeds/<format>/models) and read their input as a program of edits: their corpus is
+# fuzz/seeds/<format>/inputs and an XML dictionary means nothing to them.
 run_validator_target() {
-    local target="$1" max_len="$2"
+    local target="$1" max_len="$2" seeds="${3:-fuzz/seeds/$1}" dict="${4-fuzz/urdf.dict}"
     local dir="$repo_root/crates/urdf-validator"
+    local dict_flag=()
+    if [[ -n "$dict" ]]; then dict_flag=(-dict="$dict"); fi
     mkdir -p "$work/$target/corpus" "$work/$target/artifacts"
     echo "fuzz-smoke: $target for ${seconds}s" >&2
     (cd "$dir" && RAYON_NUM_THREADS=1 RUSTC_BOOTSTRAP=1 cargo fuzz run -s none "$target" \
-        "$work/$target/corpus" "fuzz/seeds/$target" -- \
-        -dict=fuzz/urdf.dict -timeout=10 -rss_limit_mb=1536 -max_len="$max_len" \
+        "$work/$target/corpus" "$seeds" -- \
+        "${dict_flag[@]}" -timeout=10 -rss_limit_mb=1536 -max_len="$max_len" \
         -max_total_time="$seconds" -seed="$seed" -print_final_stats=1 \
         -artifact_prefix="$work/$target/artifacts/") 2>"$work/$target.log" || {
         tail -40 "$work/$target.log" >&2
@@ -54,6 +60,8 @@ run_xacro_target() {
 
 run_validator_target urdf 40000
 run_validator_target mesh 32768
+run_validator_target mjcf 512 fuzz/seeds/mjcf/inputs ""
+run_validator_target sdf 512 fuzz/seeds/sdf/inputs ""
 run_xacro_target expand
 run_xacro_target expression
 
