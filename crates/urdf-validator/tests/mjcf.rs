@@ -4,8 +4,11 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test may panic on what it did not expect
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use std::path::Path;
+
+use common::Scratch;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use urdf_validator::analysis::pose::PoseKind;
 use urdf_validator::input::mesh::MeshCache;
@@ -15,32 +18,6 @@ use urdf_validator::input::Loaded;
 use urdf_validator::report::FindingReport;
 use urdf_validator::urdf::robot::{JointKind, Robot};
 use urdf_validator::{validate, Options, Validation};
-
-/// A scratch folder removed at the end of the test.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir =
-            std::env::temp_dir().join(format!("urdf-validator-mjcf-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-
-    fn file(&self, name: &str, text: &str) -> PathBuf {
-        let path = self.0.join(name);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, text).unwrap();
-        path
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 fn options() -> Options {
     let mut options = Options::default();
@@ -92,7 +69,7 @@ fn has(v: &Validation, rule: &str, file: &str, line: u32, words: &str) {
 
 #[test]
 fn a_mujoco_root_is_mjcf_whatever_the_file_is_called() {
-    let dir = Scratch::new("root");
+    let dir = Scratch::new("mjcf-root");
     let path = dir.file(
         "robot.urdf",
         "<mujoco model=\"m\"><worldbody><body name=\"b\"><joint name=\"j\"/><geom size=\"0.1\"/></body></worldbody></mujoco>",
@@ -108,7 +85,7 @@ fn a_mujoco_root_is_mjcf_whatever_the_file_is_called() {
 
 #[test]
 fn joints_of_one_body_are_chained_through_massless_links_and_the_last_reaches_the_body() {
-    let dir = Scratch::new("chain");
+    let dir = Scratch::new("mjcf-chain");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -181,7 +158,7 @@ fn joints_of_one_body_are_chained_through_massless_links_and_the_last_reaches_th
 
 #[test]
 fn the_only_top_level_body_with_a_free_joint_is_the_root() {
-    let dir = Scratch::new("floating");
+    let dir = Scratch::new("mjcf-floating");
     let path = dir.file(
         "m.xml",
         r#"<mujoco><worldbody><body name="pelvis" pos="0 0 1"><freejoint/><geom size="0.1"/>
@@ -197,7 +174,7 @@ fn the_only_top_level_body_with_a_free_joint_is_the_root() {
 
 #[test]
 fn include_problems_are_findings_at_the_include() {
-    let dir = Scratch::new("includes");
+    let dir = Scratch::new("mjcf-includes");
     dir.file("loop.xml", "<mujoco><include file=\"loop.xml\"/></mujoco>");
     dir.file("robot.urdf.xml", "<robot name=\"r\"/>");
     dir.file("broken.xml", "<mujoco><default>");
@@ -224,8 +201,8 @@ fn include_problems_are_findings_at_the_include() {
 
 #[test]
 fn an_include_outside_the_sandbox_is_refused() {
-    let dir = Scratch::new("sandbox");
-    let outside = Scratch::new("sandbox-outside");
+    let dir = Scratch::new("mjcf-sandbox");
+    let outside = Scratch::new("mjcf-sandbox-outside");
     let secret = outside.file("secret.xml", "<mujoco><default/></mujoco>");
     let path = dir.file(
         "m.xml",
@@ -244,7 +221,7 @@ fn an_include_outside_the_sandbox_is_refused() {
 
 #[test]
 fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line() {
-    let dir = Scratch::new("bad");
+    let dir = Scratch::new("mjcf-bad");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -297,7 +274,7 @@ fn unknown_elements_classes_and_meshes_and_bad_values_are_findings_at_their_line
 #[test]
 fn hostile_values_never_panic() {
     let hostile = ["", "nan", "1e400", "-1", "0 0 0 0 0 0 0", "x y z", "ghost"];
-    let dir = Scratch::new("hostile");
+    let dir = Scratch::new("mjcf-hostile");
     let text = r#"<mujoco model="m">
   <compiler angle="radian" eulerseq="xyz" inertiafromgeom="auto" boundmass="0" settotalmass="-1"/>
   <default><default class="c"><geom type="capsule" size="0.02"/><joint range="-1 1"/></default></default>
@@ -356,7 +333,7 @@ fn effort_of(r: &Robot, name: &str) -> Option<f64> {
 
 #[test]
 fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
-    let dir = Scratch::new("actuators");
+    let dir = Scratch::new("mjcf-actuators");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -410,7 +387,7 @@ fn actuators_give_joints_their_effort_and_a_weak_one_fails_at_its_forcerange() {
 /// 100 N·m instead of MuJoCo's 34). Both ranges on one actuator, or a joint without a range, MuJoCo refuses.
 #[test]
 fn inheritrange_gives_a_position_servo_its_joints_range_as_mujoco_compiles_it() {
-    let dir = Scratch::new("inheritrange");
+    let dir = Scratch::new("mjcf-inheritrange");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -490,7 +467,7 @@ fn inheritrange_gives_a_position_servo_its_joints_range_as_mujoco_compiles_it() 
 /// cannot move", which is URDF's reading of a prismatic joint without limits (failed before: U305 on `x`).
 #[test]
 fn an_unlimited_slide_is_free_not_stuck_at_zero() {
-    let dir = Scratch::new("slide");
+    let dir = Scratch::new("mjcf-slide");
     let path = dir.file(
         "cart.xml",
         "<mujoco model=\"cart\"><worldbody><body name=\"base\"><joint name=\"x\" type=\"slide\" axis=\"1 0 0\"/>\
@@ -548,7 +525,7 @@ const MJCF_RULES: &str = r#"<mujoco>
 
 #[test]
 fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() {
-    let dir = Scratch::new("rules");
+    let dir = Scratch::new("mjcf-rules");
     let path = dir.file("m.xml", MJCF_RULES);
     let v = run(&path);
     let at = |needle| line_of(MJCF_RULES, needle);
@@ -591,7 +568,7 @@ fn the_mjcf_only_rules_fire_at_the_line_to_edit_and_not_on_the_repaired_model() 
 fn a_body_inside_an_ancestor_of_its_own_name_is_refused_and_does_not_hang() {
     // dm_control's reacher with its `finger` renamed `hand`, the name of the body it hangs from (MuJoCo:
     // "repeated name 'hand' in body"). Before: the weld-group walk followed the name back to itself forever.
-    let dir = Scratch::new("repeated_body");
+    let dir = Scratch::new("mjcf-repeated_body");
     let path = dir.file(
         "reacher.xml",
         r#"<mujoco><worldbody><body name="arm"><joint name="shoulder" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 0.1 0 0" size="0.01"/><body name="hand" pos="0.1 0 0"><joint name="wrist" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 0.1 0 0" size="0.01"/><body name="hand" pos="0.1 0 0"><geom type="sphere" size="0.01"/></body></body></body></worldbody></mujoco>"#,
@@ -606,7 +583,7 @@ fn a_body_inside_an_ancestor_of_its_own_name_is_refused_and_does_not_hang() {
 fn a_file_included_twice_is_refused_at_the_second_include() {
     // MuJoCo 4.0: "File 'part.xml' already included". Before: read once, and only the duplicate names
     // it seemed to define said something was wrong.
-    let dir = Scratch::new("included_twice");
+    let dir = Scratch::new("mjcf-included_twice");
     dir.file(
         "part.xml",
         r#"<mujoco><worldbody><body name="b"><joint name="j" axis="0 1 0"/><geom type="box" size=".1 .1 .1"/></body></worldbody></mujoco>"#,
@@ -630,7 +607,7 @@ fn an_inertial_without_a_tensor_is_accepted_as_mujoco_accepts_it() {
     // MuJoCo 4.0 takes a zero tensor for an <inertial> with neither diaginertia nor fullinertia: a welded
     // body loads (checked with MjModel.from_xml_path), a moving one is refused for mjMINVAL. Before: a
     // CRITICAL "needs diaginertia" on both.
-    let dir = Scratch::new("inertial_without_tensor");
+    let dir = Scratch::new("mjcf-inertial_without_tensor");
     let welded = dir.file(
         "welded.xml",
         r#"<mujoco><worldbody><body name="a"><joint name="j" axis="0 1 0"/><geom type="box" size=".1 .1 .1"/><body name="b" pos="0 0 .3"><inertial pos="0 0 0" mass="1"/></body></body></worldbody></mujoco>"#,
@@ -655,7 +632,7 @@ fn an_inertial_without_a_tensor_is_accepted_as_mujoco_accepts_it() {
 fn gravcomp_bodies_weigh_on_no_motor() {
     // MuJoCo 4.0 on this model: qfrc_bias (-16.1865, -3.924), qfrc_gravcomp (-8.3385, -0.981); what the
     // motors hold is the difference, (-7.848, -2.943). Before: the full -16.1865 and -3.924.
-    let dir = Scratch::new("gravcomp");
+    let dir = Scratch::new("mjcf-gravcomp");
     let path = dir.file(
         "arm.xml",
         r#"<mujoco><worldbody><body name="upper" gravcomp="1"><joint name="shoulder" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.02" mass="2"/><body name="fore" pos="0.5 0 0" gravcomp="0.5"><joint name="elbow" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.02" mass="1"/><body name="hand" pos="0.4 0 0"><geom type="sphere" size="0.03" mass="0.5"/></body></body></body></worldbody><actuator><motor joint="shoulder" ctrlrange="-50 50"/><motor joint="elbow" ctrlrange="-50 50"/></actuator></mujoco>"#,
@@ -698,7 +675,7 @@ fn a_huge_nkey_is_refused_not_built() {
             r#"<mujoco><size nkey="{nkey}"/><worldbody><body name="b"><joint name="j"/><geom type="sphere" size="0.1" mass="1"/></body></worldbody></mujoco>"#
         )
     };
-    let dir = Scratch::new("nkey");
+    let dir = Scratch::new("mjcf-nkey");
     for huge in ["1e308", "4294967296", "1.5"] {
         let v = run(&dir.file("huge.xml", &model(huge)));
         assert_eq!(
@@ -722,7 +699,7 @@ fn statics_follow_the_models_gravity() {
             r#"<mujoco>{option}<worldbody><body name="arm"><joint name="shoulder" axis="0 1 0"/><geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.02" mass="1"/></body></worldbody><actuator><motor joint="shoulder" ctrlrange="-2 2"/></actuator></mujoco>"#
         )
     };
-    let dir = Scratch::new("gravity");
+    let dir = Scratch::new("mjcf-gravity");
     let torque = |v: &Validation| {
         let statics = v.report.statics.as_ref().unwrap();
         statics.joints[0].required_torque_gravity.unwrap().abs()
@@ -768,7 +745,7 @@ fn a_ctrlrange_short_of_the_range_by_rounding_is_no_u034() {
             r#"<mujoco><compiler angle="radian"/><worldbody><body name="a"><joint name="j" axis="0 1 0" range="-1.919862 1.919862"/><geom type="box" size="0.1 0.1 0.1"/></body></worldbody><actuator><position joint="j" kp="10" ctrlrange="{ctrl}"/></actuator></mujoco>"#
         )
     };
-    let dir = Scratch::new("rounding");
+    let dir = Scratch::new("mjcf-rounding");
     let rounded = run(&dir.file("rounded.xml", &model("-1.91986 1.91986")));
     assert!(
         findings(&rounded, "U034").is_empty(),
@@ -791,7 +768,7 @@ fn a_ctrlrange_short_of_the_range_by_rounding_is_no_u034() {
 fn a_ctrlrange_past_the_joint_range_is_u041() {
     // Menagerie's anymal_c: HAA servos with ctrlrange ±6.28 on a joint of range [-0.72, 0.49]. Before:
     // only the opposite direction (U034) was checked.
-    let dir = Scratch::new("beyond");
+    let dir = Scratch::new("mjcf-beyond");
     let path = dir.file(
         "anymal.xml",
         r#"<mujoco><compiler angle="radian"/><worldbody><body name="hip"><joint name="LF_HAA" axis="1 0 0" range="-0.72 0.49"/><geom type="box" size="0.1 0.1 0.1"/></body></worldbody><actuator><position joint="LF_HAA" kp="100" ctrlrange="-6.28 6.28"/></actuator></mujoco>"#,
@@ -806,7 +783,7 @@ fn an_explicit_geom_mass_counts_when_its_mesh_cannot_be_read() {
     // psyonicinc/ability-hand-api's MJCF hands name meshes the repository lacks, each geom with an
     // explicit mass. Before: the mass was dropped (U203 "mass 0", a total mass too low) and MuJoCo's
     // mjMINVAL refusal (U030 CRITICAL) was claimed for a body whose inertia is unknown, not zero.
-    let dir = Scratch::new("unread_mesh");
+    let dir = Scratch::new("mjcf-unread_mesh");
     let path = dir.file(
         "hand.xml",
         r#"<mujoco><asset><mesh name="m" file="absent.stl"/></asset><worldbody><body name="base"><geom type="box" size=".05 .05 .05"/>
@@ -863,7 +840,8 @@ const OVERLAPPING: &str = r#"<mujoco>
   CONTACT
 </mujoco>"#;
 
-/// The link pairs of U601 (in contact at the zero pose, so left out of self-collision sampling).
+/// The link pairs in contact at the zero pose, as "a b" (names sorted): U601 (left out of self-collision
+/// sampling) and U042 (MuJoCo collides them), which names the pairs MuJoCo collides instead of U601.
 fn touching(dir: &Scratch, name: &str, contact: &str, replace: (&str, &str)) -> Vec<String> {
     let text = OVERLAPPING
         .replace("CONTACT", contact)
@@ -871,7 +849,12 @@ fn touching(dir: &Scratch, name: &str, contact: &str, replace: (&str, &str)) -> 
     let v = run(&dir.file(name, &text));
     let mut pairs: Vec<String> = findings(&v, "U601")
         .into_iter()
-        .map(|(_, _, m)| m.split(" have").next().unwrap_or("").to_string())
+        .chain(findings(&v, "U042"))
+        .map(|(_, _, m)| {
+            let mut names: Vec<&str> = m.split('\'').skip(1).step_by(2).take(2).collect();
+            names.sort();
+            names.join(" ")
+        })
         .collect();
     pairs.sort();
     pairs
@@ -879,14 +862,11 @@ fn touching(dir: &Scratch, name: &str, contact: &str, replace: (&str, &str)) -> 
 
 #[test]
 fn self_collision_pairs_follow_mujocos_contact_filter() {
-    let dir = Scratch::new("contacts");
+    let dir = Scratch::new("mjcf-contacts");
     let none = ("", "");
     // Unfiltered, the siblings touch; the bracket welded to 'fore' is filtered against 'upper', the body
     // 'fore' hangs from (MuJoCo's parent filter), so it is not a contact.
-    assert_eq!(
-        touching(&dir, "plain.xml", "", none),
-        ["Links 'left' and 'right'"]
-    );
+    assert_eq!(touching(&dir, "plain.xml", "", none), ["left right"]);
     // An exclusion.
     let exclude = r#"<contact><exclude body1="right" body2="left"/></contact>"#;
     assert!(touching(&dir, "exclude.xml", exclude, none).is_empty());
@@ -901,21 +881,18 @@ fn self_collision_pairs_follow_mujocos_contact_filter() {
         r#"name="left_geom""#,
         r#"name="left_geom" contype="3" conaffinity="2""#,
     );
-    assert_eq!(
-        touching(&dir, "overlap.xml", "", overlap),
-        ["Links 'left' and 'right'"]
-    );
+    assert_eq!(touching(&dir, "overlap.xml", "", overlap), ["left right"]);
     // Without MuJoCo's parent filter the bracket touches the upper arm.
     let no_parent = r#"<option><flag filterparent="disable"/></option>"#;
     assert_eq!(
         touching(&dir, "noparent.xml", no_parent, none),
-        ["Links 'left' and 'right'", "Links 'upper' and 'bracket'"]
+        ["bracket upper", "left right"]
     );
 }
 
 #[test]
 fn an_include_problem_inside_a_section_is_reported_once() {
-    let dir = Scratch::new("include-once");
+    let dir = Scratch::new("mjcf-include-once");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -937,7 +914,7 @@ fn an_include_problem_inside_a_section_is_reported_once() {
 /// primitive it is read (its mass against MuJoCo's: `tests/mjcf_golden.rs`, the shells model).
 #[test]
 fn shellinertia_on_a_mesh_geom_is_refused_as_mujoco_refuses_it() {
-    let dir = Scratch::new("shellmesh");
+    let dir = Scratch::new("mjcf-shellmesh");
     let text = r#"<mujoco>
   <asset><mesh name="m" file="m.stl"/></asset>
   <worldbody>
@@ -962,7 +939,7 @@ fn shellinertia_on_a_mesh_geom_is_refused_as_mujoco_refuses_it() {
 
 #[test]
 fn a_moving_body_without_mass_is_refused_as_mujoco_refuses_it() {
-    let dir = Scratch::new("massless");
+    let dir = Scratch::new("mjcf-massless");
     let refused = dir.file(
         "refused.xml",
         "<mujoco>\n<worldbody>\n<body name=\"upper\">\n<joint name=\"a\"/>\n\
@@ -1026,7 +1003,7 @@ fn configuration(v: &Validation) -> std::collections::BTreeMap<String, f64> {
 /// `--pose key:0` was a usage error before: "the model has no keyframe '0'").
 #[test]
 fn size_nkey_adds_keys_at_qpos0_named_by_index() {
-    let dir = Scratch::new("nkey");
+    let dir = Scratch::new("mjcf-nkey");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -1055,7 +1032,7 @@ fn size_nkey_adds_keys_at_qpos0_named_by_index() {
 /// ranges, a slide's exact limit and an unlimited joint give nothing.
 #[test]
 fn a_keyframe_outside_a_joints_range_or_a_ctrlrange_is_a_u039() {
-    let dir = Scratch::new("keyrange");
+    let dir = Scratch::new("mjcf-keyrange");
     let path = dir.file(
         "m.xml",
         r#"<mujoco>
@@ -1101,7 +1078,7 @@ fn a_keyframe_outside_a_joints_range_or_a_ctrlrange_is_a_u039() {
 
 #[test]
 fn keyframes_are_poses_in_mujocos_qpos_order() {
-    let dir = Scratch::new("keys");
+    let dir = Scratch::new("mjcf-keys");
     let path = dir.file("m.xml", KEYFRAMES);
     let v = at_pose(&path, PoseKind::Key("home".to_string())).unwrap();
     let statics = v.report.statics.as_ref().unwrap();
@@ -1240,7 +1217,7 @@ const EQUALITY: &str = r#"<mujoco>
 
 #[test]
 fn equality_constraints_are_couplings_held_joints_and_reported_loops() {
-    let dir = Scratch::new("equality");
+    let dir = Scratch::new("mjcf-equality");
     let path = dir.file("m.xml", EQUALITY);
     let r = robot(&path);
     let joint = |name: &str| r.joints.iter().find(|j| j.name.value == name).unwrap();
@@ -1325,7 +1302,7 @@ fn equality_constraints_are_couplings_held_joints_and_reported_loops() {
 /// (flexiv_rizon4's OBJ links differed from MuJoCo by 3e-9 of their mass); STL meshes are floats already.
 #[test]
 fn an_obj_mesh_has_the_mass_of_its_vertices_rounded_to_floats_as_mujoco_reads_them() {
-    let dir = Scratch::new("obj-f32");
+    let dir = Scratch::new("mjcf-obj-f32");
     let mut obj = String::new();
     for x in [-0.1, 0.1] {
         for y in [-0.1, 0.1] {
@@ -1381,7 +1358,7 @@ fn box_mass(dir: &Scratch, text: &str) -> (f64, [f64; 3]) {
 /// read without them it was at x = +0.1). Found on the full Menagerie (shadow_dexee's fingers).
 #[test]
 fn a_mesh_reference_frame_moves_its_vertices_before_the_scale() {
-    let dir = Scratch::new("refquat");
+    let dir = Scratch::new("mjcf-refquat");
     dir.file("offbox.obj", &off_centre_box());
     for (scale, x) in [("1 1 1", -0.05), ("2 1 1", -0.1)] {
         let (_, com) = box_mass(
@@ -1404,7 +1381,7 @@ fn a_mesh_reference_frame_moves_its_vertices_before_the_scale() {
 /// gets the mesh's mass, not none with a "mesh not found".
 #[test]
 fn a_mesh_of_an_included_file_is_found_beside_that_file() {
-    let dir = Scratch::new("include-mesh");
+    let dir = Scratch::new("mjcf-include-mesh");
     dir.file("parts/offbox.obj", &off_centre_box());
     dir.file(
         "parts/assets.xml",

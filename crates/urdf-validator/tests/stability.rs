@@ -367,3 +367,26 @@ fn capsule_feet_touch_at_their_rounded_ends() {
     );
     assert!(s.margin_mm.unwrap() >= 150.0 - 1e-6, "{:?}", s.margin_mm);
 }
+
+#[test]
+fn a_link_below_the_declared_ground_starts_inside_it() {
+    // Wheel 3 hangs 30 mm below the three declared ones, which the ground is put under.
+    let lowered = cart([0.0; 3], Some(3), -0.03);
+    let declared = Overrides {
+        contact_links: Some(vec!["wheel_0".into(), "wheel_1".into(), "wheel_2".into()]),
+        ..Overrides::default()
+    };
+    let inside: Vec<String> = report_with(&lowered, declared)
+        .findings
+        .into_iter()
+        .filter(|f| f.rule == "U603")
+        .map(|f| f.message)
+        .collect();
+    assert_eq!(inside.len(), 1, "{inside:#?}");
+    assert!(
+        inside[0].starts_with("link 'wheel_3' starts 30.0 mm deep at the evaluated pose inside the ground the stability section stands the robot on"),
+        "{inside:#?}"
+    );
+    // Found by the structure, the ground goes under the lowest wheel: nothing is inside it.
+    assert!(report(&lowered).findings.iter().all(|f| f.rule != "U603"));
+}

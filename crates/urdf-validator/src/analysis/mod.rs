@@ -12,6 +12,7 @@ pub(crate) mod mass;
 pub mod pose;
 pub mod profiles;
 pub mod stability;
+pub mod start_contacts;
 pub mod statics;
 pub mod symmetry;
 pub mod up_axis;
@@ -318,8 +319,17 @@ pub fn analyse(
     ));
     clock.lap("workspace");
     if let Some(c) = &collision {
-        findings.extend(contact_findings(robot, &c.touching, !arms.is_empty()));
+        let start = start_contacts::check(robot, model, &c.model, &data, stability.ground_height);
+        findings.extend(start.findings);
+        let touching: Vec<(LinkId, LinkId)> = c
+            .touching
+            .iter()
+            .copied()
+            .filter(|&(a, b)| !start.reported_pairs.contains(&(a.min(b), a.max(b))))
+            .collect();
+        findings.extend(contact_findings(robot, &touching, !arms.is_empty()));
     }
+    clock.lap("start_contacts");
     Ok(Physics {
         statics,
         stability,

@@ -117,6 +117,8 @@ pub struct MeshPoints<'m> {
 pub struct LinkSupports {
     /// Usable shapes.
     pub shapes: Vec<Support>,
+    /// Per shape: the index of the link's collision (or visual, when it has no collisions) it is.
+    pub sources: Vec<usize>,
 }
 
 /// The shapes a link contributes: its collisions, or its visuals when it has none.
@@ -131,7 +133,7 @@ pub fn link_supports<'m>(
         &link.collisions
     };
     let mut out = LinkSupports::default();
-    for shape in shapes {
+    for (index, shape) in shapes.iter().enumerate() {
         let Some(geometry) = &shape.geometry else {
             continue;
         };
@@ -215,6 +217,7 @@ pub fn link_supports<'m>(
             }
             _ => {}
         }
+        out.sources.resize(out.shapes.len(), index);
     }
     out
 }

@@ -242,6 +242,9 @@ pub struct Fix {
     pub description: String,
     /// The edits, all or none applied.
     pub edits: Vec<Edit>,
+    /// Its edits are MJCF (elements and attributes of MuJoCo's format): only such fixes are written
+    /// into MJCF files, every other is written for URDF.
+    pub mjcf: bool,
 }
 
 impl Fix {
@@ -251,6 +254,7 @@ impl Fix {
             applicability: Applicability::Safe,
             description: description.into(),
             edits,
+            mjcf: false,
         }
     }
 
@@ -260,7 +264,14 @@ impl Fix {
             applicability: Applicability::Unsafe,
             description: description.into(),
             edits,
+            mjcf: false,
         }
+    }
+
+    /// The fix, its edits written for MJCF files.
+    pub fn in_mjcf(mut self) -> Fix {
+        self.mjcf = true;
+        self
     }
 }
 

@@ -224,6 +224,12 @@ rules! {
         why: "MuJoCo simulates the model's own gravity: the torques its motors must hold, the payload they carry and whether it tips follow it, and a zero gravity needs no holding torque at all. The statics here use it too.",
         fix: "Nothing, if the gravity is meant; `gravity=\"0 0 -9.81\"` (or no attribute) for Earth's.",
     }
+    MJCF_CONTACT_AT_START = "U042" "mjcf-contact-at-start" Warn {
+        section: Workspace,
+        what: "Two bodies that MuJoCo lets collide overlap by more than 1 mm at the start (`qpos0`, and each `<keyframe><key>`): their geoms pass `contype`/`conaffinity`, no `<contact><exclude>` names them, and MuJoCo's parent filter does not apply (it never does to a body whose parent is welded to the world).",
+        why: "MuJoCo applies contacts between them from the first step: the constraint solver pushes them apart with large forces, so the joint between them stalls or jitters (Menagerie's kinova_gen3: `base_link` and `shoulder_link` overlap 12 mm at every `joint_1` angle, and the joint stops at 0.34 rad of a commanded 1.0).",
+        fix: "Add `<contact><exclude body1=\"A\" body2=\"B\"/></contact>` for the pair (the finding's fix, with `--fix --unsafe-fixes`), or shrink or move the collision geoms so they no longer overlap.",
+    }
     DUPLICATE_NAME = "U101" "duplicate-name" Critical {
         what: "Two links, two joints or two materials share a name.",
         why: "urdfdom refuses the file; tools that accept it keep one of the two silently.",
@@ -422,6 +428,12 @@ rules! {
         fix: "Shrink or move the collision shapes, or add `<disable_collisions>` for the pair in the SRDF if the contact is by design.",
     }
 
+    INSIDE_GROUND_AT_START = "U603" "inside-ground-at-start" Warn {
+        section: Stability,
+        what: "Collision geometry starts more than 1 mm inside the ground: below an MJCF world plane it collides with, at `qpos0` and at each `<keyframe><key>`; or below the ground the stability section stands the robot on, at the evaluated pose.",
+        why: "The simulator resolves the penetration on the first step: the contact pushes the body out with a force far above its weight (a lying humanoid whose arm capsules start 35 mm inside the floor gets 1.4 kN on a 413 N robot at t = 0), so the robot jumps or spins before anything else happens.",
+        fix: "Raise the body (its `pos`, or the key's `qpos`) until its lowest geom rests on the plane, or move the plane down.",
+    }
     JOINT_UNDERSIZED = "U701" "joint-undersized" Fail {
         section: Statics,
         what: "An actuated joint's declared effort is below the gravity torque it must supply to hold the evaluated pose (margin < 1).",

@@ -292,9 +292,15 @@ impl Loaded {
     }
 
     /// Where an edit anchored at `span` of the parsed text goes: the file the user edits, its text and the
-    /// span in it. A `textual` edit (a deletion) goes only into the file the parser read itself. Otherwise
-    /// why the edit cannot be made in a file (a xacro value computed from an expression; SDFormat).
-    pub fn edit_target(&self, span: Span, textual: bool) -> Result<xacro::EditTarget<'_>, String> {
+    /// span in it. A `textual` edit (a deletion) goes only into the file the parser read itself; an MJCF
+    /// file only takes edits written for `mjcf`. Otherwise why the edit cannot be made in a file (a xacro
+    /// value computed from an expression; SDFormat; a URDF fix on an MJCF model).
+    pub fn edit_target(
+        &self,
+        span: Span,
+        textual: bool,
+        mjcf: bool,
+    ) -> Result<xacro::EditTarget<'_>, String> {
         match &self.origin {
             Origin::Urdf(source) => Ok(xacro::EditTarget::in_file(source, span)),
             Origin::Xacro(_) if textual => {
@@ -302,7 +308,12 @@ impl Loaded {
             }
             Origin::Xacro(expanded) => expanded.literal_source(span),
             Origin::Sdf(_) => Err("fixes are not written into SDFormat files".into()),
-            Origin::Mjcf(_) => Err("fixes are not written into MJCF files".into()),
+            Origin::Mjcf(files) if mjcf => files
+                .edit_target(span)
+                .ok_or_else(|| "the edit's place is in none of the model's files".into()),
+            Origin::Mjcf(_) => {
+                Err("this fix is written for URDF: edit the MJCF file by hand".into())
+            }
         }
     }
 

@@ -401,6 +401,16 @@ impl XmlFiles {
         })
     }
 
+    /// Where an edit anchored at `span` (shared span space) goes: the file holding it and the span there.
+    pub fn edit_target(&self, span: Span) -> Option<crate::input::xacro::EditTarget<'_>> {
+        let (file, start) = self.file_at(span.start)?;
+        let end = span.end.checked_sub(file.base)? as usize;
+        Some(crate::input::xacro::EditTarget::in_file(
+            &file.source,
+            Span::from_range(start..end.max(start)),
+        ))
+    }
+
     /// The files as (path as findings name it, text), entry file first.
     pub fn source_texts(&self) -> Vec<(String, &str)> {
         self.files

@@ -30,7 +30,8 @@ use crate::input::mesh::{load_surface, MeshCache};
 use crate::input::resolve::PackageResolver;
 use crate::input::source::{Span, Spanned};
 use crate::urdf::robot::{
-    Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose, Robot, Shape,
+    ContactSection, Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose,
+    Robot, Shape, WorldPlane,
 };
 
 /// The limits of a slide joint without a range: SDFormat's "unlimited" (the samplers and checks read a
@@ -250,9 +251,10 @@ impl<'a, 'r> Builder<'a, 'r> {
     /// The robot of the `<worldbody>` sections among `sections`.
     pub fn robot(mut self, root: El<'a>, sections: &[El<'a>]) -> Robot {
         let mut top: Vec<(El<'a>, String, Isometry3<f64>)> = Vec::new();
+        let mut world_planes = Vec::new();
         for world in sections.iter().filter(|s| s.tag() == "worldbody") {
             let contents = self.contents(*world, MAIN, Isometry3::identity(), true);
-            self.note_tilted_planes(&contents.geoms);
+            world_planes.extend(self.world_planes(&contents.geoms));
             top.extend(contents.bodies);
         }
         let floating_root = match top.as_slice() {
@@ -286,8 +288,17 @@ impl<'a, 'r> Builder<'a, 'r> {
         self.equalities(sections);
         let keyframes = self.keyframes(sections);
         let collision_filtered = self.filtered_pairs(sections);
+        let contact_bits = self
+            .body_contacts
+            .iter()
+            .map(|b| (b.link.clone(), b.geoms.clone()))
+            .collect();
         let gravity = self.gravity(sections);
         let span = self.reader.span(root);
+        let contact_section = Some(match sections.iter().find(|s| s.tag() == "contact") {
+            Some(contact) => ContactSection::Existing(self.reader.span(*contact)),
+            None => ContactSection::Missing(span),
+        });
         Robot {
             name: root.attr("model").map(|m| Spanned {
                 value: m.to_string(),
@@ -301,6 +312,10 @@ impl<'a, 'r> Builder<'a, 'r> {
             keyframes,
             gravity,
             gravity_compensation: self.gravity_compensation,
+            contact_bits,
+            contacts_disabled: contacts_disabled(sections),
+            world_planes,
+            contact_section,
             ..Robot::default()
         }
     }
@@ -357,15 +372,17 @@ impl<'a, 'r> Builder<'a, 'r> {
         Some(gravity)
     }
 
-    /// U033 for each plane of the world (the ground) that is not horizontal: the stability analysis
-    /// stands a floating robot on horizontal ground under its lowest point, which a horizontal plane's
-    /// height does not change (the robot settles onto it), but a slope would.
-    fn note_tilted_planes(&mut self, geoms: &[(El<'a>, String, Isometry3<f64>)]) {
+    /// The planes of the world among its `geoms`, with a U033 for each that is not horizontal: the
+    /// stability analysis stands a floating robot on horizontal ground under its lowest point, which a
+    /// horizontal plane's height does not change (the robot settles onto it), but a slope would.
+    fn world_planes(&mut self, geoms: &[(El<'a>, String, Isometry3<f64>)]) -> Vec<WorldPlane> {
+        let mut planes = Vec::new();
         for (el, class, frame) in geoms {
             if self.value(*el, class, "type").map(|v| v.text.trim()) != Some("plane") {
                 continue;
             }
-            let normal = (frame * self.placement(*el, class)) * Vector3::z();
+            let at = frame * self.placement(*el, class);
+            let normal = at * Vector3::z();
             let tilt = normal.z.clamp(-1.0, 1.0).acos().to_degrees();
             if tilt > PLANE_TILT_DEG {
                 let name = el.attr("name").map_or(String::new(), |n| format!(" '{n}'"));
@@ -374,7 +391,17 @@ impl<'a, 'r> Builder<'a, 'r> {
                     format!("world plane{name} is tilted by {tilt:.1}°: the stability analysis assumes horizontal ground and does not use the tilt (--deep's drop test does)"),
                 );
             }
+            let contype = self.scalar(*el, class, "contype", 1.0).max(0.0) as u32;
+            let conaffinity = self.scalar(*el, class, "conaffinity", 1.0).max(0.0) as u32;
+            planes.push(WorldPlane {
+                name: el.attr("name").map(str::to_string),
+                span: self.reader.span(*el),
+                point: at.translation.vector.into(),
+                normal: normal.into(),
+                bits: (contype, conaffinity),
+            });
         }
+        planes
     }
 
     fn problem(&mut self, rule: &'static Rule, el: El<'_>, message: String) {
@@ -825,13 +852,15 @@ impl<'a, 'r> Builder<'a, 'r> {
                 // The root of a floating-base robot: its link frame is the world frame at qpos0.
                 body_in_link = at;
                 let name = self.joint_name(*joint_el);
-                self.qpos.push(keyframes::QposJoint::free(name, &at));
+                self.qpos.push(keyframes::QposJoint::free(name, &at, None));
                 self.joint_ids += 1;
                 continue;
             }
             let joint = self.joint(*joint_el, joint_class, &name, kind, top_level);
             self.qpos.push(match joint.kind {
-                JointKind::Floating => keyframes::QposJoint::free(joint.names[0].clone(), &at),
+                JointKind::Floating => {
+                    keyframes::QposJoint::free(joint.names[0].clone(), &at, Some(name.clone()))
+                }
                 _ if joint.axes.len() == 3 => keyframes::QposJoint::Ball {
                     hinges: joint.names.clone(),
                 },
@@ -1545,6 +1574,20 @@ fn blank_joint() -> Joint {
         safety_controller: None,
         calibration: None,
     }
+}
+
+/// Whether an `<option><flag>` among `sections` turns MuJoCo's contacts off (`contact` or `constraint`
+/// disabled).
+fn contacts_disabled(sections: &[El<'_>]) -> bool {
+    sections
+        .iter()
+        .filter(|s| s.tag() == "option")
+        .flat_map(|option| option.node.children().filter(|n| n.has_tag_name("flag")))
+        .any(|flag| {
+            ["contact", "constraint"]
+                .iter()
+                .any(|name| flag.attribute(*name).map(str::trim) == Some("disable"))
+        })
 }
 
 /// A transform as a URDF pose (translation and quaternion).

@@ -231,7 +231,7 @@ fn fix_report(fix: &Fix, loaded: &Loaded) -> FixReport {
         .edits
         .iter()
         .map(|edit| {
-            let target = loaded.edit_target(edit.anchor(), edit.is_textual())?;
+            let target = loaded.edit_target(edit.anchor(), edit.is_textual(), fix.mjcf)?;
             let text_edit = edit
                 .resolve(target.text(), target.span)
                 .ok_or("the text there is not the attribute the fix expects")?;

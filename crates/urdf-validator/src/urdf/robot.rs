@@ -37,6 +37,42 @@ pub struct Robot {
     pub gravity: Option<Spanned<[f64; 3]>>,
     /// Bodies whose weight the simulator carries (MJCF `gravcomp`: 1 carries all of it), by link name.
     pub gravity_compensation: Vec<(String, Spanned<f64>)>,
+    /// Per link (by name) whose collisions the file filters: each collision's `(contype, conaffinity)`
+    /// bit masks, in the order of the link's `collisions` (MJCF). A link without an entry collides with
+    /// everything.
+    pub contact_bits: std::collections::HashMap<String, Vec<(u32, u32)>>,
+    /// The ground planes of the world the robot starts on (MJCF world `<geom type="plane">`).
+    pub world_planes: Vec<WorldPlane>,
+    /// The simulator computes no contacts at all (MJCF `<option><flag contact="disable">` or
+    /// `constraint="disable"`).
+    pub contacts_disabled: bool,
+    /// Where a fix adds the pairs the file excludes from contact (MJCF: the first `<contact>` section,
+    /// else the `<mujoco>` element, which then gets one).
+    pub contact_section: Option<ContactSection>,
+}
+
+/// A plane of the world (MuJoCo: infinite, solid below its surface).
+#[derive(Clone, Debug)]
+pub struct WorldPlane {
+    /// Its name, when it has one.
+    pub name: Option<String>,
+    /// The element.
+    pub span: Span,
+    /// A point of its surface, in the root frame.
+    pub point: [f64; 3],
+    /// Its unit normal (pointing out of the solid), in the root frame.
+    pub normal: [f64; 3],
+    /// Its `(contype, conaffinity)` bit masks.
+    pub bits: (u32, u32),
+}
+
+/// Where the file's contact exclusions go.
+#[derive(Clone, Copy, Debug)]
+pub enum ContactSection {
+    /// An existing `<contact>` element: excludes are added as its first children.
+    Existing(Span),
+    /// No `<contact>` yet: one is added as the first child of this (the root) element.
+    Missing(Span),
 }
 
 /// A pose the robot file defines (an MJCF `<key>`), already in this robot's joint values.
@@ -50,6 +86,12 @@ pub struct Keyframe {
     pub joints: Vec<(String, f64)>,
     /// What of the key the robot cannot take, for the report's notes.
     pub notes: Vec<String>,
+    /// Where the key puts a floating root's link frame in the frame it has at `qpos0` (`None`: where it
+    /// is); the analyses keep the root there (see `notes`), the start-contact check moves it.
+    pub base: Option<Pose>,
+    /// The other bodies with a free joint the key moves, by link name, and where it puts each in the
+    /// world; as `base`, only the start-contact check moves them.
+    pub free_bodies: Vec<(String, Pose)>,
 }
 
 /// A rigid-body transform as `xyz` + fixed-axis `rpy` (radians), or `xyz` + `quat_xyzw` (URDF 1.1).

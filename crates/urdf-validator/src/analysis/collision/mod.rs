@@ -103,6 +103,8 @@ pub enum Allowed {
 #[derive(Clone, Debug)]
 pub struct CollisionModel {
     shapes: Vec<ConvexShape>,
+    /// Per shape: the index of its link's collision it was built from.
+    sources: Vec<usize>,
     /// Per link: its shapes in `shapes` and a sphere around them (centre in the link frame, radius).
     bodies: Vec<Body>,
     /// Links with at least one shape, in index order.
@@ -483,7 +485,7 @@ impl CollisionModel {
     pub fn build(robot: &Robot, model: &Model, supports: &[LinkSupports]) -> CollisionModel {
         let links = robot.links.len();
         // Each link's shapes (a mesh hull's edges and support map are built here), links in parallel.
-        let per_link: Vec<Vec<ConvexShape>> = robot
+        let per_link: Vec<Vec<(ConvexShape, usize)>> = robot
             .links
             .par_iter()
             .zip(supports)
@@ -496,15 +498,22 @@ impl CollisionModel {
                 link_supports
                     .shapes
                     .iter()
-                    .filter_map(ConvexShape::from_support)
+                    .zip(&link_supports.sources)
+                    .filter_map(|(support, &source)| {
+                        Some((ConvexShape::from_support(support)?, source))
+                    })
                     .collect()
             })
             .collect();
         let mut shapes = Vec::new();
+        let mut sources = Vec::new();
         let mut bodies = Vec::with_capacity(links);
         for link_shapes in per_link {
             let start = shapes.len();
-            shapes.extend(link_shapes);
+            for (shape, source) in link_shapes {
+                shapes.push(shape);
+                sources.push(source);
+            }
             let spheres: Vec<(Vector3<f64>, f64)> = shapes[start..]
                 .iter()
                 .map(|s| (s.centre, s.bound))
@@ -543,6 +552,7 @@ impl CollisionModel {
                 .map(LinkId)
                 .collect(),
             shapes,
+            sources,
             bodies,
             allowed: vec![None; links * links],
             parent,
@@ -801,6 +811,71 @@ impl CollisionModel {
             },
         );
         touching
+    }
+
+    /// The deepest overlap between a shape of `a` placed at `pose_a` and one of `b` at `pose_b` that
+    /// `may_touch` lets collide (given the indices of the links' collisions they are): its depth
+    /// (metres, > 0) and those two indices; `None` when no such pair overlaps.
+    pub fn overlap_depth(
+        &self,
+        (a, pose_a): (LinkId, &Isometry3<f64>),
+        (b, pose_b): (LinkId, &Isometry3<f64>),
+        may_touch: &dyn Fn(usize, usize) -> bool,
+    ) -> Option<(f64, usize, usize)> {
+        let (body_a, body_b) = (self.bodies.get(a.0)?, self.bodies.get(b.0)?);
+        let (centre_a, centre_b) = (
+            pose_a.transform_point(&body_a.centre.into()),
+            pose_b.transform_point(&body_b.centre.into()),
+        );
+        if (centre_a - centre_b).norm() >= body_a.radius + body_b.radius {
+            return None;
+        }
+        let mut deepest: Option<(f64, usize, usize)> = None;
+        for i in body_a.shapes.clone() {
+            let at_a = to_pose(&(pose_a * self.shapes[i].frame));
+            for j in body_b.shapes.clone() {
+                let sources = (self.sources[i], self.sources[j]);
+                if !may_touch(sources.0, sources.1) {
+                    continue;
+                }
+                let at_b = to_pose(&(pose_b * self.shapes[j].frame));
+                let depth = shape::overlap_depth(&self.shapes[i], &at_a, &self.shapes[j], &at_b);
+                if depth > 0.0 && deepest.is_none_or(|d| depth > d.0) {
+                    deepest = Some((depth, sources.0, sources.1));
+                }
+            }
+        }
+        deepest
+    }
+
+    /// The shape of `link` placed at `placement` that `may_touch` lets touch the plane through `point`
+    /// with unit `normal` (solid on the side away from the normal) and reaches deepest below it: how far
+    /// (metres, > 0) and the index of the link's collision it is; `None` when none reaches below.
+    pub fn depth_below_plane(
+        &self,
+        link: LinkId,
+        placement: &Isometry3<f64>,
+        (point, normal): (&Vector3<f64>, &Vector3<f64>),
+        may_touch: &dyn Fn(usize) -> bool,
+    ) -> Option<(f64, usize)> {
+        self.bodies
+            .get(link.0)?
+            .shapes
+            .clone()
+            .filter(|&i| may_touch(self.sources[i]))
+            .map(|i| {
+                let shape = &self.shapes[i];
+                let depth =
+                    shape::depth_below_plane(shape, &(placement * shape.frame), point, normal);
+                (depth, self.sources[i])
+            })
+            .filter(|&(depth, _)| depth > 0.0)
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
+    /// The links with collision shapes, in index order.
+    pub fn geometric_links(&self) -> &[LinkId] {
+        &self.geometric
     }
 
     /// Check the pairs of `pairs` with the links at `placements` (world placements by link, such as

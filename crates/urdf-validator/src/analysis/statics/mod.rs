@@ -261,6 +261,7 @@ pub fn analyse(
         pose: options.pose.kind.label(),
         configuration: named_configuration(robot, model, &resolved.q),
         notes,
+        gravity: model.gravity.into(),
         full_body_com: com.map(|c| [c.x, c.y, c.z]),
         com_height_above_ground: com.map(|c| c.z),
         com_confidence: if com.is_some() {

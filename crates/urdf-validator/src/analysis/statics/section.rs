@@ -17,6 +17,9 @@ pub struct StaticsSection {
     pub configuration: std::collections::BTreeMap<String, f64>,
     /// How the pose was made: clamping, fallbacks, values outside limits.
     pub notes: Vec<String>,
+    /// The gravity the torques hold against, m/s² in the root frame: the model's own (MJCF `<option
+    /// gravity>`, zero under `<flag gravity="disable">`), else (0, 0, −9.81), turned with `--up-axis`.
+    pub gravity: [f64; 3],
     /// Centre of mass of all declared masses, root frame, metres.
     pub full_body_com: Option<[f64; 3]>,
     /// `estimated` when derived from declared masses, `missing` when none is declared.

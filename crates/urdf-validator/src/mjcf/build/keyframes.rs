@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 
 use super::Builder;
 use crate::diagnostics::rules;
@@ -35,6 +35,8 @@ pub(super) enum QposJoint {
         name: String,
         /// Its `qpos0`.
         qpos0: [f64; 7],
+        /// Its body's link, unless it is the floating root's (whose link frame is the world's).
+        body: Option<String>,
     },
     /// A ball joint (4 numbers), read as three hinges (x, y, z, chained in that order).
     Ball {
@@ -51,13 +53,15 @@ pub(super) enum QposJoint {
 }
 
 impl QposJoint {
-    /// A free joint whose body sits at `at` in the world at `qpos0`.
-    pub(super) fn free(name: String, at: &Isometry3<f64>) -> Self {
+    /// A free joint whose body (`body`'s link; `None` for the floating root) sits at `at` in the world
+    /// at `qpos0`.
+    pub(super) fn free(name: String, at: &Isometry3<f64>, body: Option<String>) -> Self {
         let p = at.translation.vector;
         let q = at.rotation.quaternion();
         QposJoint::Free {
             name,
             qpos0: [p.x, p.y, p.z, q.w, q.i, q.j, q.k],
+            body,
         }
     }
 
@@ -108,6 +112,17 @@ fn past_range(
 /// A `qpos` value, to 6 decimals.
 fn shown(value: f64) -> String {
     format!("{}", (value * 1e6).round() / 1e6)
+}
+
+/// The rotation of the quaternion (w, x, y, z) as MuJoCo normalises it: one shorter than mjMINVAL
+/// (`0 0 0 0`, which a key padded with zeros holds) is the identity.
+fn unit(w: f64, x: f64, y: f64, z: f64) -> UnitQuaternion<f64> {
+    let q = Quaternion::new(w, x, y, z);
+    if q.norm() < 1e-15 || !q.norm().is_finite() {
+        UnitQuaternion::identity()
+    } else {
+        UnitQuaternion::from_quaternion(q)
+    }
 }
 
 /// Angles (a, b, c) of three hinges about x, then the turned y, then the twice-turned z whose rotation is
@@ -288,9 +303,7 @@ impl<'a> Builder<'a, '_> {
                     key.joints.push((joint.clone(), values[0] - reference));
                 }
                 QposJoint::Ball { hinges } => {
-                    let rotation = UnitQuaternion::from_quaternion(Quaternion::new(
-                        values[0], values[1], values[2], values[3],
-                    ));
+                    let rotation = unit(values[0], values[1], values[2], values[3]);
                     let angles = xyz_angles(&rotation);
                     if rotation.angle() > 0.0 {
                         let ball = hinges[0].strip_suffix("_x").unwrap_or(&hinges[0]);
@@ -303,14 +316,28 @@ impl<'a> Builder<'a, '_> {
                         key.joints.push((hinge.clone(), angle));
                     }
                 }
-                QposJoint::Free { name: joint, qpos0 } => {
+                QposJoint::Free {
+                    name: joint,
+                    qpos0,
+                    body,
+                } => {
                     let moved = Vector3::new(values[0], values[1], values[2])
                         != Vector3::new(qpos0[0], qpos0[1], qpos0[2]);
-                    let turn = |v: &[f64]| {
-                        UnitQuaternion::from_quaternion(Quaternion::new(v[3], v[4], v[5], v[6]))
-                    };
+                    let turn = |v: &[f64]| unit(v[3], v[4], v[5], v[6]);
                     let tilted = turn(&values).angle_to(&turn(qpos0)) > 1e-12;
                     if moved || tilted {
+                        let place = |v: &[f64]| {
+                            Isometry3::from_parts(Translation3::new(v[0], v[1], v[2]), turn(v))
+                        };
+                        match body {
+                            None => {
+                                key.base =
+                                    Some(super::pose(&(place(&values) * place(qpos0).inverse())));
+                            }
+                            Some(body) => key
+                                .free_bodies
+                                .push((body.clone(), super::pose(&place(&values)))),
+                        }
                         key.notes.push(format!(
                             "keyframe '{name}': free joint '{joint}' is not moved{}: the analyses keep its body where qpos0 puts it{}",
                             if tilted { " nor turned" } else { "" },
