@@ -5,7 +5,7 @@
 # (git-ignored), findings go to its artifacts/ folder; a summary line per target ends the run, and the exit
 # status is 1 when any target found a crash, a timeout or an out-of-memory.
 #
-#   bash scripts/fuzz-campaign.sh            # one hour per target: urdf, mesh, xacro expand, expression
+#   bash scripts/fuzz-campaign.sh            # one hour per target: urdf, mesh, mjcf, sdf, xacro expand, expression
 #   bash scripts/fuzz-campaign.sh 600 urdf   # ten minutes, one target
 #
 # Limits as the fuzz READMEs state them: the validator targets 10 s and 1.5 GB per input (they keep going
@@ -20,7 +20,7 @@ seconds="${1:-3600}"
 niceness="${FUZZ_NICE:-19}"
 shift || true
 targets=("$@")
-((${#targets[@]} > 0)) || targets=(urdf mesh expand expression)
+((${#targets[@]} > 0)) || targets=(urdf mesh mjcf sdf expand expression)
 logs="${FUZZ_LOG_DIR:-$(mktemp -d)}"
 mkdir -p "$logs"
 echo "fuzz-campaign: ${targets[*]} for ${seconds}s each; logs in $logs" >&2
@@ -33,14 +33,19 @@ fi
 run_target() {
     local target="$1"
     case "$target" in
-        urdf | mesh)
-            local max_len=40000
+        urdf | mesh | mjcf | sdf)
+            # The structure-aware targets (mjcf, sdf) read a program of edits to their embedded seed
+            # models: their corpus is fuzz/seeds/<format>/inputs, and an XML dictionary means nothing to them.
+            local max_len=40000 seeds="fuzz/seeds/$target" dict=(-dict=fuzz/urdf.dict)
             [[ "$target" == mesh ]] && max_len=32768
+            if [[ "$target" == mjcf || "$target" == sdf ]]; then
+                max_len=512 seeds="fuzz/seeds/$target/inputs" dict=()
+            fi
             cd "$repo_root/crates/urdf-validator" || return 1
             mkdir -p "fuzz/corpus/$target" "fuzz/artifacts/$target"
             RAYON_NUM_THREADS=1 RUSTC_BOOTSTRAP=1 nice -n "$niceness" cargo fuzz run -s none "$target" \
-                "fuzz/corpus/$target" "fuzz/seeds/$target" -- \
-                -dict=fuzz/urdf.dict -timeout=10 -rss_limit_mb=1536 -max_len="$max_len" \
+                "fuzz/corpus/$target" "$seeds" -- \
+                "${dict[@]}" -timeout=10 -rss_limit_mb=1536 -max_len="$max_len" \
                 -max_total_time="$seconds" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
                 -print_final_stats=1 -artifact_prefix="fuzz/artifacts/$target/"
             ;;
@@ -49,7 +54,7 @@ run_target() {
                 -timeout=10 -rss_limit_mb=1536
             ;;
         *)
-            echo "fuzz-campaign: unknown target $target (urdf, mesh, expand, expression)" >&2
+            echo "fuzz-campaign: unknown target $target (urdf, mesh, mjcf, sdf, expand, expression)" >&2
             return 2
             ;;
     esac

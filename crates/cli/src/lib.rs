@@ -53,9 +53,9 @@ use urdf_validator::diagnostics::rules::{self, Rule};
 use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::sandbox::Sandbox;
+use urdf_validator::model::overrides::ValueOverride;
 use urdf_validator::render::FormatOptions;
 use urdf_validator::report::baseline::{self, Baseline};
-use urdf_validator::value_overrides::ValueOverride;
 use urdf_validator::Options;
 
 use args::{Args, ColorChoice, Format};

@@ -36,7 +36,6 @@ pub mod sdf;
 pub mod task_query;
 pub mod timings;
 pub mod urdf;
-pub mod value_overrides;
 
 use std::path::{Path, PathBuf};
 
@@ -52,14 +51,8 @@ use model::Model;
 use report::{Outcome, Report};
 use timings::{Progress, Stopwatch};
 
-/// This library's version, written into every report.
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");
-
-/// Samples for every sampled analysis (`--samples`): the workspace of each arm and `--pose worst`.
-pub const DEFAULT_SAMPLES: usize = 30_000;
-
-/// Seed of every sampled analysis (`--seed`).
-pub const DEFAULT_SEED: u64 = 7;
+pub use analysis::{DEFAULT_SAMPLES, DEFAULT_SEED};
+pub use report::VERSION;
 
 /// What a validation run needs besides the file; one value flows one way through the stages.
 #[derive(Clone, Debug, Default)]
@@ -96,7 +89,7 @@ pub struct Options {
     /// joints).
     pub sdf_model: Option<String>,
     /// `--override KEY=VALUE`: declared values to evaluate the robot with instead (the file untouched).
-    pub value_overrides: Vec<value_overrides::ValueOverride>,
+    pub value_overrides: Vec<model::overrides::ValueOverride>,
     /// Stop after the structural checks (parse, tree, meshes, schema rules): no statics, stability,
     /// workspace or deep section. The language server's first, fast pass after an edit.
     pub structure_only: bool,
@@ -225,11 +218,13 @@ fn run(
         (_, _, Some(files)) => mjcf::parse_mjcf(files, &options.meshes, resolver),
         _ => parse_sdf(&loaded, options)?,
     };
-    let overrides = value_overrides::apply(&mut robot, &options.value_overrides, document.as_ref())
-        .map_err(|message| LoadError::Usage {
-            path: loaded.path.clone(),
-            message,
-        })?;
+    let overrides =
+        model::overrides::apply(&mut robot, &options.value_overrides, document.as_ref()).map_err(
+            |message| LoadError::Usage {
+                path: loaded.path.clone(),
+                message,
+            },
+        )?;
     let with_payload;
     let options = match options
         .value_overrides

@@ -326,7 +326,7 @@ fn describe(geometry: &Geometry) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::source::{Span, Spanned};
+    use crate::diagnostics::span::{Span, Spanned};
     use crate::urdf::robot::Pose;
 
     fn shape(geometry: Geometry, xyz: [f64; 3], rpy: [f64; 3]) -> Shape {

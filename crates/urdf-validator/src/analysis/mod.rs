@@ -41,6 +41,12 @@ use stability::PlacedRobot;
 use statics::StaticsOptions;
 use workspace::{CollisionSetup, Scene, WorkspaceOptions};
 
+/// Samples for every sampled analysis (`--samples`): the workspace of each arm and `--pose worst`.
+pub const DEFAULT_SAMPLES: usize = 30_000;
+
+/// Seed of every sampled analysis (`--seed`).
+pub const DEFAULT_SEED: u64 = 7;
+
 /// What the user declares instead of letting heuristics guess.
 #[derive(Clone, Debug, Default)]
 pub struct Overrides {

@@ -87,8 +87,8 @@ impl Default for PoseOptions {
             joint_angles: None,
             srdf: None,
             state: "home".to_string(),
-            samples: crate::DEFAULT_SAMPLES,
-            seed: crate::DEFAULT_SEED,
+            samples: crate::analysis::DEFAULT_SAMPLES,
+            seed: crate::analysis::DEFAULT_SEED,
         }
     }
 }

@@ -3,8 +3,8 @@
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::fix::{Edit, Fix};
 use crate::diagnostics::rules;
+use crate::diagnostics::span::Spanned;
 use crate::input::resolve::Resolution;
-use crate::input::source::Spanned;
 use crate::model::kinematics::{forward_kinematics, Data};
 use crate::model::Model;
 use crate::urdf::robot::{Geometry, Robot};

@@ -6,7 +6,7 @@ use crate::analysis::geometry_inertia::{self, GeometryInertia, Role};
 use crate::assets::Assets;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
-use crate::input::source::Spanned;
+use crate::diagnostics::span::Spanned;
 use crate::input::Format;
 use crate::model::kinematics::pose_isometry;
 use crate::model::{LinkId, Model};
@@ -452,7 +452,7 @@ fn short_number(value: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::source::Span;
+    use crate::diagnostics::span::Span;
 
     fn tensor(ixx: f64, iyy: f64, izz: f64, ixy: f64) -> Inertia {
         Inertia {

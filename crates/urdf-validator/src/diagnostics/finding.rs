@@ -2,7 +2,7 @@
 
 use crate::diagnostics::fix::Fix;
 use crate::diagnostics::rules::Rule;
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 
 /// How serious a finding is. Ordered: `Info < Warn < Fail < Critical`; the exit code follows the worst
 /// (see [`crate::diagnostics::overall_status`] and [`crate::diagnostics::Status::exit_code`]).

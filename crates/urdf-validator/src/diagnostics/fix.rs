@@ -5,7 +5,7 @@
 //! span; the report turns them into byte edits of the files the user edits ([`Edit::resolve`]), and
 //! [`apply`] applies byte edits to a text: pure text in, text out (writing files belongs to the CLI).
 
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 
 /// Whether applying a fix keeps the robot's physics and meaning (`safe`: `--fix`) or changes them
 /// (`unsafe`: also `--unsafe-fixes`).

@@ -6,6 +6,7 @@ pub mod fix;
 pub mod inline;
 pub mod rules;
 pub mod settings;
+pub mod span;
 pub mod suggest;
 mod verdict;
 

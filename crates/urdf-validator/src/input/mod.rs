@@ -12,7 +12,8 @@ pub mod xml_files;
 
 use std::path::{Path, PathBuf};
 
-use source::{SourceText, Span};
+use crate::diagnostics::span::Span;
+use source::SourceText;
 use xacro::SourceLocation;
 
 /// Largest input accepted (bounded memory on untrusted input).

@@ -4,7 +4,7 @@
 //! them as plain unknown names: the colon becomes `_`, every other byte (and so every line, column and
 //! byte offset a finding or a fix points at) stays where it was.
 
-use super::source::Span;
+use crate::diagnostics::span::Span;
 
 /// A prefix used without a declaration, and where it is first used.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -5,9 +5,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::diagnostics::span::Span;
 use crate::input::resolve::PackageResolver;
 use crate::input::sandbox::Sandbox;
-use crate::input::source::{SourceText, Span};
+use crate::input::source::SourceText;
 use crate::input::LoadError;
 
 /// True for `*.xacro` files.

@@ -8,8 +8,9 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+use crate::diagnostics::span::Span;
 use crate::input::resolve::{IncludeFailure, PackageResolver};
-use crate::input::source::{SourceText, Span};
+use crate::input::source::SourceText;
 use crate::input::xacro::SourceLocation;
 use crate::input::{read_text, xml_options, LoadError, MAX_FILE_BYTES};
 

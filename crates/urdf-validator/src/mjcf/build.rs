@@ -26,12 +26,12 @@ use super::mass::{self, MassProps, MeshVolume, Solid};
 use super::orientation::{self, FORMS};
 use super::xml::{numbers, El, Reader};
 use crate::diagnostics::rules::{self, Rule};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::input::mesh::{load_surface, MeshCache};
 use crate::input::resolve::PackageResolver;
-use crate::input::source::{Span, Spanned};
 use crate::urdf::robot::{
     ContactSection, Dynamics, Geometry, Inertia, Inertial, Joint, JointKind, Limit, Link, Pose,
-    Robot, Shape, WorldPlane,
+    Robot, Shape, WorldPlane, STANDARD_GRAVITY,
 };
 
 /// The limits of a slide joint without a range: SDFormat's "unlimited" (the samplers and checks read a
@@ -355,7 +355,7 @@ impl<'a, 'r> Builder<'a, 'r> {
         }
         let off = disabled.is_some();
         let gravity = disabled.or(gravity)?;
-        let standard = crate::analysis::statics::gravity::GRAVITY;
+        let standard = Vector3::from(STANDARD_GRAVITY);
         let [x, y, z] = gravity.value;
         if (Vector3::new(x, y, z) - standard).norm() > 1e-9 {
             let how = if off {

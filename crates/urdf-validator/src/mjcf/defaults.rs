@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use super::xml::{El, Reader};
 use crate::diagnostics::rules;
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 
 /// The top-level class.
 pub const MAIN: &str = "main";

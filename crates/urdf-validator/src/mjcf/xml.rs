@@ -5,7 +5,7 @@ use roxmltree::{Document, Node};
 
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules::{self, Rule};
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 use crate::input::xml_files::{IncludeTarget, XmlFiles, MAX_INCLUDE_DEPTH};
 
 /// Most `<include>`s expanded in one model (a file included twice by a file included twice... is read

@@ -5,7 +5,8 @@
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
 use crate::model::{JointId, LinkId, Model};
-use crate::urdf::robot::{Joint, JointKind, Link, Pose};
+pub use crate::urdf::robot::{pose_isometry, quaternion_xyzw};
+use crate::urdf::robot::{Joint, JointKind, Link};
 
 /// Widest prismatic range sampled, in metres: wider is a placeholder for "unlimited" (SDFormat's
 /// default limits are ±1e16), not a travel.
@@ -37,36 +38,12 @@ fn finite(value: f64) -> f64 {
     }
 }
 
-/// The rigid transform of a URDF `<origin>`: rotation `Rz(yaw)·Ry(pitch)·Rx(roll)` (or the `quat_xyzw`
-/// quaternion when given), then translation.
-pub fn pose_isometry(pose: &Pose) -> Isometry3<f64> {
-    let [x, y, z] = pose.xyz.map(finite);
-    let rotation = match pose.quat_xyzw {
-        Some(q) => quaternion_xyzw(q),
-        None => {
-            let [roll, pitch, yaw] = pose.rpy.map(finite);
-            UnitQuaternion::from_euler_angles(roll, pitch, yaw)
-        }
-    };
-    Isometry3::from_parts(Translation3::new(x, y, z), rotation)
-}
-
-/// A `quat_xyzw` as urdfdom_headers' `Rotation::initQuaternion` reads it: normalised, and the identity when
-/// its norm is zero (`Rotation::normalize`); non-finite components (already reported) give the identity too.
-pub fn quaternion_xyzw([x, y, z, w]: [f64; 4]) -> UnitQuaternion<f64> {
-    let squared_norm = x * x + y * y + z * z + w * w;
-    if !(squared_norm.is_finite() && squared_norm > 0.0) {
-        return UnitQuaternion::identity();
-    }
-    UnitQuaternion::new_normalize(nalgebra::Quaternion::new(w, x, y, z))
-}
-
 impl JointData {
     /// Numbers of one parsed joint.
     pub fn from_joint(joint: &Joint) -> Self {
         let axis = Vector3::from(joint.axis_or_default().map(finite));
         let axis = Unit::try_new(axis, 1e-9).map_or(Vector3::zeros(), |u| u.into_inner());
-        let limit_value = |v: &Option<crate::input::source::Spanned<f64>>| {
+        let limit_value = |v: &Option<crate::diagnostics::span::Spanned<f64>>| {
             v.as_ref().map(|s| s.value).filter(|v| v.is_finite())
         };
         let limit = joint.limit.as_ref();

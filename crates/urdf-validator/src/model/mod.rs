@@ -2,6 +2,7 @@
 //! analysis), forward kinematics and mass properties, with Pinocchio's Model/Data split.
 
 pub mod kinematics;
+pub mod overrides;
 mod tree;
 pub mod up_axis;
 

@@ -11,7 +11,7 @@ pub use crate::model::kinematics::{JointData, LinkMass};
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
 use crate::diagnostics::suggest::did_you_mean;
-use crate::urdf::robot::{JointKind, Robot};
+use crate::urdf::robot::{JointKind, Robot, STANDARD_GRAVITY};
 
 /// Index of a link in [`Robot::links`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -100,9 +100,8 @@ impl Model {
         model.gravity = robot
             .gravity
             .as_ref()
-            .map_or(crate::analysis::statics::gravity::GRAVITY, |g| {
-                nalgebra::Vector3::from(g.value)
-            });
+            .map_or(STANDARD_GRAVITY, |g| g.value)
+            .into();
         if !robot.gravity_compensation.is_empty() {
             let mut carried = vec![0.0; robot.links.len()];
             for (name, share) in &robot.gravity_compensation {
@@ -250,7 +249,7 @@ fn attach_joints(robot: &Robot, model: &mut Model, findings: &mut Vec<Finding>) 
         if model.joint(&joint.name.value) != Some(id) {
             continue; // A duplicate: only the first definition joins the tree.
         }
-        let mut resolve = |role: &str, name: &Option<crate::input::source::Spanned<String>>| {
+        let mut resolve = |role: &str, name: &Option<crate::diagnostics::span::Spanned<String>>| {
             let name = name.as_ref()?;
             let found = model.link(&name.value);
             if found.is_none() {

@@ -53,8 +53,8 @@ fn sarif_log(
     let base = options.base_dir.as_deref();
     let mut driver = Map::new();
     driver.insert("name".into(), json!("urdf_validate"));
-    driver.insert("version".into(), json!(crate::VERSION));
-    driver.insert("semanticVersion".into(), json!(crate::VERSION));
+    driver.insert("version".into(), json!(crate::report::VERSION));
+    driver.insert("semanticVersion".into(), json!(crate::report::VERSION));
     if let Some(url) = &options.rules_url {
         driver.insert("informationUri".into(), json!(url));
     }

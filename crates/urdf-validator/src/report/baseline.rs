@@ -20,8 +20,8 @@ use std::path::{Component, Path, PathBuf};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use crate::diagnostics::span::Span;
 use crate::diagnostics::Severity;
-use crate::input::source::Span;
 use crate::report::{FindingReport, Report};
 
 /// The version of the baseline file format this library writes and reads.

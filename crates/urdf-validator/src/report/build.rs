@@ -5,11 +5,12 @@ use crate::analysis::{mass, Physics};
 use crate::diagnostics::fix::Fix;
 use crate::diagnostics::{overall_status, rules, Finding, Section, Settings, Severity};
 use crate::input::Loaded;
+use crate::model::overrides::Applied;
 use crate::model::Model;
 use crate::report::baseline::{self, Baseline, ElementPaths};
+use crate::report::AppliedOverride;
 use crate::report::{filter, FileEdit, FindingReport, FixReport, Report, SchemaSection, Status};
 use crate::urdf::Robot;
-use crate::value_overrides::{Applied, AppliedOverride};
 
 /// What the stages produced for one robot.
 pub struct Outcome<'a> {
@@ -114,7 +115,7 @@ pub fn build(outcome: Outcome) -> Report {
         urdf_path: loaded.path.display().to_string(),
         robot_name,
         timestamp: super::timestamp::now(),
-        validator_version: crate::VERSION.to_string(),
+        validator_version: crate::report::VERSION.to_string(),
         overall_status: overall_status(&findings),
         robot_type: analyses.as_ref().map(|a| a.robot_type),
         robot_type_confidence: analyses.as_ref().map(|a| a.robot_type_confidence),
@@ -144,7 +145,9 @@ pub fn build(outcome: Outcome) -> Report {
             .into_iter()
             .map(|applied| AppliedOverride {
                 fix: applied.fix.as_ref().map(|fix| fix_report(fix, loaded)),
-                ..applied.report
+                key: applied.key,
+                value: applied.value,
+                was: applied.was,
             })
             .collect(),
         timings_ms: None,

@@ -27,6 +27,9 @@ use serde::Serialize;
 use crate::diagnostics::fix::{Applicability, TextEdit};
 use crate::diagnostics::{Section, Severity};
 
+/// This library's version, written into every report.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 /// The validation report of one robot: `<stem>_validation.json`.
 #[derive(Clone, Debug, Serialize, JsonSchema)]
 pub struct Report {
@@ -99,7 +102,7 @@ pub struct Report {
     /// `--override`s the robot was evaluated with (the file untouched), each with the value the file
     /// declares. Present only with `--override`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub overrides: Vec<crate::value_overrides::AppliedOverride>,
+    pub overrides: Vec<AppliedOverride>,
     /// Milliseconds per pipeline phase (`--timings` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub timings_ms: Option<Timings>,
@@ -207,4 +210,20 @@ impl FindingReport {
 pub fn json_schema() -> String {
     let schema = schemars::schema_for!(Report);
     serde_json::to_string_pretty(&schema).unwrap_or_default() + "\n"
+}
+
+/// An `--override` as applied, in `overrides`.
+#[derive(Clone, Debug, Serialize, JsonSchema)]
+pub struct AppliedOverride {
+    /// The key (`joint.shoulder.effort`).
+    pub key: String,
+    /// The value used.
+    pub value: String,
+    /// The value the file declares (null when it declares none).
+    pub was: Option<String>,
+    /// The edit that writes the value into the file (`--fix --from-overrides`); absent when the file has no
+    /// attribute to hold it (no `<limit>`, `<mass>` or `<origin>` element: add it by hand) and for
+    /// `payload.mass`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fix: Option<FixReport>,
 }

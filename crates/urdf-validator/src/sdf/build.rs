@@ -11,7 +11,7 @@ use super::link::{self, Placement};
 use super::pose::{self, to_pose, Transform};
 use super::scene::{El, JointDef, Scene, Sink, FRAME_SEMANTICS};
 use crate::diagnostics::rules;
-use crate::input::source::{Span, Spanned};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::urdf::robot::{Dynamics, Joint, JointKind, Limit, Link, Mimic, Robot};
 
 /// Joint limits at or beyond this magnitude mean "none" (SDFormat's default is ±1e16).

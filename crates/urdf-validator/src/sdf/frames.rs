@@ -8,8 +8,8 @@ use super::pose::Transform;
 use super::scene::{Kind, Ref, Scene};
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules;
+use crate::diagnostics::span::Span;
 use crate::diagnostics::suggest::did_you_mean;
-use crate::input::source::Span;
 
 /// Resolves poses and attachments of one scene, memoising them.
 pub struct FrameGraph<'s, 'a> {

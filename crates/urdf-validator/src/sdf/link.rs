@@ -7,7 +7,7 @@ use super::frames::FrameGraph;
 use super::pose::{self, to_pose, Transform};
 use super::scene::{El, LinkDef, Sink, FRAME_SEMANTICS};
 use crate::diagnostics::rules;
-use crate::input::source::Spanned;
+use crate::diagnostics::span::Spanned;
 use crate::urdf::robot::{Geometry, Inertia, Inertial, Link, Shape};
 
 /// Where a link is: its SDFormat frame and its URDF frame, both in the model frame.

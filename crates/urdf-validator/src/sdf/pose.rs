@@ -3,7 +3,7 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 use crate::urdf::robot::Pose;
 
 /// A rigid transform.

@@ -9,7 +9,7 @@ use roxmltree::{Document, Node};
 use super::pose::{self, Transform};
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::rules::{self, Rule};
-use crate::input::source::{Span, Spanned};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::input::xml_files::{IncludeTarget, XmlFiles};
 
 /// An SDFormat version, `(major, minor)`.

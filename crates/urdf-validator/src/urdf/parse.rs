@@ -8,7 +8,7 @@ use roxmltree::Node;
 use crate::diagnostics::finding::Finding;
 use crate::diagnostics::fix::{Edit, Fix};
 use crate::diagnostics::rules;
-use crate::input::source::{Span, Spanned};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::input::unbound_prefixes::rewrite_unbound_prefixes;
 use crate::input::{xml_options, LoadError};
 use crate::urdf::robot::*;

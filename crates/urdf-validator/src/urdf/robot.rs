@@ -3,7 +3,13 @@
 //! Values that the file omits stay `None` here; defaults are applied by the analyses that need them, so the
 //! checks can tell "absent" from "zero".
 
-use crate::input::source::{Span, Spanned};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+
+use crate::diagnostics::span::{Span, Spanned};
+
+/// The standard gravity, m/s² in the root frame (Pinocchio's and MuJoCo's default): what a robot that
+/// declares none ([`Robot::gravity`] `None`) is under.
+pub const STANDARD_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
 
 /// A parsed `<robot>`.
 #[derive(Clone, Debug, Default)]
@@ -476,4 +482,37 @@ pub struct Ros2Control {
     pub span: Span,
     /// `<joint name>` entries.
     pub joints: Vec<Spanned<String>>,
+}
+
+/// The rigid transform of a URDF `<origin>`: rotation `Rz(yaw)·Ry(pitch)·Rx(roll)` (or the `quat_xyzw`
+/// quaternion when given), then translation.
+pub fn pose_isometry(pose: &Pose) -> Isometry3<f64> {
+    let [x, y, z] = pose.xyz.map(zero_if_not_finite);
+    let rotation = match pose.quat_xyzw {
+        Some(q) => quaternion_xyzw(q),
+        None => {
+            let [roll, pitch, yaw] = pose.rpy.map(zero_if_not_finite);
+            UnitQuaternion::from_euler_angles(roll, pitch, yaw)
+        }
+    };
+    Isometry3::from_parts(Translation3::new(x, y, z), rotation)
+}
+
+/// A `quat_xyzw` as urdfdom_headers' `Rotation::initQuaternion` reads it: normalised, and the identity when
+/// its norm is zero (`Rotation::normalize`); non-finite components (already reported) give the identity too.
+pub fn quaternion_xyzw([x, y, z, w]: [f64; 4]) -> UnitQuaternion<f64> {
+    let squared_norm = x * x + y * y + z * z + w * w;
+    if !(squared_norm.is_finite() && squared_norm > 0.0) {
+        return UnitQuaternion::identity();
+    }
+    UnitQuaternion::new_normalize(nalgebra::Quaternion::new(w, x, y, z))
+}
+
+/// `value`, or 0 when it is not finite (a NaN or infinite value, already reported, places nothing).
+fn zero_if_not_finite(value: f64) -> f64 {
+    if value.is_finite() {
+        value
+    } else {
+        0.0
+    }
 }

@@ -11,8 +11,8 @@ use nalgebra::{Matrix3, SymmetricEigen};
 use serde_json::{json, Value};
 
 use crate::assets::Assets;
+use crate::diagnostics::span::Span;
 use crate::input::resolve::Resolution;
-use crate::input::source::Span;
 use crate::model::{LinkId, Model};
 use crate::urdf::robot::{Geometry, Robot};
 

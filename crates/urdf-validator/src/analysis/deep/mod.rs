@@ -224,7 +224,7 @@ fn not_run(
     (section, vec![finding])
 }
 
-fn root_span(robot: &Robot, model: &Model) -> crate::input::source::Span {
+fn root_span(robot: &Robot, model: &Model) -> crate::diagnostics::span::Span {
     model
         .root
         .map_or(robot.span, |root| robot.links[root.0].span)

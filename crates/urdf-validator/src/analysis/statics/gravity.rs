@@ -10,11 +10,15 @@ use nalgebra::Vector3;
 
 use crate::model::kinematics::{forward_kinematics, Configuration, Data, LinkMass};
 use crate::model::{JointId, LinkId, Model};
-use crate::urdf::robot::JointKind;
+use crate::urdf::robot::{JointKind, STANDARD_GRAVITY};
 
-/// The standard gravity in the root frame, m/s² (Pinocchio's and MuJoCo's default); a model may declare
-/// its own ([`Model::gravity`]).
-pub const GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
+/// The standard gravity in the root frame, m/s² ([`STANDARD_GRAVITY`]); a model may declare its own
+/// ([`Model::gravity`]).
+pub const GRAVITY: Vector3<f64> = Vector3::new(
+    STANDARD_GRAVITY[0],
+    STANDARD_GRAVITY[1],
+    STANDARD_GRAVITY[2],
+);
 
 /// Torques below this (N·m or N) are negligible: no margin is computed.
 pub const NEGLIGIBLE_TORQUE: f64 = 1e-3;

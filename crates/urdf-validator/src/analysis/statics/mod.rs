@@ -10,9 +10,9 @@ use std::collections::BTreeMap;
 
 use crate::analysis::pose::{self, PoseKind, PoseOptions};
 use crate::diagnostics::fix::{self, Edit, Fix};
+use crate::diagnostics::span::Span;
 use crate::diagnostics::suggest::did_you_mean;
 use crate::diagnostics::{rules, Confidence, Finding, Section, Status};
-use crate::input::source::Span;
 use crate::input::srdf::Srdf;
 use crate::model::kinematics::{Configuration, LinkMass};
 use crate::model::{JointId, LinkId, Model};

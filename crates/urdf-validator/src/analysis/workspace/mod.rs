@@ -99,8 +99,8 @@ pub struct WorkspaceOptions {
 impl Default for WorkspaceOptions {
     fn default() -> Self {
         WorkspaceOptions {
-            samples: crate::DEFAULT_SAMPLES,
-            seed: crate::DEFAULT_SEED,
+            samples: crate::analysis::DEFAULT_SAMPLES,
+            seed: crate::analysis::DEFAULT_SEED,
             task: None,
             orientation: None,
             orientation_tolerance_deg: 30.0,

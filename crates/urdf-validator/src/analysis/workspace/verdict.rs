@@ -5,8 +5,8 @@ use crate::analysis::arms::Arm;
 use crate::analysis::workspace::{
     WorkspaceOptions, WorkspaceSection, COLLISION_FREE_PASS_FRACTION, ORIENTATION_PASS_FRACTION,
 };
+use crate::diagnostics::span::Span;
 use crate::diagnostics::{rules, Finding, Section, Status};
-use crate::input::source::Span;
 use crate::model::Model;
 use crate::urdf::robot::Robot;
 

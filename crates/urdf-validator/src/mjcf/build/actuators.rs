@@ -18,7 +18,7 @@ use std::collections::HashMap;
 
 use super::{Builder, MAIN};
 use crate::diagnostics::rules;
-use crate::input::source::{Span, Spanned};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::mjcf::xml::El;
 
 /// What the actuator rules need to know of a hinge or slide joint.

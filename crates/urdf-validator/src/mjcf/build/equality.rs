@@ -10,15 +10,15 @@
 //!
 //! `active="false"` (written, or from the element's class: MuJoCo's `<default><equality active>`) is off.
 
-use nalgebra::Vector3;
+use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 
 use super::{pose, Builder};
 use crate::diagnostics::rules;
-use crate::input::source::Spanned;
+use crate::diagnostics::span::Spanned;
 use crate::mjcf::compiler::boolean;
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
-use crate::model::kinematics::{joint_motion, pose_isometry};
+use crate::urdf::robot::pose_isometry;
 use crate::urdf::robot::{JointKind, Mimic};
 
 impl<'a> Builder<'a, '_> {
@@ -127,7 +127,17 @@ impl<'a> Builder<'a, '_> {
             Some(JointKind::Prismatic) => JointKind::Prismatic,
             _ => JointKind::Revolute,
         };
-        let motion = joint_motion(kind, Vector3::from(axis).normalize(), q);
+        // A zero axis (refused, U030) holds the joint where it is.
+        let motion = match (kind, Unit::try_new(Vector3::from(axis), 1e-9)) {
+            (_, None) => Isometry3::identity(),
+            (JointKind::Prismatic, Some(axis)) => {
+                Isometry3::from(Translation3::from(axis.into_inner() * q))
+            }
+            (_, Some(axis)) => Isometry3::from_parts(
+                Translation3::identity(),
+                UnitQuaternion::from_axis_angle(&axis, q),
+            ),
+        };
         joint.origin = pose(&(pose_isometry(&joint.origin) * motion));
         if let Some(kind) = joint.kind.as_mut() {
             kind.value = JointKind::Fixed;

@@ -19,7 +19,7 @@ use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 
 use super::Builder;
 use crate::diagnostics::rules;
-use crate::input::source::Span;
+use crate::diagnostics::span::Span;
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::xml::El;
 use crate::urdf::robot::Keyframe;

@@ -3,13 +3,9 @@
 //! `link.NAME.com=x,y,z`, `payload.mass=2`). The report lists each override with the value it replaced,
 //! and the edit that would write it into the file (`--fix --from-overrides`).
 
-use schemars::JsonSchema;
-use serde::Serialize;
-
 use crate::diagnostics::fix::{number, Edit, Fix};
+use crate::diagnostics::span::{Span, Spanned};
 use crate::diagnostics::suggest::did_you_mean;
-use crate::input::source::{Span, Spanned};
-use crate::report::FixReport;
 use crate::urdf::robot::{Inertial, Limit, Pose, Robot};
 
 /// What an override changes.
@@ -99,26 +95,14 @@ impl ValueOverride {
     }
 }
 
-/// An override as applied, for the report.
-#[derive(Clone, Debug, Serialize, JsonSchema)]
-pub struct AppliedOverride {
-    /// The key (`joint.shoulder.effort`).
-    pub key: String,
-    /// The value used.
-    pub value: String,
-    /// The value the file declares (null when it declares none).
-    pub was: Option<String>,
-    /// The edit that writes the value into the file (`--fix --from-overrides`); absent when the file has no
-    /// attribute to hold it (no `<limit>`, `<mass>` or `<origin>` element: add it by hand) and for
-    /// `payload.mass`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fix: Option<FixReport>,
-}
-
 /// An override as applied, with the fix that would write it into the text the parser read.
 pub struct Applied {
-    /// What the report lists (its `fix` still empty: the report resolves [`Applied::fix`] into it).
-    pub report: AppliedOverride,
+    /// The key (`joint.shoulder.effort`).
+    pub key: String,
+    /// The value used, as written.
+    pub value: String,
+    /// The value the file declares (`None` when it declares none).
+    pub was: Option<String>,
     /// Writing the value into the file, when there is an attribute to hold it.
     pub fix: Option<Fix>,
 }
@@ -236,23 +220,22 @@ pub fn apply(
                 }
             }
         };
-        let report = AppliedOverride {
-            key: o.key.clone(),
-            value: written(&o.values),
-            was: was.clone(),
-            fix: None,
-        };
+        let value = written(&o.values);
         let fix = edit.map(|edit| {
-            let was = was.map_or_else(|| "not declared".to_string(), |w| format!("was {w}"));
+            let was = was
+                .as_ref()
+                .map_or_else(|| "not declared".to_string(), |w| format!("was {w}"));
             Fix::unsafe_(
-                format!(
-                    "write the override {}={} into the file ({was})",
-                    o.key, report.value
-                ),
+                format!("write the override {}={value} into the file ({was})", o.key),
                 vec![edit],
             )
         });
-        applied.push(Applied { report, fix });
+        applied.push(Applied {
+            key: o.key.clone(),
+            value,
+            was,
+            fix,
+        });
     }
     Ok(applied)
 }
