@@ -10,7 +10,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use urdf_validator::input::mesh::{
-    load_mesh, load_mesh_with, MeshCache, MeshData, MeshOptions, UpAxis, UpAxisPolicy,
+    load_mesh, load_mesh_with, ColladaUpAxis, MeshCache, MeshData, MeshOptions, UpAxisPolicy,
 };
 
 /// A fresh directory for one test, removed when dropped.
@@ -388,7 +388,7 @@ fn dae_unit_and_y_up_apply_to_node_translations() {
     assert_eq!(mesh.triangles, 12);
     assert_eq!(mesh.vertices.len(), 8);
     assert_eq!(mesh.hull.len(), 8);
-    assert_eq!(mesh.declared_up_axis, Some(UpAxis::Y));
+    assert_eq!(mesh.declared_up_axis, Some(ColladaUpAxis::Y));
     // The corner (1, 1, 0) mm + 5000 mm x → (5.001, 0.001, 0) m → Y_UP → (5.001, 0, 0.001).
     assert!(mesh.vertices.iter().any(|v| (v[0] - 5.001).abs() < 1e-12
         && v[1].abs() < 1e-12
@@ -405,7 +405,7 @@ fn dae_unit_and_y_up_apply_to_node_translations() {
     .expect("loads");
     assert_close(ignored.aabb.0, [5.0, 0.0, 0.0]);
     assert_close(ignored.aabb.1, [5.001, 0.001, 0.001]);
-    assert_eq!(ignored.declared_up_axis, Some(UpAxis::Y));
+    assert_eq!(ignored.declared_up_axis, Some(ColladaUpAxis::Y));
 }
 
 #[test]
@@ -442,7 +442,7 @@ fn dae_nested_nodes_compose_in_document_order() {
     assert!(mesh.vertices.iter().any(|v| (v[0] - 9.0).abs() < 1e-12
         && (v[1] - 2.0).abs() < 1e-12
         && (v[2] - 1.0).abs() < 1e-12));
-    assert_eq!(mesh.declared_up_axis, Some(UpAxis::Z));
+    assert_eq!(mesh.declared_up_axis, Some(ColladaUpAxis::Z));
 }
 
 #[test]
@@ -463,7 +463,7 @@ fn dae_instance_node_and_x_up() {
     assert_eq!(mesh.triangles, 24);
     assert_close(mesh.aabb.0, [-0.01, -0.04, 0.0]);
     assert_close(mesh.aabb.1, [0.0, -0.03, 1.01]);
-    assert_eq!(mesh.declared_up_axis, Some(UpAxis::X));
+    assert_eq!(mesh.declared_up_axis, Some(ColladaUpAxis::X));
 }
 
 #[test]
@@ -715,7 +715,7 @@ fn every_reference_robot_mesh_loads() {
             "{}: {e:?}",
             file.display()
         );
-        assert_eq!(mesh.declared_up_axis, Some(UpAxis::Z));
+        assert_eq!(mesh.declared_up_axis, Some(ColladaUpAxis::Z));
     }
 }
 
@@ -737,7 +737,7 @@ fn pr2_collada_meshes_declare_y_up_but_are_modelled_z_up() {
         },
     )
     .expect("loads");
-    assert_eq!(honoured.declared_up_axis, Some(UpAxis::Y));
+    assert_eq!(honoured.declared_up_axis, Some(ColladaUpAxis::Y));
     let (h, i) = (extent(&honoured), extent(&ignored));
     assert!(
         (i[2] - 0.656).abs() < 0.01 && i[0] < 0.7 && i[1] < 0.7,

@@ -87,6 +87,19 @@ pub enum Confidence {
     Simulated,
 }
 
+impl Confidence {
+    /// The label used in text and HTML output (as in JSON: `exact`, `estimated`, ...).
+    pub fn label(self) -> &'static str {
+        match self {
+            Confidence::Exact => "exact",
+            Confidence::Estimated => "estimated",
+            Confidence::Guessed => "guessed",
+            Confidence::Missing => "missing",
+            Confidence::Simulated => "simulated",
+        }
+    }
+}
+
 /// Overall quality of the physics data.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, JsonSchema)]
 pub enum ConfidenceLevel {

@@ -221,21 +221,10 @@ impl PackageResolver {
         package: &str,
         start_dir: &Path,
     ) -> (Option<PathBuf>, Vec<PathBuf>) {
-        let mut searched = Vec::new();
         if !valid_package_name(package) {
-            return (None, searched);
+            return (None, Vec::new());
         }
-        for root in self.package_roots(package, start_dir) {
-            if searched.contains(&root) {
-                continue;
-            }
-            let found = root.is_dir();
-            searched.push(root.clone());
-            if found {
-                return (Some(root), searched);
-            }
-        }
-        (None, searched)
+        first_folder(self.package_roots(package, start_dir))
     }
 
     /// The folder of Gazebo model `name` (`model://name`), searched from `start_dir`, and every folder
@@ -245,21 +234,10 @@ impl PackageResolver {
         name: &str,
         start_dir: &Path,
     ) -> (Option<PathBuf>, Vec<PathBuf>) {
-        let mut searched = Vec::new();
         if !valid_package_name(name) {
-            return (None, searched);
+            return (None, Vec::new());
         }
-        for root in self.model_roots(name, start_dir) {
-            if searched.contains(&root) {
-                continue;
-            }
-            let found = root.is_dir();
-            searched.push(root.clone());
-            if found {
-                return (Some(root), searched);
-            }
-        }
-        (None, searched)
+        first_folder(self.model_roots(name, start_dir))
     }
 
     /// The SDFormat file an `<include><uri>` names, for a file in `dir`: `model://NAME[/path]`, `file://`
@@ -677,6 +655,22 @@ fn split_path_list(value: Option<&str>) -> Vec<PathBuf> {
                 .collect()
         })
         .unwrap_or_default()
+}
+
+/// The first of `candidates` that is a folder, and the candidates tried up to it, each once, in order.
+fn first_folder(candidates: impl IntoIterator<Item = PathBuf>) -> (Option<PathBuf>, Vec<PathBuf>) {
+    let mut searched = Vec::new();
+    for root in candidates {
+        if searched.contains(&root) {
+            continue;
+        }
+        let found = root.is_dir();
+        searched.push(root.clone());
+        if found {
+            return (Some(root), searched);
+        }
+    }
+    (None, searched)
 }
 
 /// A package name usable as a single path component.

@@ -122,16 +122,6 @@ fn severity_class(severity: Severity) -> &'static str {
     }
 }
 
-fn confidence_label(confidence: Confidence) -> &'static str {
-    match confidence {
-        Confidence::Exact => "exact",
-        Confidence::Estimated => "estimated",
-        Confidence::Guessed => "guessed",
-        Confidence::Missing => "missing",
-        Confidence::Simulated => "simulated",
-    }
-}
-
 fn pill(status: Status) -> String {
     format!(
         "<span class=\"pill {}\">{}</span>",
@@ -178,7 +168,7 @@ fn hero(out: &mut String, report: &Report) {
     let kind = report.robot_type.map_or("unknown", |t| t.as_str());
     let kind_confidence = report
         .robot_type_confidence
-        .map_or("estimated", confidence_label);
+        .map_or("estimated", Confidence::label);
     let _ = write!(
         out,
         "<header class=\"hero {cls}\">\n<div class=\"badge {cls}\" aria-label=\"overall status\"><span class=\"icon\">{icon}</span><span>{label}</span></div>\n\
@@ -824,7 +814,7 @@ fn stability_panel(out: &mut String, report: &Report, stability: &StabilitySecti
         facts.push(format!(
             "contacts: {} ({})",
             escape(source),
-            confidence_label(stability.contact_confidence)
+            stability.contact_confidence.label()
         ));
     }
     if !facts.is_empty() {
@@ -1014,13 +1004,13 @@ fn statics_panel(out: &mut String, statics: &StaticsSection) {
     if let Some(mass) = statics.total_mass {
         facts.push(format!(
             "total mass <b>{mass:.3} kg</b> ({})",
-            confidence_label(statics.mass_confidence)
+            statics.mass_confidence.label()
         ));
     }
     if let Some([x, y, z]) = statics.full_body_com {
         facts.push(format!(
             "COM ({x:.3}, {y:.3}, {z:.3}) m ({})",
-            confidence_label(statics.com_confidence)
+            statics.com_confidence.label()
         ));
     }
     if let (Some(name), Some(pct)) = (&statics.heaviest_link_name, statics.heaviest_link_pct) {
@@ -1286,7 +1276,7 @@ fn workspace_panel(out: &mut String, report: &Report, workspace: &WorkspaceSecti
         "{} samples per arm, seed {} ({})",
         workspace.samples,
         workspace.seed,
-        confidence_label(workspace.reach_confidence)
+        workspace.reach_confidence.label()
     ));
     let _ = writeln!(out, "<p class=\"facts\">{}</p>", facts.join(" · "));
     if let Some(reason) = &workspace.reason {
@@ -1339,7 +1329,7 @@ fn workspace_panel(out: &mut String, report: &Report, workspace: &WorkspaceSecti
             escape(&arm.tip_link),
             escape(arm.first_joint.as_deref().unwrap_or(&arm.root_link)),
             arm.joints.len(),
-            confidence_label(arm.confidence),
+            arm.confidence.label(),
             metres(arm.max_reach),
             metres(arm.vertical_reach),
             metres(arm.horizontal_reach),

@@ -9,7 +9,7 @@ use anstyle::{AnsiColor, Style};
 use crate::diagnostics::finding::{Section, Severity};
 use crate::diagnostics::fix::Applicability;
 use crate::report::{
-    ArmWorkspace, DeepSection, FindingReport, JointStatics, Report, StabilitySection,
+    ArmWorkspace, Confidence, DeepSection, FindingReport, JointStatics, Report, StabilitySection,
     StaticsSection, Status, Timings, WorkspaceSection,
 };
 use crate::Validation;
@@ -494,7 +494,7 @@ fn statics_section(out: &mut String, statics: &StaticsSection, verbose: bool) {
             let _ = writeln!(
                 out,
                 "{head}  COM [{x:.3}, {y:.3}, {z:.3}] m  height {height:.3} m  total mass {mass:.3} kg  ({})",
-                confidence_label(statics.com_confidence)
+                statics.com_confidence.label()
             );
             if let (Some(name), Some(pct)) =
                 (&statics.heaviest_link_name, statics.heaviest_link_pct)
@@ -608,24 +608,13 @@ fn joint_row(out: &mut String, joint: &JointStatics) {
     );
 }
 
-fn confidence_label(confidence: crate::report::Confidence) -> &'static str {
-    use crate::report::Confidence;
-    match confidence {
-        Confidence::Exact => "exact",
-        Confidence::Estimated => "estimated",
-        Confidence::Guessed => "guessed",
-        Confidence::Missing => "missing",
-        Confidence::Simulated => "simulated",
-    }
-}
-
 fn stability_section(out: &mut String, report: &Report, stability: &StabilitySection) {
     let head = paint(BOLD, "[STABILITY]");
     let indent = " ".repeat(13);
     let kind = report.robot_type.map_or("unknown", |t| t.as_str());
     let label = report
         .robot_type_confidence
-        .map_or("estimated", confidence_label);
+        .map_or("estimated", Confidence::label);
     match stability.status {
         Status::NotApplicable => {
             let reason = stability.reason.as_deref().unwrap_or("not applicable");
@@ -669,7 +658,7 @@ fn stability_section(out: &mut String, report: &Report, stability: &StabilitySec
         let _ = writeln!(
             out,
             "{indent}contacts ({source}, {}): {}",
-            confidence_label(stability.contact_confidence),
+            stability.contact_confidence.label(),
             stability.contact_links.join(", ")
         );
     }
@@ -745,7 +734,7 @@ fn workspace_section(out: &mut String, workspace: &WorkspaceSection, detailed: b
     let _ = writeln!(
         out,
         "{head}  max reach {reach:.3} m  vertical {vertical:.3} m  horizontal {horizontal:.3} m  ({})",
-        confidence_label(workspace.reach_confidence)
+        workspace.reach_confidence.label()
     );
     let tips: Vec<&str> = workspace.arms.iter().map(|a| a.tip_link.as_str()).collect();
     let _ = writeln!(

@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 use std::time::UNIX_EPOCH;
 
 use super::{
-    MeshData, MeshOptions, MeshSolid, MeshSummary, ObjReading, SolidSource, UpAxis, UpAxisPolicy,
-    VolumeIntegrals,
+    ColladaUpAxis, MeshData, MeshOptions, MeshSolid, MeshSummary, ObjReading, SolidSource,
+    UpAxisPolicy, VolumeIntegrals,
 };
 
 /// First bytes of every entry (04: the mesh's solid, [`MeshData::solid`], joined the header).
@@ -175,9 +175,9 @@ fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
     out.extend_from_slice(&(mesh.triangles as u64).to_le_bytes());
     out.push(match mesh.declared_up_axis {
         None => 0,
-        Some(UpAxis::X) => 1,
-        Some(UpAxis::Y) => 2,
-        Some(UpAxis::Z) => 3,
+        Some(ColladaUpAxis::X) => 1,
+        Some(ColladaUpAxis::Y) => 2,
+        Some(ColladaUpAxis::Z) => 3,
     });
     out.push(match mesh.solid.map(|s| s.source) {
         None => 0,
@@ -231,9 +231,9 @@ fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> 
     let triangles = usize::try_from(reader.u64()?).ok()?;
     let declared_up_axis = match reader.take(1)?[0] {
         0 => None,
-        1 => Some(UpAxis::X),
-        2 => Some(UpAxis::Y),
-        3 => Some(UpAxis::Z),
+        1 => Some(ColladaUpAxis::X),
+        2 => Some(ColladaUpAxis::Y),
+        3 => Some(ColladaUpAxis::Z),
         _ => return None,
     };
     let source = match reader.take(1)?[0] {
@@ -369,7 +369,7 @@ mod tests {
             hull_triangles: vec![[0, 1, 2], [1, 3, 2]],
             aabb: ([0.0; 3], [1.0; 3]),
             triangles: 12,
-            declared_up_axis: Some(UpAxis::Y),
+            declared_up_axis: Some(ColladaUpAxis::Y),
             solid: Some(MeshSolid {
                 integrals: VolumeIntegrals {
                     volume: 1.0,
@@ -394,7 +394,7 @@ mod tests {
         assert_eq!(back.hull_triangles, mesh.hull_triangles);
         assert_eq!(back.aabb, mesh.aabb);
         assert_eq!(back.triangles, 12);
-        assert_eq!(back.declared_up_axis, Some(UpAxis::Y));
+        assert_eq!(back.declared_up_axis, Some(ColladaUpAxis::Y));
         assert_eq!(back.solid, mesh.solid);
         assert!(decode(&bytes, "other").is_none());
     }

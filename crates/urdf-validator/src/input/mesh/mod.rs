@@ -114,7 +114,7 @@ pub struct MeshData {
     pub triangles: usize,
     /// The COLLADA `<asset><up_axis>` the file declares (`None` for STL/OBJ, or a COLLADA file
     /// without one), whether or not it was applied (see [`UpAxisPolicy`]).
-    pub declared_up_axis: Option<UpAxis>,
+    pub declared_up_axis: Option<ColladaUpAxis>,
     /// The solid the mesh bounds, for mass properties: its own surface when that is closed (STL, OBJ),
     /// else its convex hull; `None` when neither encloses a volume (a flat mesh).
     pub solid: Option<MeshSolid>,
@@ -128,7 +128,7 @@ pub struct MeshSummary {
     /// Triangle count as read ([`MeshData::triangles`]).
     pub triangles: usize,
     /// The declared COLLADA up axis ([`MeshData::declared_up_axis`]).
-    pub declared_up_axis: Option<UpAxis>,
+    pub declared_up_axis: Option<ColladaUpAxis>,
     /// The solid it bounds ([`MeshData::solid`]).
     pub solid: Option<MeshSolid>,
 }
@@ -152,7 +152,7 @@ pub fn summary_of(loaded: &Result<MeshData, MeshError>) -> Result<MeshSummary, M
 
 /// A COLLADA up axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum UpAxis {
+pub enum ColladaUpAxis {
     /// `X_UP`: mapped to Z up by (x, y, z) → (−y, −z, x).
     X,
     /// `Y_UP`: mapped to Z up by (x, y, z) → (x, −z, y).
@@ -161,13 +161,13 @@ pub enum UpAxis {
     Z,
 }
 
-impl UpAxis {
+impl ColladaUpAxis {
     /// The COLLADA spelling (`X_UP`, `Y_UP`, `Z_UP`).
     pub fn label(self) -> &'static str {
         match self {
-            UpAxis::X => "X_UP",
-            UpAxis::Y => "Y_UP",
-            UpAxis::Z => "Z_UP",
+            ColladaUpAxis::X => "X_UP",
+            ColladaUpAxis::Y => "Y_UP",
+            ColladaUpAxis::Z => "Z_UP",
         }
     }
 
@@ -175,19 +175,19 @@ impl UpAxis {
     fn to_z_up(self) -> Matrix4<f64> {
         #[rustfmt::skip]
         let m = match self {
-            UpAxis::X => Matrix4::new(
+            ColladaUpAxis::X => Matrix4::new(
                 0.0, -1.0, 0.0, 0.0,
                 0.0, 0.0, -1.0, 0.0,
                 1.0, 0.0, 0.0, 0.0,
                 0.0, 0.0, 0.0, 1.0,
             ),
-            UpAxis::Y => Matrix4::new(
+            ColladaUpAxis::Y => Matrix4::new(
                 1.0, 0.0, 0.0, 0.0,
                 0.0, 0.0, -1.0, 0.0,
                 0.0, 1.0, 0.0, 0.0,
                 0.0, 0.0, 0.0, 1.0,
             ),
-            UpAxis::Z => Matrix4::identity(),
+            ColladaUpAxis::Z => Matrix4::identity(),
         };
         m
     }
@@ -372,7 +372,7 @@ enum Format {
 struct RawMesh {
     vertices: Vec<[f64; 3]>,
     triangles: usize,
-    declared_up_axis: Option<UpAxis>,
+    declared_up_axis: Option<ColladaUpAxis>,
     /// The surface's triangles (indices into `vertices`), or `None` when the format's are not read
     /// (COLLADA) or an OBJ face names no vertex read.
     faces: Option<Vec<[u32; 3]>>,
@@ -936,7 +936,7 @@ fn token_count(node: Node) -> usize {
 
 impl<'a, 'input> Collada<'a, 'input> {
     /// `<asset><unit meter>` (default 1) and `<asset><up_axis>` (absent → `None`, no rotation).
-    fn asset(&self, root: Node<'a, 'input>) -> Result<(f64, Option<UpAxis>), String> {
+    fn asset(&self, root: Node<'a, 'input>) -> Result<(f64, Option<ColladaUpAxis>), String> {
         let Some(asset) = child(root, "asset") else {
             return Ok((1.0, None));
         };
@@ -960,9 +960,9 @@ impl<'a, 'input> Collada<'a, 'input> {
         let up = match child(asset, "up_axis") {
             None => None,
             Some(node) => match node.text().unwrap_or("").trim() {
-                "X_UP" => Some(UpAxis::X),
-                "Y_UP" => Some(UpAxis::Y),
-                "Z_UP" => Some(UpAxis::Z),
+                "X_UP" => Some(ColladaUpAxis::X),
+                "Y_UP" => Some(ColladaUpAxis::Y),
+                "Z_UP" => Some(ColladaUpAxis::Z),
                 other => {
                     return Err(format!(
                         "line {}: expected X_UP, Y_UP or Z_UP in <up_axis>, found '{}'",
@@ -1774,9 +1774,9 @@ mod tests {
     #[test]
     fn up_axes_are_proper_rotations_taking_up_to_z() {
         for (axis, up) in [
-            (UpAxis::X, [1.0, 0.0, 0.0]),
-            (UpAxis::Y, [0.0, 1.0, 0.0]),
-            (UpAxis::Z, [0.0, 0.0, 1.0]),
+            (ColladaUpAxis::X, [1.0, 0.0, 0.0]),
+            (ColladaUpAxis::Y, [0.0, 1.0, 0.0]),
+            (ColladaUpAxis::Z, [0.0, 0.0, 1.0]),
         ] {
             let m = axis.to_z_up();
             let r = m.fixed_view::<3, 3>(0, 0).into_owned();
@@ -1784,7 +1784,7 @@ mod tests {
             let z = m.transform_point(&Point3::new(up[0], up[1], up[2]));
             assert_eq!([z.x, z.y, z.z], [0.0, 0.0, 1.0], "{axis:?}");
         }
-        let y = UpAxis::Y
+        let y = ColladaUpAxis::Y
             .to_z_up()
             .transform_point(&Point3::new(1.0, 2.0, 3.0));
         assert_eq!([y.x, y.y, y.z], [1.0, -3.0, 2.0]);
