@@ -776,6 +776,14 @@ fn a_ctrlrange_past_the_joint_range_is_u041() {
     let v = run(&path);
     has(&v, "U041", "anymal.xml", 1, "90 % of the control range");
     assert!(findings(&v, "U034").is_empty());
+    // Menagerie's kinova_gen3: ±2.2497 rad on joints of ±2.24, 0.4 % past: INFO (U043), not a WARN.
+    // Before: U041 saying "0 % of the control range".
+    let kinova = run(&dir.file(
+        "gen3.xml",
+        r#"<mujoco><compiler angle="radian"/><worldbody><body name="l"><joint name="joint_2" axis="0 1 0" range="-2.24 2.24"/><geom type="box" size="0.1 0.1 0.1"/></body></worldbody><actuator><position joint="joint_2" kp="100" ctrlrange="-2.2497 2.2497"/></actuator></mujoco>"#,
+    ));
+    assert!(findings(&kinova, "U041").is_empty());
+    has(&kinova, "U043", "gen3.xml", 1, "0.4 % of the control range");
 }
 
 #[test]

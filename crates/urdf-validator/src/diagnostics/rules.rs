@@ -214,9 +214,14 @@ rules! {
         fix: "Move the key's value inside the joint's `range` (or the actuator's `ctrlrange`), or widen the range if the key is the real limit.",
     }
     MJCF_CTRLRANGE_BEYOND_RANGE = "U041" "mjcf-ctrlrange-beyond-range" Warn {
-        what: "A position servo's `ctrlrange`, divided by its `gear`, reaches past its joint's `range` (by more than 1e-4 of the range's scale: rounding is not a finding).",
+        what: "A position servo's `ctrlrange`, divided by its `gear`, reaches past its joint's `range` by 1 % of the control range or more (less is U043, INFO; less than 1e-4 of the range's scale is rounding, not a finding).",
         why: "The servo is asked for targets the joint cannot reach: it drives into the limit and pushes against it, and a policy whose actions span the control range spends that share of them outside the joint (Menagerie's anymal_c hip servos: ±6.28 rad on a [−0.72, 0.49] rad joint, 90 % outside).",
         fix: "Narrow the `ctrlrange` to the joint's range times the gear (or set `ctrlrange` from the joint with `<position ... inheritrange=\"1\">`).",
+    }
+    MJCF_CTRLRANGE_SLIGHTLY_BEYOND = "U043" "mjcf-ctrlrange-slightly-beyond-range" Info {
+        what: "A position servo's `ctrlrange`, divided by its `gear`, reaches past its joint's `range` by less than 1 % of the control range (and more than rounding: Menagerie's kinova_gen3 commands ±2.2497 rad on joints of ±2.24 rad).",
+        why: "At the ends of its control range the servo presses the joint into its limit by that much: a small, steady contact force at the stop, seldom what anyone notices. U041 is the same beyond 1 %.",
+        fix: "Nothing, if the margin is meant; else narrow the `ctrlrange` to the joint's range times the gear (or `inheritrange=\"1\"`).",
     }
     MODEL_GRAVITY = "U040" "model-gravity" Info {
         section: Statics,

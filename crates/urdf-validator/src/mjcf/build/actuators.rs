@@ -46,6 +46,9 @@ struct Drive {
 /// The actuator elements read; the others are U033.
 const READ: [&str; 4] = ["motor", "position", "velocity", "general"];
 
+/// A servo commanding past its joint by less than this share of its control range (percent) is U043
+/// (INFO), from it on U041 (WARN).
+const SLIGHTLY_BEYOND_PERCENT: f64 = 1.0;
 impl<'a> Builder<'a, '_> {
     /// Set each hinge and slide joint's effort from the `<actuator>` sections among `sections`.
     pub(super) fn set_efforts(&mut self, sections: &[El<'a>]) {
@@ -113,7 +116,8 @@ impl<'a> Builder<'a, '_> {
     }
 
     /// U034 when the position servo `name` (gear `gear`, control range `ctrl`) cannot command all of
-    /// `joint`'s range, U041 when it commands past it, each beyond rounding: its targets in joint units are
+    /// `joint`'s range, U041 (U043 below 1 % of the control range) when it commands past it, each beyond
+    /// rounding: its targets in joint units are
     /// `ctrl / gear`.
     fn check_servo_reach(&mut self, name: &str, joint: &str, gear: f64, ctrl: ((f64, f64), Span)) {
         let Some((lo, hi)) = self.joint_facts.get(joint).and_then(|f| f.range) else {
@@ -144,11 +148,20 @@ impl<'a> Builder<'a, '_> {
             } else {
                 0.0
             };
+            let share = if outside < 10.0 {
+                format!("{outside:.1}")
+            } else {
+                format!("{outside:.0}")
+            };
             let message = format!(
-                "position actuator '{name}' commands joint '{joint}' within [{reach_lo:.6}, {reach_hi:.6}] (ctrlrange / gear {gear}), beyond its range [{lo:.6}, {hi:.6}]: {outside:.0} % of the control range drives the servo into the joint's limit"
+                "position actuator '{name}' commands joint '{joint}' within [{reach_lo:.6}, {reach_hi:.6}] (ctrlrange / gear {gear}), beyond its range [{lo:.6}, {hi:.6}]: {share} % of the control range drives the servo into the joint's limit"
             );
-            self.reader
-                .report(&rules::MJCF_CTRLRANGE_BEYOND_RANGE, span, message);
+            let rule = if outside >= SLIGHTLY_BEYOND_PERCENT {
+                &rules::MJCF_CTRLRANGE_BEYOND_RANGE
+            } else {
+                &rules::MJCF_CTRLRANGE_SLIGHTLY_BEYOND
+            };
+            self.reader.report(rule, span, message);
         }
     }
 
