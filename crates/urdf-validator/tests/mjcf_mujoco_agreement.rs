@@ -607,4 +607,22 @@ fn the_exclude_fix_stops_the_contacts_it_names() {
         .collect();
     assert_eq!(left.len(), 1, "{left:#?}");
     assert!(left[0].contains("'base_link' and 'arm_link'"), "{left:#?}");
+    // Two siblings in contact at qpos0 get no exclude: it would let them pass through each other in
+    // every pose (the FR3 with a hand: its fingers in link4).
+    let siblings = dir.file(
+        "siblings.xml",
+        r#"<mujoco><worldbody><body name="base"><geom type="box" size="0.1 0.1 0.05"/>
+<body name="left" pos="0 0.04 0.3"><joint axis="1 0 0"/><geom type="box" size="0.05 0.05 0.1"/></body>
+<body name="right" pos="0 -0.04 0.3"><joint axis="1 0 0"/><geom type="box" size="0.05 0.05 0.1"/></body>
+</body></worldbody></mujoco>"#,
+    );
+    let v = validate(&siblings, &options()).unwrap();
+    let u042: Vec<_> = v
+        .report
+        .findings
+        .iter()
+        .filter(|f| f.rule == "U042")
+        .collect();
+    assert_eq!(u042.len(), 1, "{u042:#?}");
+    assert!(u042[0].fix.is_none(), "{:?}", u042[0].fix);
 }

@@ -279,18 +279,30 @@ fn self_overlaps(
         .into_iter()
         .filter_map(|(pair, d)| Some((pair, d?)))
         .collect();
-    let fix = exclude_fix(robot, &pairs);
+    // Excluded by the fix: a parent and child in contact at qpos0, the pair MuJoCo's parent filter leaves
+    // out in every other model. Other pairs stay collidable: an exclude would let them pass through
+    // each other in every pose (a hand's fingers through the arm); their geometry or pose is to change.
+    let parents: Vec<Option<LinkId>> = pairs
+        .iter()
+        .map(|&((a, b), _)| parent_in_pair(robot, model, a, b))
+        .collect();
+    let fixable: Vec<bool> = pairs
+        .iter()
+        .zip(&parents)
+        .map(|((_, d), parent)| d.at_qpos0() && parent.is_some())
+        .collect();
+    let fixed: Vec<(LinkId, LinkId)> = pairs
+        .iter()
+        .zip(&fixable)
+        .filter(|(_, &f)| f)
+        .map(|(&(pair, _), _)| pair)
+        .collect();
+    let fix = exclude_fix(robot, &fixed);
     let findings = pairs
         .iter()
-        .map(|&((a, b), ref d)| {
+        .zip(parents.iter().zip(&fixable))
+        .map(|(&((a, b), ref d), (&parent, &fixable))| {
             let (link_a, link_b) = (&robot.links[a.0], &robot.links[b.0]);
-            let parent = if parent_body(robot, model, b) == Some(a) {
-                Some(a)
-            } else if parent_body(robot, model, a) == Some(b) {
-                Some(b)
-            } else {
-                None
-            };
             let why = match parent {
                 Some(p) if welded_to_world(robot, model, p) => format!(
                     " (parent and child: MuJoCo's parent filter does not apply to '{}', which is welded to the world)",
@@ -313,7 +325,7 @@ fn self_overlaps(
                     d.depths(),
                 ),
             )
-            .with_fix_option(fix.clone().filter(|_| d.at_qpos0()))
+            .with_fix_option(fix.clone().filter(|_| fixable))
         })
         .collect();
     (findings, pairs.into_iter().map(|(pair, _)| pair).collect())
@@ -334,15 +346,25 @@ fn parent_body(robot: &Robot, model: &Model, link: LinkId) -> Option<LinkId> {
     None
 }
 
-/// The fix of the U042s at `qpos0` (the model as designed; a pair that only a keyframe puts in contact
-/// is the key's doing, which no exclude should hide): one `<exclude>` per pair, all in one edit (fixes
-/// at the same place must be the same edit to be applied together); `None` when there are none, or a
-/// body has no name to exclude it by.
-fn exclude_fix(robot: &Robot, pairs: &[((LinkId, LinkId), Deepest)]) -> Option<Fix> {
+/// The parent of the two when one hangs from the other.
+fn parent_in_pair(robot: &Robot, model: &Model, a: LinkId, b: LinkId) -> Option<LinkId> {
+    if parent_body(robot, model, b) == Some(a) {
+        Some(a)
+    } else if parent_body(robot, model, a) == Some(b) {
+        Some(b)
+    } else {
+        None
+    }
+}
+
+/// The fix of the parent-and-child U042s at `qpos0` (the model as designed; a pair that only a keyframe
+/// puts in contact is the key's doing, which no exclude should hide): one `<exclude>` per pair, all in
+/// one edit (fixes at the same place must be the same edit to be applied together); `None` when there
+/// are none, or a body has no name to exclude it by.
+fn exclude_fix(robot: &Robot, pairs: &[(LinkId, LinkId)]) -> Option<Fix> {
     let section = robot.contact_section?;
     let mut excludes = Vec::new();
-    let at_start = pairs.iter().filter(|(_, d)| d.at_qpos0());
-    for &((a, b), _) in at_start {
+    for &(a, b) in pairs {
         let (a, b) = (&robot.links[a.0].name.value, &robot.links[b.0].name.value);
         if a.starts_with("body#") || b.starts_with("body#") {
             return None;
@@ -374,7 +396,7 @@ fn exclude_fix(robot: &Robot, pairs: &[((LinkId, LinkId), Deepest)]) -> Option<F
                 if count == 1 {
                     "the pair".to_string()
                 } else {
-                    format!("the {count} pairs that overlap at qpos0")
+                    format!("the {count} parent-and-child pairs that overlap at qpos0")
                 }
             ),
             vec![Edit::InsertChild { element, lines }],
