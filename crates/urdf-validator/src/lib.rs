@@ -173,15 +173,11 @@ fn mjcf_on_disk(loaded: &Loaded, options: &Options) -> Result<PathBuf, String> {
     if options.sandbox.is_untrusted() {
         return Err("MuJoCo reads the files an MJCF file names (includes, meshes, textures) itself, outside the --untrusted sandbox".to_string());
     }
-    let path = std::path::absolute(&loaded.path).map_err(|e| e.to_string())?;
     // MuJoCo reads the saved file: an editor's unsaved buffer is another model.
-    match std::fs::read_to_string(&path) {
-        Ok(saved) if saved == loaded.text() => Ok(path),
-        _ => Err(
-            "MuJoCo loads the file as saved, and the text validated differs from it (unsaved)"
-                .to_string(),
-        ),
-    }
+    loaded.saved_path().ok_or_else(|| {
+        "MuJoCo loads the file as saved, and the text validated differs from it (unsaved)"
+            .to_string()
+    })
 }
 
 /// What `--deep` hands MuJoCo: the URDF text, the MJCF file (or why not), nothing for SDFormat.

@@ -1405,3 +1405,20 @@ fn a_mesh_of_an_included_file_is_found_beside_that_file() {
         "mass {mass}: the 4 kg mesh was not found"
     );
 }
+
+#[test]
+fn the_saved_path_is_only_given_for_the_text_on_disk() {
+    // `--deep` hands MuJoCo the file itself: an editor's unsaved buffer is another model.
+    let dir = Scratch::new("mjcf-saved");
+    let text = r#"<mujoco><worldbody><body name="a"><joint axis="0 0 1"/><geom size="0.1"/></body></worldbody></mujoco>"#;
+    let path = dir.file("m.xml", text);
+    let resolver = PackageResolver::default();
+    let saved = Loaded::read(&path, &[], &resolver).unwrap();
+    assert_eq!(
+        saved.saved_path(),
+        Some(std::path::absolute(&path).unwrap())
+    );
+    let edited = text.replace("0.1", "0.2");
+    let unsaved = Loaded::from_unsaved(edited, &path, &[], &resolver).unwrap();
+    assert_eq!(unsaved.saved_path(), None);
+}

@@ -254,6 +254,14 @@ impl Loaded {
         }
     }
 
+    /// The entry file's absolute path when the file on disk holds the text read (`None` for an unsaved
+    /// buffer, or a file that cannot be read back): what a tool reading the file itself would see.
+    pub fn saved_path(&self) -> Option<PathBuf> {
+        let path = std::path::absolute(&self.path).ok()?;
+        let saved = std::fs::read_to_string(&path).ok()?;
+        (saved == self.text()).then_some(path)
+    }
+
     /// The URDF text the parser reads (for SDFormat: the entry file's text).
     pub fn text(&self) -> &str {
         match &self.origin {
