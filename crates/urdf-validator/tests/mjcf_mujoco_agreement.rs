@@ -289,6 +289,21 @@ fn refusal_cases() -> Vec<(&'static str, String, bool)> {
     ]
 }
 
+/// What `python ARGS PATHS...` prints; the test fails when it does not succeed.
+fn python_output(python: &Path, args: &[&str], paths: &[PathBuf]) -> String {
+    let output = std::process::Command::new(python)
+        .args(args)
+        .args(paths)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
 /// Whether we refuse the model: it cannot be read, or a finding is CRITICAL.
 fn we_refuse(path: &Path) -> bool {
     match validate(path, &options()) {
@@ -304,19 +319,7 @@ fn we_refuse(path: &Path) -> bool {
 /// MuJoCo's verdict on each of `paths`: whether `MjModel.from_xml_path` refuses it.
 fn mujoco_refuses(python: &Path, paths: &[PathBuf]) -> Vec<bool> {
     let script = "import sys, mujoco\nfor path in sys.argv[1:]:\n    try:\n        mujoco.MjModel.from_xml_path(path)\n        print('accepted')\n    except Exception:\n        print('refused')\n";
-    let output = std::process::Command::new(python)
-        .arg("-c")
-        .arg(script)
-        .args(paths)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout)
-        .unwrap()
+    python_output(python, &["-c", script], paths)
         .lines()
         .map(|l| l == "refused")
         .collect()
@@ -545,19 +548,10 @@ fn the_contacts_at_the_start_are_mujocos() {
         return;
     };
     let script = common::repo_root().join("scripts/oracle/mjcf_start_contacts.py");
-    let output = std::process::Command::new(&python)
-        .arg(script)
-        .arg("--facts")
-        .args(&paths)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let script = script.display().to_string();
+    let output = python_output(&python, &[script.as_str(), "--facts"], &paths);
     let theirs: std::collections::HashMap<String, Option<Vec<Vec<String>>>> =
-        serde_json::from_slice(&output.stdout).unwrap();
+        serde_json::from_str(&output).unwrap();
     for ((name, _, expected), path) in cases.iter().zip(&paths) {
         let found = theirs[&path.display().to_string()]
             .clone()

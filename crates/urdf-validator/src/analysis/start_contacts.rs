@@ -19,7 +19,7 @@ use crate::diagnostics::rules;
 use crate::input::Format;
 use crate::model::kinematics::{forward_kinematics, pose_isometry, Data};
 use crate::model::{JointId, LinkId, Model};
-use crate::urdf::robot::{ContactSection, JointKind, Link, Robot};
+use crate::urdf::robot::{contact_bits_meet, ContactSection, JointKind, Link, Robot};
 
 /// Overlaps up to this deep (metres) are not findings: meshes that meet at a joint overlap by a fraction
 /// of a millimetre, which a simulator resolves without anyone noticing.
@@ -222,11 +222,6 @@ fn in_subtree(model: &Model, link: LinkId, top: LinkId) -> bool {
     false
 }
 
-/// Whether geoms with these `(contype, conaffinity)` masks may collide (MuJoCo's rule).
-fn compatible(a: (u32, u32), b: (u32, u32)) -> bool {
-    a.0 & b.1 != 0 || b.0 & a.1 != 0
-}
-
 /// The masks of `link`'s `collision`-th collision (everything collides where the file says nothing).
 fn bits(robot: &Robot, link: &Link, collision: usize) -> (u32, u32) {
     robot
@@ -262,8 +257,9 @@ fn self_overlaps(
                     continue;
                 }
                 let (link_a, link_b) = (&robot.links[a.0], &robot.links[b.0]);
-                let may_touch =
-                    |i: usize, j: usize| compatible(bits(robot, link_a, i), bits(robot, link_b, j));
+                let may_touch = |i: usize, j: usize| {
+                    contact_bits_meet(bits(robot, link_a, i), bits(robot, link_b, j))
+                };
                 let found = collision.overlap_depth(
                     (a, &placements[a.0]),
                     (b, &placements[b.0]),
@@ -333,12 +329,13 @@ fn self_overlaps(
 
 /// The body `link` hangs from, past the links without geometry of a multi-joint body.
 fn parent_body(robot: &Robot, model: &Model, link: LinkId) -> Option<LinkId> {
+    let chain_prefix = format!("{}:", robot.links[link.0].name.value);
     let mut at = link;
     for _ in 0..model.parent_joint.len() {
         let joint = model.parent_joint.get(at.0).copied().flatten()?;
         let (parent, _) = model.joint_links.get(joint.0).copied().flatten()?;
-        // A multi-joint body's intermediate links are named `BODY:JOINT`.
-        if !robot.links[parent.0].name.value.contains(':') {
+        // A multi-joint body's intermediate links are named `BODY:JOINT` after the body they lead to.
+        if !robot.links[parent.0].name.value.starts_with(&chain_prefix) {
             return Some(parent);
         }
         at = parent;
@@ -442,7 +439,7 @@ fn below_ground(
             let may_touch = |i: usize| {
                 plane
                     .bits
-                    .is_none_or(|p| compatible(p, bits(robot, robot_link, i)))
+                    .is_none_or(|p| contact_bits_meet(p, bits(robot, robot_link, i)))
             };
             let mut deepest = None;
             for pose in poses {

@@ -372,6 +372,13 @@ impl<'a, 'r> Builder<'a, 'r> {
         Some(gravity)
     }
 
+    /// A geom's `(contype, conaffinity)` bit masks (1 and 1 unless written), as the integers MuJoCo reads.
+    fn contact_masks(&mut self, el: El<'a>, class: &str) -> (u32, u32) {
+        let contype = self.scalar(el, class, "contype", 1.0).max(0.0) as u32;
+        let conaffinity = self.scalar(el, class, "conaffinity", 1.0).max(0.0) as u32;
+        (contype, conaffinity)
+    }
+
     /// The planes of the world among its `geoms`, with a U033 for each that is not horizontal: the
     /// stability analysis stands a floating robot on horizontal ground under its lowest point, which a
     /// horizontal plane's height does not change (the robot settles onto it), but a slope would.
@@ -391,8 +398,7 @@ impl<'a, 'r> Builder<'a, 'r> {
                     format!("world plane{name} is tilted by {tilt:.1}°: the stability analysis assumes horizontal ground and does not use the tilt (--deep's drop test does)"),
                 );
             }
-            let contype = self.scalar(*el, class, "contype", 1.0).max(0.0) as u32;
-            let conaffinity = self.scalar(*el, class, "conaffinity", 1.0).max(0.0) as u32;
+            let (contype, conaffinity) = self.contact_masks(*el, class);
             planes.push(WorldPlane {
                 name: el.attr("name").map(str::to_string),
                 span: self.reader.span(*el),
@@ -1244,10 +1250,7 @@ impl<'a, 'r> Builder<'a, 'r> {
             }
         }
         let mut at = frame * placement;
-        let contype = self.scalar(el, class, "contype", 1.0);
-        let conaffinity = self.scalar(el, class, "conaffinity", 1.0);
-        // Bit masks: MuJoCo reads them as integers.
-        let (contype, conaffinity) = (contype.max(0.0) as u32, conaffinity.max(0.0) as u32);
+        let (contype, conaffinity) = self.contact_masks(el, class);
         let collides = (contype != 0 || conaffinity != 0).then_some((contype, conaffinity));
         let group = self.scalar(el, class, "group", 0.0);
         let (lo, hi) = self.compiler.inertia_groups;

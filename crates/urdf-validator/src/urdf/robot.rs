@@ -57,6 +57,12 @@ pub struct Robot {
     pub contact_section: Option<ContactSection>,
 }
 
+/// Whether two geoms with these `(contype, conaffinity)` bit masks may collide (MuJoCo's rule:
+/// `contype1 & conaffinity2` or `contype2 & conaffinity1` is not 0).
+pub fn contact_bits_meet(a: (u32, u32), b: (u32, u32)) -> bool {
+    a.0 & b.1 != 0 || b.0 & a.1 != 0
+}
+
 /// A plane of the world (MuJoCo: infinite, solid below its surface).
 #[derive(Clone, Debug)]
 pub struct WorldPlane {

@@ -9,6 +9,7 @@ use std::collections::{HashMap, HashSet};
 
 use super::Builder;
 use crate::mjcf::xml::El;
+use crate::urdf::robot::contact_bits_meet;
 
 /// What the contact filter needs to know of a body.
 pub(super) struct BodyContacts {
@@ -40,11 +41,6 @@ pub(super) fn weld_root(by_link: &HashMap<&str, &BodyContacts>, link: &str) -> S
         }
     }
     at.to_string()
-}
-
-/// Whether two geoms may collide by their `(contype, conaffinity)`.
-fn compatible(a: (u32, u32), b: (u32, u32)) -> bool {
-    a.0 & b.1 != 0 || b.0 & a.1 != 0
 }
 
 impl<'a> Builder<'a, '_> {
@@ -94,7 +90,7 @@ impl<'a> Builder<'a, '_> {
                 let never = !a
                     .geoms
                     .iter()
-                    .any(|&g| b.geoms.iter().any(|&h| compatible(g, h)));
+                    .any(|&g| b.geoms.iter().any(|&h| contact_bits_meet(g, h)));
                 let world = roots[i] == "world" || roots[j] == "world";
                 let family = roots[i] == roots[j]
                     || (filter_parent
