@@ -20,6 +20,11 @@ log() { printf 'test-python: %s\n' "$*" >&2; }
 rm -rf "$venv" "$wheels"
 "$python" -m venv "$venv"
 "$venv/bin/python" -m pip install -q --upgrade pip
+# The wheel ships the `urdf_validate` binary (crates/python/build.rs): the one built here from this
+# checkout, rather than a second release build of the same sources inside the wheel's build.
+log "building the urdf_validate binary the wheel ships"
+cargo build -q --release --locked -p urdf-validate-cli --bin urdf_validate
+export URDF_VALIDATE_WHEEL_BINARY="$repo_root/target/release/urdf_validate"
 log "building the wheel (pip wheel . → maturin)"
 "$venv/bin/python" -m pip wheel -q --no-deps -w "$wheels" .
 shopt -s nullglob
@@ -30,6 +35,11 @@ if ((${#built[@]} != 1)); then
     exit 1
 fi
 wheel="${built[0]}"
+# The console command is the binary, installed as a script.
+if ! "$python" -m zipfile -l "$wheel" | grep -q "\.data/scripts/urdf_validate"; then
+    log "error: $(basename "$wheel") does not ship the urdf_validate binary as a script"
+    exit 1
+fi
 case "$(basename "$wheel")" in
     *-cp39-abi3-*) log "wheel: $(basename "$wheel")" ;;
     *)

@@ -19,23 +19,7 @@ import pathlib
 import subprocess
 import sys
 
-
-def robot_files(arguments):
-    for argument in arguments:
-        path = pathlib.Path(argument)
-        candidates = sorted(path.rglob("*")) if path.is_dir() else [path]
-        for candidate in candidates:
-            if not candidate.is_file():
-                continue
-            if candidate.suffix in (".urdf", ".xacro", ".sdf"):
-                yield candidate
-            elif candidate.suffix == ".xml":
-                try:
-                    head = candidate.read_text(errors="replace")[:4000]
-                except OSError:
-                    continue
-                if "<mujoco" in head or "<robot" in head:
-                    yield candidate
+from corpus_files import robot_files
 
 
 def outcome(binary, path):

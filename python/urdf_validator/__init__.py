@@ -11,7 +11,8 @@ released, so other Python threads keep running::
         print(finding["rule"], finding["severity"], finding["message"])
 
 Keyword arguments are the command's long flags with ``_`` for ``-`` (``robot_type="wheeled"`` is
-``--robot-type wheeled``; ``True`` gives a bare flag; a list repeats the flag). Configuration files
+``--robot-type wheeled``; ``True`` gives a bare flag; a list repeats the flag; ``None`` and ``False``
+leave it out). Configuration files
 (``urdf-validate.toml``, ``[tool.urdf-validate]`` in ``pyproject.toml``) apply as they do for the
 command; ``no_config=True`` turns them off.
 """
@@ -22,7 +23,7 @@ import os
 from typing import Any, Iterable, List, Optional, Sequence, Union
 
 from . import _native
-from ._flags import flags_from_options
+from ._options import options_json
 from ._report import Report, ValidationError
 
 __all__ = ["Report", "ValidationError", "validate", "validate_many", "validate_string", "__version__"]
@@ -39,7 +40,7 @@ def validate(path: PathLike, **options: Any) -> Report:
     read (missing, not XML, a xacro that does not expand) and ``ValueError`` naming a bad option before
     any work starts; every problem of a readable file is in the report.
     """
-    return Report._from_json(_native.validate(os.fspath(path), flags_from_options(options)))._raise_error()
+    return Report._from_json(_native.validate(os.fspath(path), options_json(options)))._raise_error()
 
 
 def validate_many(paths: Iterable[PathLike], **options: Any) -> List[Report]:
@@ -48,7 +49,7 @@ def validate_many(paths: Iterable[PathLike], **options: Any) -> List[Report]:
     A file that cannot be read gives its own report with ``error`` (``overall_status`` ``UNKNOWN``)
     instead of an exception, so the others are never lost.
     """
-    documents = _native.validate_many([os.fspath(p) for p in paths], flags_from_options(options))
+    documents = _native.validate_many([os.fspath(p) for p in paths], options_json(options))
     return [Report._from_json(document) for document in documents]
 
 
@@ -73,4 +74,4 @@ def validate_string(
         if base_dir is not None:
             roots.append(base_dir)
         options = {"untrusted": True, "root": roots, **options}
-    return Report._from_json(_native.validate_string(xml, path, flags_from_options(options)))._raise_error()
+    return Report._from_json(_native.validate_string(xml, path, options_json(options)))._raise_error()

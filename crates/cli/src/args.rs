@@ -2,8 +2,11 @@
 
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Parser, ValueEnum};
+use urdf_validator::analysis::classify::RobotType;
 use urdf_validator::analysis::pose::PoseKind;
+use urdf_validator::analysis::profiles::Simulator;
 
 /// Physics-aware URDF validator: structure, inertia and references, with file:line:col for every finding.
 ///
@@ -105,13 +108,13 @@ pub struct Args {
     pub payload_link: Option<String>,
 
     /// Declare the robot category (the structural heuristic still runs; a disagreement is an INFO, U730).
-    #[arg(long, value_enum, value_name = "TYPE")]
-    pub robot_type: Option<RobotTypeArg>,
+    #[arg(long, value_name = "TYPE", value_parser = robot_types())]
+    pub robot_type: Option<RobotType>,
 
     /// The root frame's axis that points up, when the model is not z-up (REP 103): x, y, z, with an
     /// optional sign (-y). The model is turned so that axis points up, which turns gravity for every
     /// analysis; the structure's own guess (U731) is then not reported.
-    #[arg(long, value_name = "AXIS", value_parser = parse_up_axis, allow_hyphen_values = true)]
+    #[arg(long, value_name = "AXIS", value_parser = urdf_validate_session::request::parse_up_axis, allow_hyphen_values = true)]
     pub up_axis: Option<urdf_validator::model::UpAxis>,
 
     /// Ground-contact links for the support polygon, comma-separated: "foot_l,foot_r".
@@ -203,8 +206,8 @@ pub struct Args {
     /// Simulator load profiles, repeatable or comma-separated: what that simulator's URDF importer does
     /// to this file (links it merges or drops, masses it refuses or invents, elements it ignores), as
     /// findings U750–U761; no simulator needs to be installed.
-    #[arg(long, value_enum, value_name = "NAME", value_delimiter = ',')]
-    pub simulator: Vec<SimulatorArg>,
+    #[arg(long, value_name = "NAME", value_delimiter = ',', value_parser = simulators())]
+    pub simulator: Vec<Simulator>,
 
     /// Seconds each file may take; a file still running then is reported as not finished (naming the
     /// stage it was in, exit 2) and a batch goes on with the next file. 0: no limit.
@@ -313,73 +316,38 @@ pub struct Args {
     pub json_schema_markdown: bool,
 }
 
-/// `--simulator` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SimulatorArg {
-    /// MuJoCo's URDF reader and compiler.
-    Mujoco,
-    /// Gazebo (sdformat's URDF to SDF converter).
-    Gazebo,
-    /// PyBullet's loadURDF.
-    Pybullet,
-    /// Drake's URDF parser.
-    Drake,
-    /// Isaac Sim's URDF importer.
-    Isaac,
-}
-
-impl From<SimulatorArg> for urdf_validator::analysis::profiles::Simulator {
-    fn from(simulator: SimulatorArg) -> Self {
-        use urdf_validator::analysis::profiles::Simulator;
-        match simulator {
-            SimulatorArg::Mujoco => Simulator::Mujoco,
-            SimulatorArg::Gazebo => Simulator::Gazebo,
-            SimulatorArg::Pybullet => Simulator::Pybullet,
-            SimulatorArg::Drake => Simulator::Drake,
-            SimulatorArg::Isaac => Simulator::Isaac,
+/// `--robot-type` values: the library's categories, each with its help line.
+fn robot_types() -> impl TypedValueParser<Value = RobotType> {
+    let help = |robot_type: RobotType| match robot_type {
+        RobotType::Wheeled => "Drives on wheels (may carry arms)",
+        RobotType::GroundVehicle => "Drives on wheels, no manipulator",
+        RobotType::Legged => "Walks on legs",
+        RobotType::Quadruped => "Four legs",
+        RobotType::Humanoid => "Two legs and arms",
+        RobotType::ArmOnly => "Fixed-base arm",
+        RobotType::Aerial => "Flies",
+        RobotType::Object => {
+            "Nothing moves (a table, a tray, a mug): no stability or workspace to check"
         }
-    }
+        RobotType::Unknown => "Anything else",
+    };
+    let values = RobotType::ALL.map(|t| PossibleValue::new(t.as_str()).help(help(t)));
+    PossibleValuesParser::new(values)
+        .try_map(|name| urdf_validate_session::request::parse_robot_type(&name, "--robot-type"))
 }
 
-/// `--robot-type` values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-#[value(rename_all = "snake_case")]
-pub enum RobotTypeArg {
-    /// Drives on wheels (may carry arms).
-    Wheeled,
-    /// Drives on wheels, no manipulator.
-    GroundVehicle,
-    /// Walks on legs.
-    Legged,
-    /// Four legs.
-    Quadruped,
-    /// Two legs and arms.
-    Humanoid,
-    /// Fixed-base arm.
-    ArmOnly,
-    /// Flies.
-    Aerial,
-    /// Nothing moves (a table, a tray, a mug): no stability or workspace to check.
-    Object,
-    /// Anything else.
-    Unknown,
-}
-
-impl From<RobotTypeArg> for urdf_validator::analysis::classify::RobotType {
-    fn from(value: RobotTypeArg) -> Self {
-        use urdf_validator::analysis::classify::RobotType;
-        match value {
-            RobotTypeArg::Wheeled => RobotType::Wheeled,
-            RobotTypeArg::GroundVehicle => RobotType::GroundVehicle,
-            RobotTypeArg::Legged => RobotType::Legged,
-            RobotTypeArg::Quadruped => RobotType::Quadruped,
-            RobotTypeArg::Humanoid => RobotType::Humanoid,
-            RobotTypeArg::ArmOnly => RobotType::ArmOnly,
-            RobotTypeArg::Aerial => RobotType::Aerial,
-            RobotTypeArg::Object => RobotType::Object,
-            RobotTypeArg::Unknown => RobotType::Unknown,
-        }
-    }
+/// `--simulator` values: the library's load profiles, each with its help line.
+fn simulators() -> impl TypedValueParser<Value = Simulator> {
+    let help = |simulator: Simulator| match simulator {
+        Simulator::Mujoco => "MuJoCo's URDF reader and compiler",
+        Simulator::Gazebo => "Gazebo (sdformat's URDF to SDF converter)",
+        Simulator::Pybullet => "PyBullet's loadURDF",
+        Simulator::Drake => "Drake's URDF parser",
+        Simulator::Isaac => "Isaac Sim's URDF importer",
+    };
+    let values = Simulator::ALL.map(|s| PossibleValue::new(s.name()).help(help(s)));
+    PossibleValuesParser::new(values)
+        .try_map(|name| urdf_validate_session::request::parse_simulator(&name, "--simulator"))
 }
 
 /// `--format` values.
@@ -434,10 +402,4 @@ pub enum ColorChoice {
     Always,
     /// Never colour.
     Never,
-}
-
-/// `--up-axis`: `x`, `+y`, `-z`, ...
-fn parse_up_axis(text: &str) -> Result<urdf_validator::model::UpAxis, String> {
-    urdf_validator::model::UpAxis::parse(text)
-        .ok_or_else(|| format!("'{text}' is not an axis: x, y or z, with an optional sign (-y)"))
 }

@@ -10,11 +10,12 @@ use std::path::Path;
 
 use clap::{CommandFactory, FromArgMatches};
 use serde_json::Value;
+use urdf_validate_session::Session;
 use urdf_validator::render::{render_diff_markdown, render_diff_text};
 use urdf_validator::report::diff::compare;
-use urdf_validator::Options;
 
 use crate::args::Args;
+use crate::request::{first_line, request_of};
 
 const HELP: &str = "\
 Compare two robot descriptions: verdicts, findings, masses, centre of mass, gravity torques and margins,
@@ -82,29 +83,19 @@ fn run(argv: &[OsString]) -> Result<u8, String> {
     }
     let matches = Args::command()
         .try_get_matches_from(rest)
-        .map_err(|e| crate::api::first_line(&e.to_string()))?;
-    let args =
-        Args::from_arg_matches(&matches).map_err(|e| crate::api::first_line(&e.to_string()))?;
-    let (paths, xacro_args) = crate::checked_inputs(&args)?;
+        .map_err(|e| first_line(&e.to_string()))?;
+    let args = Args::from_arg_matches(&matches).map_err(|e| first_line(&e.to_string()))?;
+    let (paths, request) = request_of(&args, &matches)?;
     let [old, new] = paths.as_slice() else {
         return Err(format!(
             "diff takes two inputs, OLD and NEW (got {}); see urdf_validate diff --help",
             paths.len()
         ));
     };
-    let config = if args.no_config {
-        None
-    } else {
-        args.config.clone().or_else(|| crate::config::discover(new))
-    };
-    let meshes = crate::mesh_cache(args.no_cache);
-    let mut options =
-        crate::configured_options(&args, &matches, config.as_deref(), &xacro_args, &meshes)?;
     // Both sides whole: a baseline names NEW's path, so it would hide NEW's known findings and not OLD's, and
     // they would all look fixed.
-    options.baseline = None;
-    let timeout = crate::timeout_of(&args)?;
-    let side = |path: &Path| report_of(path, &options, timeout);
+    let session = Session::new(&request, Some(new))?.without_baseline();
+    let side = |path: &Path| report_of(path, &session);
     let diff = compare(&side(old)?, &side(new)?);
     let text = match format {
         DiffFormat::Text => render_diff_text(&diff),
@@ -116,11 +107,7 @@ fn run(argv: &[OsString]) -> Result<u8, String> {
 }
 
 /// The report of one side: read from a `.json` report, else validated.
-fn report_of(
-    path: &Path,
-    options: &Options,
-    timeout: Option<std::time::Duration>,
-) -> Result<Value, String> {
+fn report_of(path: &Path, session: &Session) -> Result<Value, String> {
     if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"))
@@ -143,8 +130,6 @@ fn report_of(
         }
         return Ok(value);
     }
-    let validation =
-        crate::outputs::validate_within(path, options, timeout, urdf_validator::validate)
-            .map_err(|e| e.to_string())?;
+    let validation = session.validate(path).map_err(|e| e.to_string())?;
     serde_json::to_value(&validation.report).map_err(|e| format!("{}: {e}", path.display()))
 }

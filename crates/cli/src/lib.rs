@@ -1,7 +1,9 @@
 //! `urdf_validate`: validate URDF files, write one JSON report each, exit 0 / 1 / 2.
 //!
-//! The command lives in this library so that every front end runs the same code: the binary
-//! (`src/main.rs`) and the console command of the Python wheel both call [`main_from`].
+//! The command, its MCP server (`urdf_validate mcp`) and its language server (`urdf_validate server`):
+//! each maps its input (flags, tool arguments) onto a request of the session crate
+//! (`urdf_validate_session`), which the Python module shares. The binary (`src/main.rs`, also the wheel's
+//! console command) calls [`main_from`]; the library exists for its tests.
 
 /// Write to stdout, ignoring a closed pipe (`urdf_validate --list-rules | head -1`): the rest is dropped
 /// quietly and the exit status stays what the run decides.
@@ -25,38 +27,28 @@ macro_rules! errln {
     }};
 }
 
-pub mod api;
 mod args;
-pub mod batch;
-mod config;
 mod diff;
 mod fixes;
 mod formats;
-mod inputs;
 mod mcp;
 mod outputs;
 mod progress;
+mod request;
 mod server;
 
-use std::collections::HashMap;
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{CommandFactory, FromArgMatches};
-use urdf_validator::analysis::pose::PoseOptions;
-use urdf_validator::analysis::statics::StaticsOptions;
-use urdf_validator::analysis::workspace::target::{parse_axis, Orientation, Task};
-use urdf_validator::analysis::workspace::WorkspaceOptions;
-use urdf_validator::analysis::Overrides;
+use urdf_validate_session::options::{mesh_cache, sandbox_of};
+use urdf_validate_session::{batch, config, config_file, discovery, Batch};
 use urdf_validator::diagnostics::rules::{self, Rule};
-use urdf_validator::input::mesh::{DiskCache, MeshCache};
 use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::sandbox::Sandbox;
-use urdf_validator::model::overrides::ValueOverride;
 use urdf_validator::render::FormatOptions;
-use urdf_validator::report::baseline::{self, Baseline};
-use urdf_validator::Options;
+use urdf_validator::report::baseline;
 
 use args::{Args, ColorChoice, Format};
 use formats::{GithubEnv, Plan};
@@ -140,14 +132,14 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             .num_threads(jobs)
             .build_global();
     }
-    let (paths, xacro_args) = match checked_inputs(&args) {
+    let (paths, request) = match request::request_of(&args, matches) {
         Ok(checked) => checked,
         Err(message) => {
             errln!("error: {message}");
             return 2;
         }
     };
-    let (files, input_errors) = inputs::expand(&paths, args.skip_xacro_libraries);
+    let (files, input_errors) = discovery::expand(&paths, args.skip_xacro_libraries);
     if files.is_empty() && input_errors.is_empty() && args.skip_xacro_libraries {
         // Only macro libraries were named (a pre-commit run on changed library files): nothing to do.
         return 0;
@@ -156,8 +148,8 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         errln!("error: no input given (expected one or more URDF or xacro files or directories; see --help)");
         return 2;
     }
-    let sandbox = sandbox_of(&args);
-    let resolver = PackageResolver::from_env_in(args.package_path.clone(), &sandbox);
+    let sandbox = sandbox_of(&request);
+    let resolver = PackageResolver::from_env_in(request.package_path.clone(), &sandbox);
     if args.expand_only {
         if paths.len() != 1 || paths[0].is_dir() {
             errln!(
@@ -171,26 +163,17 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             );
             return 2;
         }
-        return expand_only(&files, &input_errors, &xacro_args, &resolver, &sandbox);
+        return expand_only(
+            &files,
+            &input_errors,
+            &request.xacro_args,
+            &resolver,
+            &sandbox,
+        );
     }
-    // One set of options per configuration file (the nearest to each input, unless named or turned off).
-    let meshes = mesh_cache(args.no_cache);
-    let config_of: Vec<Option<PathBuf>> = configs_of(&args, &files);
-    let mut groups: Vec<(Option<PathBuf>, Options)> = Vec::new();
-    for path in &config_of {
-        if groups.iter().any(|(p, _)| p == path) {
-            continue;
-        }
-        match configured_options(&args, matches, path.as_deref(), &xacro_args, &meshes) {
-            Ok(options) => groups.push((path.clone(), options)),
-            Err(message) => {
-                errln!("error: {message}");
-                return 2;
-            }
-        }
-    }
-    let timeout = match timeout_of(&args) {
-        Ok(timeout) => timeout,
+    // One session per configuration file (the nearest to each input, unless named or turned off).
+    let sessions = match Batch::new(&request, &files, &mesh_cache(request.no_cache)) {
+        Ok(sessions) => sessions,
         Err(message) => {
             errln!("error: {message}");
             return 2;
@@ -225,21 +208,13 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     };
     let bases = outputs::report_bases(&files, args.output_dir.as_deref());
     let progress = progress::Bar::for_batch(files.len());
-    let jobs: Vec<_> = files.iter().zip(&bases).zip(&config_of).collect();
+    let jobs: Vec<_> = files.iter().zip(&bases).enumerate().collect();
     // Files on threads of their own, not on the pool their stages use (see `batch`); a single file on
     // this thread.
     let run = || -> Vec<Outcome> {
-        batch::map_files(&jobs, |((file, base), config)| {
-            let options = groups
-                .iter()
-                .find(|(p, _)| p == *config)
-                .map(|(_, options)| options);
-            let outcome = match options {
-                Some(options) => {
-                    outputs::validate_one(file, base, options, &files_to_write, timeout)
-                }
-                None => outputs::Outcome::not_configured(file),
-            };
+        batch::map_files(&jobs, |(index, (file, base))| {
+            let outcome =
+                outputs::validate_one(file, base, sessions.session(*index), &files_to_write);
             progress.tick(file);
             outcome
         })
@@ -373,16 +348,6 @@ fn write_baseline(path: &Path, outcomes: &[Outcome]) -> u8 {
     }
 }
 
-/// `--timeout`: `None` for no limit (0, or more seconds than a `Duration` holds).
-fn timeout_of(args: &Args) -> Result<Option<std::time::Duration>, String> {
-    match args.timeout {
-        t if t >= 0.0 => Ok(std::time::Duration::try_from_secs_f64(t)
-            .ok()
-            .filter(|d| !d.is_zero())),
-        t => Err(format!("--timeout {t}: expected seconds ≥ 0 (0: no limit)")),
-    }
-}
-
 /// The rules reference on the web, for SARIF `helpUri`s: `docs/rules.md` of the repository named in
 /// Cargo.toml (`repository`); none when it names none.
 fn rules_url() -> Option<String> {
@@ -416,40 +381,13 @@ fn find_rule(code: &str) -> Result<&'static Rule, String> {
     })
 }
 
-/// The configuration file of each input: `--config` for all, none with `--no-config`, else the nearest
-/// found from the input's folder upwards.
-fn configs_of(args: &Args, files: &[PathBuf]) -> Vec<Option<PathBuf>> {
-    if args.no_config {
-        return vec![None; files.len()];
-    }
-    if let Some(path) = &args.config {
-        return vec![Some(path.clone()); files.len()];
-    }
-    let mut by_dir: HashMap<PathBuf, Option<PathBuf>> = HashMap::new();
-    files
-        .iter()
-        .map(|file| {
-            let dir = file.parent().unwrap_or(Path::new("")).to_path_buf();
-            by_dir
-                .entry(dir)
-                .or_insert_with(|| config::discover(file))
-                .clone()
-        })
-        .collect()
-}
-
 /// `--show-config`: the settings for the first input (else the current folder), with their origins.
 fn show_config(args: &Args, matches: &clap::ArgMatches) -> u8 {
-    let (paths, _) = inputs::split_xacro_args(&args.inputs);
-    let anchor = paths.first().cloned().unwrap_or_else(|| PathBuf::from("."));
-    let path = if args.no_config {
-        None
-    } else if let Some(path) = &args.config {
-        Some(path.clone())
-    } else {
-        config::discover(&anchor)
-    };
-    match config::load(path.as_deref(), args, matches) {
+    let shown = request::request_of(args, matches).and_then(|(paths, request)| {
+        let anchor = paths.first().cloned().unwrap_or_else(|| PathBuf::from("."));
+        config::load(config_file(&request, &anchor).as_deref(), &request)
+    });
+    match shown {
         Ok(effective) => {
             out!("{}", effective.show());
             0
@@ -459,250 +397,6 @@ fn show_config(args: &Args, matches: &clap::ArgMatches) -> u8 {
             2
         }
     }
-}
-
-/// xacro arguments, `(name, value)` in the order given.
-type XacroArgs = Vec<(String, String)>;
-
-/// The flags' checks that come before any file is read, and the paths to validate with the xacro
-/// arguments (positional `name:=value` words and `--xacro-arg`).
-fn checked_inputs(args: &Args) -> Result<(Vec<PathBuf>, XacroArgs), String> {
-    workspace_options(args)?;
-    let overriding = !args.overrides.is_empty() || args.override_file.is_some();
-    if args.from_overrides && !(args.fix || args.diff) {
-        return Err(
-            "--from-overrides writes the overrides as fixes: give it with --fix or --diff".into(),
-        );
-    }
-    if args.from_overrides && !overriding {
-        return Err("--from-overrides: no --override or --override-file to write".into());
-    }
-    if overriding && (args.fix || args.diff) && !args.from_overrides {
-        return Err(
-            "--override with --fix or --diff: the fixes would be computed for values the file does not hold; \
-             add --from-overrides to write the overrides into the file"
-                .into(),
-        );
-    }
-    if args.arm_root.len() != args.arm_tip.len() {
-        return Err(format!(
-            "{} --arm-root but {} --arm-tip: give them in pairs, one pair per arm",
-            args.arm_root.len(),
-            args.arm_tip.len()
-        ));
-    }
-    let (paths, mut xacro_args) = inputs::split_xacro_args(&args.inputs);
-    for arg in &args.xacro_arg {
-        xacro_args.push(inputs::parse_xacro_arg_flag(arg)?);
-    }
-    Ok((paths, xacro_args))
-}
-
-/// The options of the inputs that configuration file `config` governs (none: the flags and defaults
-/// alone): the file read and merged with the flags.
-fn configured_options(
-    args: &Args,
-    matches: &clap::ArgMatches,
-    config: Option<&Path>,
-    xacro_args: &[(String, String)],
-    meshes: &MeshCache,
-) -> Result<Options, String> {
-    let effective = config::load(config, args, matches)?;
-    let mut group_args = args.clone();
-    effective.apply_to(&mut group_args);
-    // The roots come from the command line only: a configuration file beside an untrusted input is as
-    // untrusted as the input.
-    let sandbox = sandbox_of(args);
-    options_for(&group_args, effective.settings, xacro_args, meshes, sandbox).map_err(|message| {
-        match config {
-            Some(path) => format!("{message} (with the settings of {})", path.display()),
-            None => message,
-        }
-    })
-}
-
-/// The sandbox the flags ask for: trusted, or `--untrusted` with the `--package-path` and `--root`
-/// folders as roots and the `--allow-env` variables.
-fn sandbox_of(args: &Args) -> Sandbox {
-    if !args.untrusted {
-        return Sandbox::default();
-    }
-    Sandbox::untrusted(
-        args.package_path.iter().chain(&args.root).cloned(),
-        args.allow_env.iter().cloned(),
-    )
-}
-
-/// The library options from the flags (already merged with a configuration file), `settings` and the
-/// `sandbox`.
-fn options_for(
-    args: &Args,
-    settings: urdf_validator::diagnostics::Settings,
-    xacro_args: &[(String, String)],
-    meshes: &MeshCache,
-    sandbox: Sandbox,
-) -> Result<Options, String> {
-    if let Some(mass) = args.payload_mass.filter(|m| !(m.is_finite() && *m >= 0.0)) {
-        return Err(format!("--payload-mass {mass}: expected a mass ≥ 0 in kg"));
-    }
-    Ok(Options {
-        workspace: workspace_options(args)?,
-        xacro_args: xacro_args.to_vec(),
-        resolver: PackageResolver::from_env_in(args.package_path.clone(), &sandbox),
-        sandbox,
-        statics: StaticsOptions {
-            pose: PoseOptions {
-                kind: args.pose.clone(),
-                joint_angles: args.joint_angles.clone(),
-                srdf: args.srdf.clone(),
-                state: args.state.clone(),
-                samples: args.samples,
-                seed: args.seed,
-            },
-            payload_mass: args.payload_mass,
-            payload_link: args.payload_link.clone(),
-        },
-        overrides: Overrides {
-            robot_type: args.robot_type.map(Into::into),
-            up_axis: args.up_axis,
-            contact_links: args.contact_links.clone(),
-            arms: args
-                .arm_root
-                .iter()
-                .cloned()
-                .zip(args.arm_tip.iter().cloned())
-                .collect(),
-        },
-        timings: args.timings,
-        meshes: meshes.clone(),
-        progress: None,
-        settings,
-        deep: urdf_validator::analysis::deep::DeepOptions {
-            requested: args.deep,
-            ..Default::default()
-        },
-        simulators: args.simulator.iter().map(|&s| s.into()).collect(),
-        baseline: args
-            .baseline
-            .as_deref()
-            .map(|path| Baseline::load(path).map(std::sync::Arc::new))
-            .transpose()?,
-        sdf_model: args.model.clone(),
-        value_overrides: value_overrides(args)?,
-        structure_only: false,
-    })
-}
-
-/// `--override KEY=VALUE`s, after those of `--override-file` (so the command line wins).
-fn value_overrides(args: &Args) -> Result<Vec<ValueOverride>, String> {
-    let mut texts = Vec::new();
-    if let Some(path) = &args.override_file {
-        texts.extend(override_file(path)?);
-    }
-    texts.extend(args.overrides.iter().cloned());
-    texts
-        .iter()
-        .map(|text| ValueOverride::parse(text))
-        .collect()
-}
-
-/// The `KEY=VALUE`s of an override file: `[joint.NAME]` tables with `effort`/`lower`/`upper`/`velocity`,
-/// `[link.NAME]` with `mass` and `com = [x, y, z]`, `[payload]` with `mass`.
-fn override_file(path: &Path) -> Result<Vec<String>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("--override-file {}: cannot read it ({e})", path.display()))?;
-    let table: toml::Table = text
-        .parse()
-        .map_err(|e| format!("--override-file {}: not TOML ({e})", path.display()))?;
-    let number = |value: &toml::Value| match value {
-        toml::Value::Float(v) => Some(v.to_string()),
-        toml::Value::Integer(v) => Some(v.to_string()),
-        _ => None,
-    };
-    let mut texts = Vec::new();
-    for (kind, entries) in &table {
-        let entries = entries.as_table().ok_or_else(|| {
-            format!(
-                "--override-file {}: '{kind}' must be a table",
-                path.display()
-            )
-        })?;
-        let mut add = |key: String, value: &toml::Value| -> Result<(), String> {
-            let value = match value {
-                toml::Value::Array(items) => items
-                    .iter()
-                    .map(number)
-                    .collect::<Option<Vec<_>>>()
-                    .map(|v| v.join(",")),
-                other => number(other),
-            }
-            .ok_or_else(|| {
-                format!(
-                    "--override-file {}: '{key}' must be a number (or [x, y, z])",
-                    path.display()
-                )
-            })?;
-            texts.push(format!("{key}={value}"));
-            Ok(())
-        };
-        if kind == "payload" {
-            for (attribute, value) in entries {
-                add(format!("payload.{attribute}"), value)?;
-            }
-            continue;
-        }
-        for (name, attributes) in entries {
-            let attributes = attributes.as_table().ok_or_else(|| {
-                format!(
-                    "--override-file {}: '{kind}.{name}' must be a table",
-                    path.display()
-                )
-            })?;
-            for (attribute, value) in attributes {
-                add(format!("{kind}.{name}.{attribute}"), value)?;
-            }
-        }
-    }
-    Ok(texts)
-}
-
-/// The run's mesh cache: in memory, and on disk unless `--no-cache` (or no cache folder is known).
-fn mesh_cache(no_cache: bool) -> MeshCache {
-    match DiskCache::user_default().filter(|_| !no_cache) {
-        Some(disk) => MeshCache::new().with_disk_cache(disk),
-        None => MeshCache::new(),
-    }
-}
-
-/// The workspace flags, checked.
-fn workspace_options(args: &Args) -> Result<WorkspaceOptions, String> {
-    let task = match (&args.task, args.height) {
-        (Some(name), height) => Some(Task::parse(name, height)?),
-        (None, Some(_)) => return Err("--height needs --task custom".to_string()),
-        (None, None) => None,
-    };
-    if args.samples == 0 {
-        return Err("--samples must be at least 1".to_string());
-    }
-    let tolerance = args.orientation_tolerance;
-    if !(tolerance.is_finite() && (0.0..=180.0).contains(&tolerance)) {
-        return Err(format!(
-            "--orientation-tolerance must be between 0 and 180 degrees, not {tolerance}"
-        ));
-    }
-    Ok(WorkspaceOptions {
-        samples: args.samples,
-        seed: args.seed,
-        task,
-        orientation: args
-            .orientation
-            .as_deref()
-            .map(Orientation::parse)
-            .transpose()?,
-        orientation_tolerance_deg: tolerance,
-        approach_axis: args.approach_axis.as_deref().map(parse_axis).transpose()?,
-        progress: None,
-    })
 }
 
 /// `--expand-only`: the expanded URDF of each xacro input on stdout.

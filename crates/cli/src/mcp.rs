@@ -15,8 +15,7 @@ use rmcp::model::{
     CallToolRequestParams, CallToolResponse, CallToolResult, ContentBlock, Implementation,
     ListToolsResult, PaginatedRequestParams, ServerCapabilities, ServerConfig,
 };
-use rmcp::service::RequestContext;
-use rmcp::service::ServerInitializeError;
+use rmcp::service::{NotificationContext, Peer, RequestContext, ServerInitializeError};
 use rmcp::{ErrorData, RoleServer, ServerHandler, ServiceExt};
 
 /// `urdf_validate mcp --help`.
@@ -31,10 +30,10 @@ run_pick_task, run_pick_sweep, list_rules, explain_rule. Client set-up and every
 docs/mcp.md. Relative paths in tool arguments start from this command's working directory.
 
 Untrusted by default: an agent passes on files and text from anywhere, so every validation runs as
-`urdf_validate --untrusted` (see SECURITY.md). Path arguments must be inside the --root folders (default:
-the working directory; repeatable), files are read only from there, no environment variable is read
-unless --allow-env NAME names it, `xml` is at most 4 MiB and every call has a time limit (timeout 0 is
-refused). --trusted turns this off.
+`urdf_validate --untrusted` (see SECURITY.md). Path arguments must be inside the --root folders
+(repeatable) or the roots the client declares (MCP roots/list; with neither, the working directory),
+files are read only from there, no environment variable is read unless --allow-env NAME names it, `xml`
+is at most 4 MiB and every call has a time limit (timeout 0 is refused). --trusted turns this off.
 
 A file named `mcp` is validated as `urdf_validate ./mcp`.
 ";
@@ -124,11 +123,25 @@ impl ServerHandler for Server {
         Ok(ListToolsResult::with_all_items(tools::listed().to_vec()))
     }
 
+    async fn on_initialized(&self, context: NotificationContext<RoleServer>) {
+        let peer = context.peer;
+        tokio::spawn(async move { refresh_roots(&peer).await });
+    }
+
+    async fn on_roots_list_changed(&self, context: NotificationContext<RoleServer>) {
+        refresh_roots(&context.peer).await;
+    }
+
     async fn call_tool(
         &self,
         request: CallToolRequestParams,
-        _context: RequestContext<RoleServer>,
+        context: RequestContext<RoleServer>,
     ) -> Result<CallToolResponse, ErrorData> {
+        // A call that comes before the answer to the first `roots/list`: ask now, so the client's roots
+        // bound this call too.
+        if offers_roots(&context.peer) && !policy::Policy::current().has_client_roots() {
+            refresh_roots(&context.peer).await;
+        }
         let Some(tool) = tools::find(&request.name) else {
             // The one protocol error: the spec's answer to a tool that does not exist.
             return Err(ErrorData::invalid_params(
@@ -150,5 +163,31 @@ impl ServerHandler for Server {
             ))]),
         };
         Ok(result.into())
+    }
+}
+
+/// True when the client declared the `roots` capability on `initialize`.
+fn offers_roots(peer: &Peer<RoleServer>) -> bool {
+    peer.peer_info()
+        .is_some_and(|info| info.capabilities.roots.is_some())
+}
+
+/// Ask a client that offers roots for them (`roots/list`): with the `--root` folders they bound what the
+/// tools may read (the MCP spec's roots). A root that is not a folder here is left out, said on stderr.
+/// rmcp marks roots deprecated (SEP-2577 replaces them in a later protocol revision); the clients of the
+/// revisions this server speaks still declare them, and `--root` stays for those that do not.
+#[allow(deprecated)]
+async fn refresh_roots(peer: &Peer<RoleServer>) {
+    if !offers_roots(peer) {
+        return;
+    }
+    match peer.list_roots().await {
+        Ok(listed) => {
+            let uris: Vec<String> = listed.roots.into_iter().map(|root| root.uri).collect();
+            for uri in policy::Policy::set_client_roots(&uris) {
+                errln!("urdf_validate mcp: client root {uri} left out: not a file:// folder on this machine");
+            }
+        }
+        Err(error) => errln!("urdf_validate mcp: roots/list failed: {error}"),
     }
 }

@@ -3,14 +3,12 @@
 use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc;
-use std::time::Duration;
 
+use urdf_validate_session::Session;
 use urdf_validator::input::LoadError;
 use urdf_validator::render::{render_html, render_json, render_junit, render_sarif, FormatOptions};
 use urdf_validator::report::Status;
-use urdf_validator::timings::Progress;
-use urdf_validator::{validate, Options, Validation};
+use urdf_validator::Validation;
 
 use crate::args::Format;
 
@@ -29,20 +27,6 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    /// An input whose options could not be set up (never expected: every configuration is read first).
-    pub fn not_configured(file: &Path) -> Outcome {
-        Outcome {
-            file: file.to_path_buf(),
-            validation: Err(LoadError::Usage {
-                path: file.to_path_buf(),
-                message: "no settings for this file".to_string(),
-            }),
-            written: None,
-            also_written: Vec::new(),
-            write_error: None,
-        }
-    }
-
     /// 0 PASS, 1 WARN, 2 FAIL / UNKNOWN / unreadable / report not written.
     pub fn exit_code(&self) -> u8 {
         match (&self.validation, &self.write_error) {
@@ -102,62 +86,9 @@ pub struct Files {
     pub options: FormatOptions,
 }
 
-/// Validate `file` with `job` ([`validate`], or [`urdf_validator::validate_text`] for text standing for
-/// `file`), giving up after `timeout` (`None`: no limit). A run that does not finish in time is reported
-/// as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: it gives up before its next
-/// stage, its sampling at the next chunk, and anything else it still does ends with it or with the process.
-/// The caller waits here, so it must not be a worker of the pool the stages use ([`crate::batch`]).
-pub(crate) fn validate_within<F>(
-    file: &Path,
-    options: &Options,
-    timeout: Option<Duration>,
-    job: F,
-) -> Result<Validation, LoadError>
-where
-    F: FnOnce(&Path, &Options) -> Result<Validation, LoadError> + Send + 'static,
-{
-    let Some(timeout) = timeout else {
-        return job(file, options);
-    };
-    let progress = Progress::with_time_limit(timeout.as_secs_f64());
-    let options = Options {
-        progress: Some(progress.clone()),
-        ..options.clone()
-    };
-    let path = file.to_path_buf();
-    let (done, result) = mpsc::channel();
-    let worker = std::thread::Builder::new()
-        .name(format!("validate {}", file.display()))
-        .spawn(move || {
-            let _ = done.send(job(&path, &options));
-        });
-    if let Err(error) = worker {
-        return Err(LoadError::Io {
-            path: file.to_path_buf(),
-            error,
-        });
-    }
-    result.recv_timeout(timeout).unwrap_or_else(|_| {
-        let stage = progress.running();
-        // Stop the sampling so the threads it holds go to the next files.
-        progress.cancel();
-        Err(LoadError::DidNotFinish {
-            path: file.to_path_buf(),
-            seconds: timeout.as_secs_f64(),
-            stage,
-        })
-    })
-}
-
 /// Validate one file (within `timeout`) and write its report files (`<base>.json`, `.sarif`, ...).
-pub fn validate_one(
-    file: &Path,
-    base: &Path,
-    options: &Options,
-    files: &Files,
-    timeout: Option<Duration>,
-) -> Outcome {
-    let validation = validate_within(file, options, timeout, validate);
+pub fn validate_one(file: &Path, base: &Path, session: &Session, files: &Files) -> Outcome {
+    let validation = session.validate(file);
     let mut outcome = Outcome {
         file: file.to_path_buf(),
         validation,

@@ -43,11 +43,14 @@ use lsp_types::{
     TextDocumentSyncCapability, TextDocumentSyncKind, TextDocumentSyncOptions,
     TextDocumentSyncSaveOptions, Url,
 };
+use urdf_validate_session::options::mesh_cache;
+use urdf_validate_session::{config_file, Request as Settings, Session};
 use urdf_validator::diagnostics::Section;
+use urdf_validator::input::mesh::MeshCache;
 use urdf_validator::report::FindingReport;
 use urdf_validator::Validation;
 
-use crate::api::Session;
+use crate::request;
 use analysis::{Analyses, Job, Outcome, Pass};
 use documents::Documents;
 use navigation::File;
@@ -90,15 +93,17 @@ pub(crate) fn main(args: &[OsString]) -> u8 {
         .collect();
     // The flags are checked once here, so a typo stops the server with a message rather than failing
     // every file.
-    let timeout = match Session::from_flags(&flags, None) {
-        Ok(session) => session.timeout(),
+    let checked = request::request_from_flags(&flags)
+        .and_then(|request| Session::new(&request, None).map(|session| (request, session)));
+    let (settings, timeout) = match checked {
+        Ok((settings, session)) => (settings, session.timeout()),
         Err(message) => {
             errln!("error: urdf_validate server: {message}");
             return 2;
         }
     };
     let (connection, io_threads) = Connection::stdio();
-    let status = match serve(&connection, flags, timeout) {
+    let status = match serve(&connection, settings, timeout) {
         Ok(()) => 0,
         Err(message) => {
             errln!("error: urdf_validate server: {message}");
@@ -148,7 +153,7 @@ fn capabilities() -> ServerCapabilities {
 /// Initialise, then run the main loop until `exit`.
 fn serve(
     connection: &Connection,
-    flags: Vec<String>,
+    settings: Settings,
     timeout: Option<Duration>,
 ) -> Result<(), String> {
     let (id, _params) = match connection.initialize_start() {
@@ -173,7 +178,8 @@ fn serve(
     let time_limit = timeout.unwrap_or(Duration::from_secs(3600));
     let mut server = Server {
         connection,
-        flags,
+        meshes: mesh_cache(settings.no_cache),
+        settings,
         sessions: HashMap::new(),
         documents: Documents::default(),
         analyses: Analyses::new(sender, time_limit),
@@ -195,7 +201,10 @@ struct Analysed {
 /// The server's state; the main loop owns it.
 struct Server<'c> {
     connection: &'c Connection,
-    flags: Vec<String>,
+    /// The settings of the server's flags.
+    settings: Settings,
+    /// The meshes loaded so far, shared by every session.
+    meshes: MeshCache,
     /// Options per configuration file (`None`: no file), built on first use.
     sessions: HashMap<Option<PathBuf>, Result<Session, String>>,
     documents: Documents,
@@ -330,7 +339,7 @@ impl Server<'_> {
         };
         let (text, version) = (Arc::new(document.text.clone()), document.version);
         if urdf_validator::input::xacro::is_xacro(&path)
-            && !crate::inputs::is_robot_xacro_text(&text)
+            && !urdf_validate_session::discovery::is_robot_xacro_text(&text)
         {
             let diagnostics = match roxmltree::Document::parse(&text) {
                 Ok(_) => Vec::new(),
@@ -386,11 +395,11 @@ impl Server<'_> {
 
     /// The options for the file at `path`: the flags with its configuration file.
     fn session(&mut self, path: &Path) -> Result<&Session, String> {
-        let config = crate::config::discover(path);
-        let flags = &self.flags;
+        let config = config_file(&self.settings, path);
+        let (settings, meshes) = (&self.settings, &self.meshes);
         self.sessions
             .entry(config)
-            .or_insert_with(|| Session::from_flags(flags, Some(path)))
+            .or_insert_with_key(|config| Session::with_config(settings, config.as_deref(), meshes))
             .as_ref()
             .map_err(Clone::clone)
     }
@@ -574,7 +583,7 @@ impl Server<'_> {
     /// read: [`urdf_validator::input::srdf::find`]), as the editor has it when open.
     fn srdf_of(&self, uri: &Url) -> Option<File> {
         let path = documents::path_of(uri)?;
-        let config = crate::config::discover(&path);
+        let config = config_file(&self.settings, &path);
         let session = self.sessions.get(&config)?.as_ref().ok()?;
         let robot = self
             .analysis_of(uri)
@@ -614,7 +623,7 @@ impl Server<'_> {
     ) -> Option<(PathBuf, urdf_validator::input::resolve::PackageResolver)> {
         let path = documents::path_of(uri)?;
         let dir = path.parent()?.to_path_buf();
-        let config = crate::config::discover(&path);
+        let config = config_file(&self.settings, &path);
         let session = self.sessions.get(&config)?.as_ref().ok()?;
         Some((dir, session.options().resolver.clone()))
     }

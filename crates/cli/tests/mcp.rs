@@ -41,6 +41,11 @@ impl Server {
 
     /// Start the server in `dir` with `args` (`--root DIR`, ...) and initialise the session.
     fn start_with(dir: &Path, args: &[&std::ffi::OsStr]) -> Server {
+        Server::start_as(dir, args, json!({}))
+    }
+
+    /// [`Server::start_with`], the client declaring `capabilities`.
+    fn start_as(dir: &Path, args: &[&std::ffi::OsStr], capabilities: Value) -> Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
             .arg("mcp")
             .args(args)
@@ -72,7 +77,7 @@ impl Server {
             "initialize",
             json!({
                 "protocolVersion": "2025-06-18",
-                "capabilities": {},
+                "capabilities": capabilities,
                 "clientInfo": {"name": "mcp-test", "version": "0"}
             }),
         );
@@ -117,6 +122,20 @@ impl Server {
                 return message;
             }
         }
+    }
+
+    /// Wait for the server's `roots/list` request and answer it with `folders` as `file://` roots.
+    fn answer_roots(&mut self, folders: &[&Path]) {
+        let request = self.response();
+        assert_eq!(
+            request["method"], "roots/list",
+            "the server asks for the roots: {request}"
+        );
+        let roots: Vec<Value> = folders
+            .iter()
+            .map(|folder| json!({"uri": format!("file://{}", folder.display()), "name": "work"}))
+            .collect();
+        self.send(&json!({"jsonrpc": "2.0", "id": request["id"], "result": {"roots": roots}}));
     }
 
     fn request(&mut self, method: &str, params: Value) -> Value {
@@ -584,6 +603,40 @@ fn the_server_is_untrusted_by_default_and_keeps_to_its_roots() {
         json!({"xml": "<robot name='r'><link name='a'/></robot>", "base_dir": dir.join("outside").display().to_string()}),
     );
     assert!(error_text(&base_dir).contains("outside the folders"));
+    assert!(server.close().success());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A client that declares roots: the tools read inside them (and no longer only inside the working
+/// directory), follow `notifications/roots/list_changed`, and still refuse what is outside.
+#[test]
+fn the_client_roots_bound_what_the_tools_read() {
+    let dir = std::env::temp_dir().join(format!("mcp-roots-{}", std::process::id()));
+    let (first, second, cwd) = (dir.join("first"), dir.join("second"), dir.join("cwd"));
+    for folder in [&first, &second, &cwd] {
+        std::fs::create_dir_all(folder).expect("mkdir");
+        std::fs::write(
+            folder.join("robot.urdf"),
+            "<robot name='r'><link name='a'/></robot>\n",
+        )
+        .expect("write");
+    }
+    let robot = |folder: &Path| json!({"path": folder.join("robot.urdf").display().to_string(), "samples": 50});
+    let mut server = Server::start_as(&cwd, &[], json!({"roots": {"listChanged": true}}));
+    server.answer_roots(&[&first]);
+    // Inside the declared root, outside the working directory: validated (refused before roots).
+    let inside = server.call("validate_urdf", robot(&first));
+    assert_ne!(inside["isError"], true, "{inside}");
+    // The working directory is no root once the client names its own.
+    let message = error_text(&server.call("validate_urdf", robot(&cwd)));
+    assert!(message.contains("outside the folders"), "{message}");
+    // The client changes its roots: the server asks again, and follows.
+    server.send(&json!({"jsonrpc": "2.0", "method": "notifications/roots/list_changed"}));
+    server.answer_roots(&[&second]);
+    let moved = server.call("validate_urdf", robot(&second));
+    assert_ne!(moved["isError"], true, "{moved}");
+    let message = error_text(&server.call("validate_urdf", robot(&first)));
+    assert!(message.contains("outside the folders"), "{message}");
     assert!(server.close().success());
     let _ = std::fs::remove_dir_all(&dir);
 }

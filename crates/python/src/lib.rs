@@ -1,14 +1,15 @@
-//! `urdf_validator._native`: the Rust side of the Python package. Every function takes the command's
-//! flags (the Python layer turns keyword arguments into them), releases the GIL while Rust works, and
-//! returns JSON text that the Python layer wraps (`Report`, `TaskQueryResponse`).
+//! `urdf_validator._native`: the Rust side of the Python package. Every function takes the keyword
+//! arguments as a JSON object (the command's flags, `_` for `-`: the session crate's `Request`), releases
+//! the GIL while Rust works, and returns JSON text that the Python layer wraps (`Report`,
+//! `TaskQueryResponse`). The `urdf_validate` console command is the command's own binary, shipped in the
+//! wheel beside this module.
 
-use std::collections::hash_map::Entry;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use urdf_validate_cli::api::Session;
+use urdf_validate_session::options::mesh_cache;
+use urdf_validate_session::{Batch, Request, Session};
 use urdf_validator::input::LoadError;
 use urdf_validator::render::render_json;
 use urdf_validator::task_query::{self, TaskQueryRequest};
@@ -69,16 +70,28 @@ fn location(path: &Path, error: &LoadError) -> (String, Option<u32>, Option<u32>
     }
 }
 
-/// The options for files near `anchor`, or `ValueError` naming the bad flag.
-fn session(flags: &[String], anchor: Option<&Path>) -> PyResult<Session> {
-    Session::from_flags(flags, anchor).map_err(PyValueError::new_err)
+/// The request of the keyword arguments `options` (a JSON object), or `ValueError` naming the bad one.
+fn request(options: &str) -> PyResult<Request> {
+    match serde_json::from_str(options) {
+        Ok(serde_json::Value::Object(object)) => {
+            Request::from_json(&object).map_err(PyValueError::new_err)
+        }
+        _ => Err(PyValueError::new_err(format!(
+            "options: expected a JSON object, got {options}"
+        ))),
+    }
 }
 
-/// Validate the file at `path` with the command's `flags`; the JSON report.
+/// The session for files near `anchor`, or `ValueError` naming the bad option.
+fn session(options: &str, anchor: Option<&Path>) -> PyResult<Session> {
+    Session::new(&request(options)?, anchor).map_err(PyValueError::new_err)
+}
+
+/// Validate the file at `path` with the keyword arguments `options` (JSON); the JSON report.
 #[pyfunction]
-fn validate(py: Python<'_>, path: PathBuf, flags: Vec<String>) -> PyResult<String> {
+fn validate(py: Python<'_>, path: PathBuf, options: String) -> PyResult<String> {
     py.detach(|| {
-        let session = session(&flags, Some(&path))?;
+        let session = session(&options, Some(&path))?;
         Ok(report_json(&path, session.validate(&path)))
     })
 }
@@ -86,28 +99,17 @@ fn validate(py: Python<'_>, path: PathBuf, flags: Vec<String>) -> PyResult<Strin
 /// Validate every path in parallel; one JSON report per path, in order. Each file uses the
 /// configuration file nearest to it, as the command does.
 #[pyfunction]
-fn validate_many(py: Python<'_>, paths: Vec<PathBuf>, flags: Vec<String>) -> PyResult<Vec<String>> {
+fn validate_many(py: Python<'_>, paths: Vec<PathBuf>, options: String) -> PyResult<Vec<String>> {
     py.detach(|| {
-        let mut sessions: HashMap<PathBuf, Session> = HashMap::new();
-        for path in &paths {
-            let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-            if let Entry::Vacant(entry) = sessions.entry(dir) {
-                entry.insert(session(&flags, Some(path))?);
-            }
-        }
-        Ok(urdf_validate_cli::batch::map_files(&paths, |path| {
-            let dir = path.parent().unwrap_or(Path::new(""));
-            match sessions.get(dir) {
-                Some(session) => report_json(path, session.validate(path)),
-                None => report_json(
-                    path,
-                    Err(LoadError::Usage {
-                        path: path.clone(),
-                        message: "no options for this file".to_string(),
-                    }),
-                ),
-            }
-        }))
+        let request = request(&options)?;
+        let batch = Batch::new(&request, &paths, &mesh_cache(request.no_cache))
+            .map_err(PyValueError::new_err)?;
+        let validations = batch.validate();
+        Ok(paths
+            .iter()
+            .zip(validations)
+            .map(|(path, validation)| report_json(path, validation))
+            .collect())
     })
 }
 
@@ -117,10 +119,10 @@ fn validate_string(
     py: Python<'_>,
     xml: String,
     path: PathBuf,
-    flags: Vec<String>,
+    options: String,
 ) -> PyResult<String> {
     py.detach(|| {
-        let session = session(&flags, Some(&path))?;
+        let session = session(&options, Some(&path))?;
         Ok(report_json(&path, session.validate_text(xml, &path)))
     })
 }
@@ -128,20 +130,14 @@ fn validate_string(
 /// The task-query API: `requests_json` is a JSON list of requests (the spec's field names); returns the
 /// JSON list of responses, in order, computed in parallel.
 #[pyfunction]
-fn run_pick_sweep(py: Python<'_>, requests_json: String, flags: Vec<String>) -> PyResult<String> {
+fn run_pick_sweep(py: Python<'_>, requests_json: String, options: String) -> PyResult<String> {
     py.detach(|| {
         let requests: Vec<TaskQueryRequest> = serde_json::from_str(&requests_json)
             .map_err(|e| PyValueError::new_err(format!("task requests: {e}")))?;
-        let session = session(&flags, None)?;
+        let session = session(&options, None)?;
         let responses = task_query::run_pick_sweep(&requests, session.options());
         serde_json::to_string(&responses).map_err(|e| PyValueError::new_err(e.to_string()))
     })
-}
-
-/// Run the `urdf_validate` command with `argv` (program name first); returns its exit status.
-#[pyfunction]
-fn main(py: Python<'_>, argv: Vec<String>) -> u8 {
-    py.detach(|| urdf_validate_cli::main_from(argv))
 }
 
 /// The native module.
@@ -152,6 +148,5 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(validate_many, module)?)?;
     module.add_function(wrap_pyfunction!(validate_string, module)?)?;
     module.add_function(wrap_pyfunction!(run_pick_sweep, module)?)?;
-    module.add_function(wrap_pyfunction!(main, module)?)?;
     Ok(())
 }

@@ -13,7 +13,7 @@ import json
 from typing import Any, List, Optional, Sequence
 
 from urdf_validator import _native
-from urdf_validator._flags import flags_from_options
+from urdf_validator._options import options_json
 
 from .task_schema import SubCheckResult, TaskQueryRequest, TaskQueryResponse
 
@@ -35,6 +35,6 @@ def run_pick_sweep(
     """Answer every request, in parallel in Rust; the responses in the order of the requests. A
     request that cannot run (a missing file, a bad orientation) gets its own UNKNOWN response; the
     others still run."""
-    flags = flags_from_options({"samples": n_samples, **options})
+    settings = options_json({"samples": n_samples, **options})
     payload = json.dumps([request.to_dict() for request in requests])
-    return [TaskQueryResponse.from_dict(data) for data in json.loads(_native.run_pick_sweep(payload, flags))]
+    return [TaskQueryResponse.from_dict(data) for data in json.loads(_native.run_pick_sweep(payload, settings))]

@@ -4,7 +4,6 @@
 //! computes for the same flags.
 
 use std::collections::BTreeMap;
-use std::fmt::Display;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, LazyLock};
 
@@ -15,13 +14,15 @@ use schemars::JsonSchema;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
+use urdf_validate_session::request::{parse_robot_type, parse_simulator};
+use urdf_validate_session::{Request, Session};
+use urdf_validator::analysis::pose::PoseKind;
 use urdf_validator::diagnostics::rules;
 use urdf_validator::diagnostics::suggest::did_you_mean;
 use urdf_validator::report::Report;
 use urdf_validator::task_query::{self, TaskQueryRequest, TaskQueryResponse};
 
 use super::policy::Policy;
-use crate::api::Session;
 use crate::args::Args;
 
 /// One tool: what `tools/list` shows of it, and what a call runs.
@@ -305,69 +306,71 @@ impl Flags {
             }
         }
         policy.check_timeout(self.timeout)?;
-        let mut line = self.command_line();
-        line.extend(policy.flags());
-        Session::from_flags(&line, Some(anchor))
+        let mut request = self.request()?;
+        policy.apply(&mut request);
+        Session::new(&request, Some(anchor))
     }
 
-    /// `--flag=value ...`.
-    fn command_line(&self) -> Vec<String> {
-        let mut line = CommandLine(Vec::new());
-        line.value("robot-type", self.robot_type.as_ref());
-        line.values("contact-links", self.contact_links.as_deref());
-        line.value("payload-mass", self.payload_mass);
-        line.value("payload-link", self.payload_link.as_ref());
-        line.value("pose", self.pose.as_ref());
-        line.value("joint-angles", self.joint_angles.as_ref());
-        line.value("srdf", self.srdf.as_ref());
-        line.value("state", self.state.as_ref());
-        line.value("samples", self.samples);
-        line.value("seed", self.seed);
-        line.value("task", self.task.as_ref());
-        line.value("height", self.height);
-        line.value("orientation", self.orientation.as_ref());
-        line.value("orientation-tolerance", self.orientation_tolerance);
-        line.value("approach-axis", self.approach_axis.as_ref());
-        line.values("arm-root", self.arm_root.as_deref());
-        line.values("arm-tip", self.arm_tip.as_deref());
-        line.values("package-path", self.package_path.as_deref());
-        for (name, value) in self.xacro_args.iter().flatten() {
-            line.value("xacro-arg", Some(format!("{name}={value}")));
-        }
-        line.values("select", self.select.as_deref());
-        line.values("ignore", self.ignore.as_deref());
-        line.value("config", self.config.as_ref());
-        line.switch("no-config", self.no_config);
-        line.value("baseline", self.baseline.as_ref());
-        line.switch("show-suppressed", self.show_suppressed);
-        line.switch("timings", self.timings);
-        line.switch("no-cache", self.no_cache);
-        line.values("simulator", self.simulator.as_deref());
-        line.value("timeout", self.timeout);
-        line.0
-    }
-}
-
-/// A command line being built. Values go as `--flag=value`, so a value may start with `-`.
-struct CommandLine(Vec<String>);
-
-impl CommandLine {
-    fn value(&mut self, flag: &str, value: Option<impl Display>) {
-        if let Some(value) = value {
-            self.0.push(format!("--{flag}={value}"));
-        }
-    }
-
-    fn values(&mut self, flag: &str, values: Option<&[String]>) {
-        for value in values.into_iter().flatten() {
-            self.value(flag, Some(value));
-        }
-    }
-
-    fn switch(&mut self, flag: &str, on: Option<bool>) {
-        if on == Some(true) {
-            self.0.push(format!("--{flag}"));
-        }
+    /// The arguments as the session's request (named as the flags, with `_`).
+    fn request(&self) -> Result<Request, String> {
+        let texts = |values: &Option<Vec<String>>| values.clone().unwrap_or_default();
+        let paths = |values: &Option<Vec<String>>| {
+            values
+                .iter()
+                .flatten()
+                .map(PathBuf::from)
+                .collect::<Vec<_>>()
+        };
+        let request = Request {
+            robot_type: self
+                .robot_type
+                .as_deref()
+                .map(|name| parse_robot_type(name, "robot_type"))
+                .transpose()?,
+            contact_links: self.contact_links.clone(),
+            payload_mass: self.payload_mass,
+            payload_link: self.payload_link.clone(),
+            pose: self
+                .pose
+                .as_deref()
+                .map(|pose| PoseKind::parse(pose).map_err(|e| format!("pose: {e}")))
+                .transpose()?,
+            joint_angles: self.joint_angles.clone(),
+            srdf: self.srdf.as_ref().map(PathBuf::from),
+            state: self.state.clone(),
+            samples: self.samples,
+            seed: self.seed,
+            task: self.task.clone(),
+            height: self.height,
+            orientation: self.orientation.clone(),
+            orientation_tolerance: self.orientation_tolerance,
+            approach_axis: self.approach_axis.clone(),
+            arm_root: texts(&self.arm_root),
+            arm_tip: texts(&self.arm_tip),
+            package_path: paths(&self.package_path),
+            xacro_args: self
+                .xacro_args
+                .clone()
+                .unwrap_or_default()
+                .into_iter()
+                .collect(),
+            select: self.select.clone(),
+            ignore: texts(&self.ignore),
+            config: self.config.as_ref().map(PathBuf::from),
+            no_config: self.no_config == Some(true),
+            baseline: self.baseline.as_ref().map(PathBuf::from),
+            show_suppressed: self.show_suppressed == Some(true),
+            timings: self.timings == Some(true),
+            no_cache: self.no_cache == Some(true),
+            simulator: texts(&self.simulator)
+                .iter()
+                .map(|name| parse_simulator(name, "simulator"))
+                .collect::<Result<_, _>>()?,
+            timeout: self.timeout,
+            ..Request::default()
+        };
+        request.check()?;
+        Ok(request)
     }
 }
 

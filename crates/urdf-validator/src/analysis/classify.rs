@@ -51,6 +51,19 @@ pub enum RobotType {
 }
 
 impl RobotType {
+    /// Every category, in the order `--robot-type` lists them.
+    pub const ALL: [RobotType; 9] = [
+        RobotType::Wheeled,
+        RobotType::GroundVehicle,
+        RobotType::Legged,
+        RobotType::Quadruped,
+        RobotType::Humanoid,
+        RobotType::ArmOnly,
+        RobotType::Aerial,
+        RobotType::Object,
+        RobotType::Unknown,
+    ];
+
     /// The flag / JSON value.
     pub fn as_str(self) -> &'static str {
         match self {

@@ -1,6 +1,7 @@
 //! The load stage: a file's text with the size limit applied, xacro expansion, SDFormat and MJCF includes,
 //! `package://` and `model://` resolution, SRDF files and meshes. Nothing here knows what a robot is; it hands text and geometry to the stages after it.
 
+pub mod interpreter;
 pub mod mesh;
 pub mod resolve;
 pub mod sandbox;

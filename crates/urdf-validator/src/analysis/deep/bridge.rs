@@ -3,8 +3,8 @@
 //!
 //! Why a process and not the shared library: the binary builds and runs without MuJoCo or a C toolchain,
 //! users get MuJoCo exactly as they install it (`pip install "urdf-validator[mujoco]"`), and a crash
-//! inside MuJoCo cannot take the validator down. The interpreter is `URDF_VALIDATOR_PYTHON` when set (the
-//! wheel's `urdf_validate` sets it to its own Python), else `python3` on `PATH`. A bare `libmujoco`
+//! inside MuJoCo cannot take the validator down. The interpreter is [`super::DeepOptions::python`] (the
+//! front ends set it from [`crate::input::interpreter::python`]), else `python3` on `PATH`. A bare `libmujoco`
 //! (`MUJOCO_PATH`) is not used.
 
 use std::io::{Read, Write};
@@ -72,13 +72,6 @@ impl BridgeError {
             BridgeError::NotUrdf => "the MuJoCo pass does not run on SDFormat input yet (it hands MuJoCo the URDF text); validate the URDF the SDF was made from, or load the SDF in Gazebo".to_string(),
         }
     }
-}
-
-/// The Python interpreter to run: `URDF_VALIDATOR_PYTHON`, else `python3`.
-pub fn python() -> PathBuf {
-    std::env::var_os("URDF_VALIDATOR_PYTHON")
-        .filter(|v| !v.is_empty())
-        .map_or_else(|| PathBuf::from("python3"), PathBuf::from)
 }
 
 /// Run the bridge on `job`; the reply (`ok` true, or a MuJoCo compile error) or why there is none.

@@ -42,7 +42,8 @@ pub struct DeepOptions {
     pub automatic: bool,
     /// Time limit of the MuJoCo process.
     pub time_limit: Duration,
-    /// The Python to run MuJoCo with; `None`: `URDF_VALIDATOR_PYTHON`, else `python3` ([`bridge::python`]).
+    /// The Python to run MuJoCo with (the front ends set [`crate::input::interpreter::python`]); `None`:
+    /// `python3` on `PATH`.
     pub python: Option<std::path::PathBuf>,
 }
 
@@ -141,7 +142,11 @@ pub fn run(input: &DeepInput) -> Option<(DeepSection, Vec<Finding>)> {
         fixed_base,
         payload: input.payload,
     })?;
-    let python = input.options.python.clone().unwrap_or_else(bridge::python);
+    let python = input
+        .options
+        .python
+        .clone()
+        .unwrap_or_else(|| std::path::PathBuf::from("python3"));
     let reply = bridge::run(&python, &job.json, input.options.time_limit, input.progress);
     Some(match reply {
         Ok(reply) => {

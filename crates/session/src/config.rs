@@ -1,6 +1,6 @@
 //! Configuration files: `urdf-validate.toml`, or `[tool.urdf-validate]` in `pyproject.toml`, found next to
 //! each input or in a parent folder (the nearest wins), or named with `--config`. The library applies the
-//! resulting [`Settings`]; this module only finds, parses and merges them with the flags.
+//! resulting [`Settings`]; this module only finds, parses and merges them with the [`Request`].
 //!
 //! ```toml
 //! select = ["ALL"]
@@ -22,18 +22,18 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use clap::parser::ValueSource;
-use clap::{ArgMatches, ValueEnum};
 use serde::Deserialize;
 use toml::Spanned;
+use urdf_validator::analysis::classify::RobotType;
 use urdf_validator::diagnostics::settings::{
     Origin, PerFileIgnore, Selector, Settings, SeverityOverride,
 };
 use urdf_validator::diagnostics::suggest::did_you_mean;
 use urdf_validator::diagnostics::Severity;
 use urdf_validator::model::UpAxis;
+use urdf_validator::{DEFAULT_SAMPLES, DEFAULT_SEED};
 
-use crate::args::{Args, RobotTypeArg};
+use crate::request::Request;
 
 /// The dedicated configuration file name.
 pub const CONFIG_FILE: &str = "urdf-validate.toml";
@@ -139,7 +139,7 @@ pub struct Effective {
     /// Rule selection and severities, for the library.
     pub settings: Settings,
     /// `robot-type`.
-    pub robot_type: Setting<Option<RobotTypeArg>>,
+    pub robot_type: Setting<Option<RobotType>>,
     /// `up-axis`.
     pub up_axis: Setting<Option<UpAxis>>,
     /// `payload-mass`.
@@ -159,17 +159,20 @@ pub struct Effective {
 }
 
 impl Effective {
-    /// Copy the merged values into the flags the rest of the program reads.
-    pub fn apply_to(&self, args: &mut Args) {
-        args.robot_type = self.robot_type.value;
-        args.up_axis = self.up_axis.value;
-        args.payload_mass = self.payload_mass.value;
-        args.payload_link = self.payload_link.value.clone();
-        args.samples = self.samples.value;
-        args.seed = self.seed.value;
-        args.package_path = self.package_path.iter().map(|p| p.value.clone()).collect();
-        args.contact_links = self.contact_links.value.clone();
-        args.baseline = self.baseline.value.clone();
+    /// The request with the merged values in place of its own.
+    pub fn applied_to(&self, request: &Request) -> Request {
+        Request {
+            robot_type: self.robot_type.value,
+            up_axis: self.up_axis.value,
+            payload_mass: self.payload_mass.value,
+            payload_link: self.payload_link.value.clone(),
+            samples: Some(self.samples.value),
+            seed: Some(self.seed.value),
+            package_path: self.package_path.iter().map(|p| p.value.clone()).collect(),
+            contact_links: self.contact_links.value.clone(),
+            baseline: self.baseline.value.clone(),
+            ..request.clone()
+        }
     }
 
     /// The `--show-config` text.
@@ -235,11 +238,7 @@ impl Effective {
         let opt = |v: Option<String>| v.unwrap_or_else(|| "(none)".to_string());
         line(
             "robot-type",
-            opt(self
-                .robot_type
-                .value
-                .and_then(|t| t.to_possible_value())
-                .map(|v| format!("{:?}", v.get_name()))),
+            opt(self.robot_type.value.map(|t| format!("{:?}", t.as_str()))),
             self.robot_type.origin.to_string(),
         );
         line(
@@ -353,13 +352,13 @@ fn has_tool_table(text: &str) -> bool {
         .is_some()
 }
 
-/// Read and check the configuration file at `path`, merged with the flags.
-pub fn load(path: Option<&Path>, args: &Args, matches: &ArgMatches) -> Result<Effective, String> {
+/// Read and check the configuration file at `path`, merged with the request (its values win).
+pub fn load(path: Option<&Path>, request: &Request) -> Result<Effective, String> {
     let raw = match path {
         Some(path) => read(path)?,
         None => Raw::default(),
     };
-    merge(path, raw, args, matches)
+    merge(path, raw, request)
 }
 
 /// The configuration table of the file at `path`.
@@ -451,13 +450,8 @@ fn line_col(text: &str, at: usize) -> (u32, u32) {
     )
 }
 
-/// Merge the file's table with the flags (flags given on the command line win).
-fn merge(
-    path: Option<&Path>,
-    raw: Raw,
-    args: &Args,
-    matches: &ArgMatches,
-) -> Result<Effective, String> {
+/// Merge the file's table with the request (the values it gives win).
+fn merge(path: Option<&Path>, raw: Raw, request: &Request) -> Result<Effective, String> {
     let text = match path {
         Some(p) => std::fs::read_to_string(p).unwrap_or_default(),
         None => String::new(),
@@ -492,7 +486,6 @@ fn merge(
             None => message,
         }
     };
-    let from_cli = |id: &str| matches.value_source(id) == Some(ValueSource::CommandLine);
     let selectors = |list: &[Spanned<String>]| -> Vec<Selector> {
         list.iter()
             .map(|s| Selector::new(s.get_ref().clone(), inner(s)))
@@ -507,16 +500,16 @@ fn merge(
 
     let mut settings = Settings {
         base_dir: path.and_then(Path::parent).map(Path::to_path_buf),
-        show_suppressed: args.show_suppressed,
+        show_suppressed: request.show_suppressed,
         ..Settings::default()
     };
-    settings.select = match (&args.select, &raw.select) {
+    settings.select = match (&request.select, &raw.select) {
         (Some(cli), _) => Some(cli_selectors(cli)),
         (None, Some(file)) => Some(selectors(file)),
         (None, None) => None,
     };
     settings.ignore = raw.ignore.as_deref().map(selectors).unwrap_or_default();
-    settings.ignore.extend(cli_selectors(&args.ignore));
+    settings.ignore.extend(cli_selectors(&request.ignore));
     for (pattern, codes) in raw.per_file_ignores.unwrap_or_default() {
         let entry = PerFileIgnore::new(
             pattern.get_ref().clone(),
@@ -533,25 +526,21 @@ fn merge(
         });
     }
 
-    let robot_type = if from_cli("robot_type") {
+    let robot_type = if request.robot_type.is_some() {
         Setting {
-            value: args.robot_type,
+            value: request.robot_type,
             origin: Origin::CommandLine,
         }
     } else if let Some(name) = &raw.robot_type {
-        let value = RobotTypeArg::from_str(name.get_ref(), true).map_err(|_| {
-            let names: Vec<String> = RobotTypeArg::value_variants()
-                .iter()
-                .filter_map(|v| v.to_possible_value())
-                .map(|v| v.get_name().to_string())
-                .collect();
+        let value = RobotType::parse(&name.get_ref().to_ascii_lowercase()).ok_or_else(|| {
+            let names: Vec<&str> = RobotType::ALL.iter().map(|t| t.as_str()).collect();
             error_at(
                 name.span(),
                 format!(
                     "robot-type '{}' is not one of {} ({})",
                     name.get_ref(),
                     names.join(", "),
-                    did_you_mean(name.get_ref(), names.iter().map(String::as_str))
+                    did_you_mean(name.get_ref(), names.iter().copied())
                 ),
             )
         })?;
@@ -562,9 +551,9 @@ fn merge(
     } else {
         Setting::default(None)
     };
-    let up_axis = match (&raw.up_axis, from_cli("up_axis")) {
+    let up_axis = match (&raw.up_axis, request.up_axis.is_some()) {
         (_, true) => Setting {
-            value: args.up_axis,
+            value: request.up_axis,
             origin: Origin::CommandLine,
         },
         (Some(axis), false) => Setting {
@@ -581,9 +570,9 @@ fn merge(
         },
         (None, false) => Setting::default(None),
     };
-    let payload_mass = match (&raw.payload_mass, from_cli("payload_mass")) {
+    let payload_mass = match (&raw.payload_mass, request.payload_mass.is_some()) {
         (_, true) => Setting {
-            value: args.payload_mass,
+            value: request.payload_mass,
             origin: Origin::CommandLine,
         },
         (Some(mass), false) => {
@@ -601,9 +590,9 @@ fn merge(
         }
         (None, false) => Setting::default(None),
     };
-    let payload_link = match (&raw.payload_link, from_cli("payload_link")) {
+    let payload_link = match (&raw.payload_link, request.payload_link.is_some()) {
         (_, true) => Setting {
-            value: args.payload_link.clone(),
+            value: request.payload_link.clone(),
             origin: Origin::CommandLine,
         },
         (Some(link), false) => Setting {
@@ -612,9 +601,9 @@ fn merge(
         },
         (None, false) => Setting::default(None),
     };
-    let samples = match (&raw.samples, from_cli("samples")) {
+    let samples = match (&raw.samples, request.samples.is_some()) {
         (_, true) => Setting {
-            value: args.samples,
+            value: request.samples.unwrap_or(DEFAULT_SAMPLES),
             origin: Origin::CommandLine,
         },
         (Some(samples), false) => {
@@ -629,20 +618,20 @@ fn merge(
                 origin: origin_at(samples.span()),
             }
         }
-        (None, false) => Setting::default(args.samples),
+        (None, false) => Setting::default(DEFAULT_SAMPLES),
     };
-    let seed = match (&raw.seed, from_cli("seed")) {
+    let seed = match (&raw.seed, request.seed.is_some()) {
         (_, true) => Setting {
-            value: args.seed,
+            value: request.seed.unwrap_or(DEFAULT_SEED),
             origin: Origin::CommandLine,
         },
         (Some(seed), false) => Setting {
             value: *seed.get_ref(),
             origin: origin_at(seed.span()),
         },
-        (None, false) => Setting::default(args.seed),
+        (None, false) => Setting::default(DEFAULT_SEED),
     };
-    let mut package_path: Vec<Setting<PathBuf>> = args
+    let mut package_path: Vec<Setting<PathBuf>> = request
         .package_path
         .iter()
         .map(|p| Setting {
@@ -657,9 +646,9 @@ fn merge(
             origin: inner(folder),
         });
     }
-    let contact_links = match (&raw.contact_links, from_cli("contact_links")) {
+    let contact_links = match (&raw.contact_links, request.contact_links.is_some()) {
         (_, true) => Setting {
-            value: args.contact_links.clone(),
+            value: request.contact_links.clone(),
             origin: Origin::CommandLine,
         },
         (Some(links), false) => Setting {
@@ -668,9 +657,9 @@ fn merge(
         },
         (None, false) => Setting::default(None),
     };
-    let baseline = match (&raw.baseline, from_cli("baseline")) {
+    let baseline = match (&raw.baseline, request.baseline.is_some()) {
         (_, true) => Setting {
-            value: args.baseline.clone(),
+            value: request.baseline.clone(),
             origin: Origin::CommandLine,
         },
         (Some(file), false) => Setting {

@@ -1,4 +1,4 @@
-//! Command-line inputs → the list of files to validate, and xacro's `name:=value` arguments.
+//! Inputs → the list of files to validate (directories walked), and xacro's `name:=value` arguments.
 
 use std::path::{Path, PathBuf};
 
@@ -125,7 +125,7 @@ fn is_robot_xacro(path: &Path) -> bool {
 }
 
 /// [`is_robot_xacro`] of a xacro file's `text` (false when it is not well-formed XML).
-pub(crate) fn is_robot_xacro_text(text: &str) -> bool {
+pub fn is_robot_xacro_text(text: &str) -> bool {
     let Ok(doc) = roxmltree::Document::parse(text) else {
         return false;
     };
