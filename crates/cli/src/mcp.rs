@@ -5,7 +5,9 @@
 //! A failure (a missing file, a bad argument, an unknown rule) is a tool result with `isError` and a
 //! one-line message; the server goes on. stdout carries the protocol only; messages go to stderr.
 
+mod arguments;
 mod policy;
+mod table;
 mod tools;
 
 use std::ffi::OsString;
@@ -120,7 +122,7 @@ impl ServerHandler for Server {
         _request: Option<PaginatedRequestParams>,
         _context: RequestContext<RoleServer>,
     ) -> Result<ListToolsResult, ErrorData> {
-        Ok(ListToolsResult::with_all_items(tools::listed().to_vec()))
+        Ok(ListToolsResult::with_all_items(table::listed().to_vec()))
     }
 
     async fn on_initialized(&self, context: NotificationContext<RoleServer>) {
@@ -142,19 +144,19 @@ impl ServerHandler for Server {
         if offers_roots(&context.peer) && !policy::Policy::current().has_client_roots() {
             refresh_roots(&context.peer).await;
         }
-        let Some(tool) = tools::find(&request.name) else {
+        let Some(tool) = table::find(&request.name) else {
             // The one protocol error: the spec's answer to a tool that does not exist.
             return Err(ErrorData::invalid_params(
                 format!(
                     "no tool '{}' (tools: {})",
                     request.name,
-                    tools::names().join(", ")
+                    table::names().join(", ")
                 ),
                 None,
             ));
         };
         let arguments = request.arguments.unwrap_or_default();
-        let result = match tokio::task::spawn_blocking(move || tools::call(tool, arguments)).await {
+        let result = match tokio::task::spawn_blocking(move || table::call(tool, arguments)).await {
             Ok(Ok(output)) => output.into_result(),
             Ok(Err(message)) => CallToolResult::error(vec![ContentBlock::text(message)]),
             Err(error) => CallToolResult::error(vec![ContentBlock::text(format!(

@@ -26,7 +26,18 @@ const FRONT_END_ONLY: &[&str] = &[
 fn linked(root: &str) -> BTreeSet<String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let output = Command::new(cargo)
-        .args(["tree", "--offline", "-e", "normal", "--prefix", "none", "-f", "{p}", "-p", root])
+        .args([
+            "tree",
+            "--offline",
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "-f",
+            "{p}",
+            "-p",
+            root,
+        ])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("cargo tree runs");
@@ -44,7 +55,11 @@ fn linked(root: &str) -> BTreeSet<String> {
 
 #[test]
 fn shared_crates_link_no_front_end() {
-    for root in ["urdf-validate-session", "urdf-validator-python", "urdf-validator"] {
+    for root in [
+        "urdf-validate-session",
+        "urdf-validator-python",
+        "urdf-validator",
+    ] {
         let linked = linked(root);
         assert!(linked.len() > 3, "{root}: {linked:?}");
         let wrong: Vec<&&str> = FRONT_END_ONLY
@@ -55,5 +70,8 @@ fn shared_crates_link_no_front_end() {
     }
     // The reader sees what the command links, so an empty answer above is not a blind one.
     let command = linked("urdf-validate-cli");
-    assert!(command.contains("clap") && command.contains("tokio"), "{command:?}");
+    assert!(
+        command.contains("clap") && command.contains("tokio"),
+        "{command:?}"
+    );
 }

@@ -145,12 +145,13 @@ pub fn analyse(
         ..
     } = *inputs;
     let supports = &assets.supports;
-    // An explicit --srdf must exist, whichever analyses end up reading it.
+    // An explicit --srdf must exist, whichever analyses end up reading it (the assets stage found it, or
+    // refused to read it, when it does).
     if let Some(path) = statics_options
         .pose
         .srdf
         .as_deref()
-        .filter(|p| !p.is_file())
+        .filter(|_| assets.srdf.is_none() && assets.srdf_refused.is_none())
     {
         return Err(format!("--srdf {}: no such file", path.display()));
     }
