@@ -195,7 +195,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     }
     let format_options = FormatOptions {
         base_dir: std::env::current_dir().ok(),
-        rules_url: rules_url(),
+        rules_url: rules::reference_url(),
     };
     let files_to_write = outputs::Files {
         // --diff writes nothing.
@@ -346,15 +346,6 @@ fn write_baseline(path: &Path, outcomes: &[Outcome]) -> u8 {
     } else {
         2
     }
-}
-
-/// The rules reference on the web, for SARIF `helpUri`s: `docs/rules.md` of the repository named in
-/// Cargo.toml (`repository`); none when it names none.
-fn rules_url() -> Option<String> {
-    option_env!("CARGO_PKG_REPOSITORY")
-        .map(|url| url.trim_end_matches('/'))
-        .filter(|url| !url.is_empty())
-        .map(|url| format!("{url}/blob/main/docs/rules.md"))
 }
 
 fn explain(code: &str) -> u8 {

@@ -194,8 +194,8 @@ fn deep_source<'a>(
     }
 }
 
-/// The pipeline: parse → model → assets → checks → analyses → report.
-/// `resolver` is the run's, checking against this file's sandbox.
+/// The pipeline: parse → overrides → model → (assets → checks → physics → deep) → report, each stage
+/// handed what it needs. `resolver` is the run's, checking against this file's sandbox.
 fn run(
     loaded: Loaded,
     options: &Options,
@@ -215,30 +215,9 @@ fn run(
         _ => parse_sdf(&loaded, options)?,
     };
     let overrides =
-        model::overrides::apply(&mut robot, &options.value_overrides, document.as_ref()).map_err(
-            |message| LoadError::Usage {
-                path: loaded.path.clone(),
-                message,
-            },
-        )?;
-    let with_payload;
-    let options = match options
-        .value_overrides
-        .iter()
-        .find_map(|o| o.payload_mass())
-    {
-        Some(mass) => {
-            with_payload = Options {
-                statics: StaticsOptions {
-                    payload_mass: Some(mass),
-                    ..options.statics.clone()
-                },
-                ..options.clone()
-            };
-            &with_payload
-        }
-        None => options,
-    };
+        model::overrides::apply(&mut robot, &options.value_overrides, document.as_ref())
+            .map_err(|message| usage(&loaded, message))?;
+    let options = &with_overridden_payload(options);
     clock.lap("parse");
     let (mut model, tree_findings) = Model::build(&robot);
     model.up = options.overrides.up_axis.unwrap_or_default();
@@ -248,69 +227,13 @@ fn run(
         .iter()
         .any(|f| f.rule == &diagnostics::rules::NOT_A_ROBOT);
     let analyses = if is_robot {
-        give_up_if_cancelled(options, &loaded.path)?;
-        let assets = Assets::load(&robot, &asset_source(&loaded.path, options, resolver));
-        clock.lap("assets");
-        give_up_if_cancelled(options, &loaded.path)?;
-        findings.extend(checks::run(&robot, &model, &assets));
-        findings.extend(analysis::profiles::check(
-            &robot,
-            &model,
-            &options.simulators,
-        ));
-        clock.lap("checks");
-        if options.structure_only {
-            None
-        } else {
-            give_up_if_cancelled(options, &loaded.path)?;
-            // The workspace sampler stops early when a watchdog cancels the run.
-            let workspace = WorkspaceOptions {
-                progress: options.progress.clone(),
-                ..options.workspace.clone()
-            };
-            let inputs = analysis_inputs(&assets, options, &workspace);
-            let mut physics =
-                analysis::analyse(&robot, &model, &inputs, &mut clock).map_err(|message| {
-                    LoadError::Usage {
-                        path: loaded.path.clone(),
-                        message,
-                    }
-                })?;
-            findings.extend(physics.findings.iter().cloned());
-            give_up_if_cancelled(options, &loaded.path)?;
-            // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
-            let turned = model.up != model::UpAxis::default();
-            if turned && options.deep.requested {
-                return Err(LoadError::Usage {
-                path: loaded.path.clone(),
-                message: format!(
-                    "--deep with --up-axis {}: the MuJoCo pass loads the file z-up and cannot turn it yet",
-                    model.up.as_str()
-                ),
-            });
-            }
-            let mjcf_on_disk = mjcf_on_disk(&loaded, options);
-            let deep = (!turned).then(|| {
-                analysis::deep::run(&analysis::deep::DeepInput {
-                    source: deep_source(&loaded, &mjcf_on_disk),
-                    robot: &robot,
-                    model: &model,
-                    assets: &assets,
-                    physics: &physics,
-                    payload: payload(&model, options),
-                    contact_links: options.overrides.contact_links.as_deref(),
-                    options: &options.deep,
-                    progress: options.progress.as_ref(),
-                })
-            });
-            if let Some((section, deep_findings)) = deep.flatten() {
-                analysis::deep::mark_simulated(&mut physics, &section);
-                physics.deep = Some(section);
-                findings.extend(deep_findings);
-                clock.lap("deep");
-            }
-            Some(physics)
-        }
+        let robot_run = RobotRun {
+            loaded: &loaded,
+            robot: &robot,
+            model: &model,
+            options,
+        };
+        robot_run.analyse(resolver, &mut findings, &mut clock)?
     } else {
         None
     };
@@ -334,6 +257,115 @@ fn run(
     Ok(Validation { report, sources })
 }
 
+/// The options with `--override payload.mass=V` as the payload, when given.
+fn with_overridden_payload(options: &Options) -> std::borrow::Cow<'_, Options> {
+    match options
+        .value_overrides
+        .iter()
+        .find_map(|o| o.payload_mass())
+    {
+        Some(mass) => std::borrow::Cow::Owned(Options {
+            statics: StaticsOptions {
+                payload_mass: Some(mass),
+                ..options.statics.clone()
+            },
+            ..options.clone()
+        }),
+        None => std::borrow::Cow::Borrowed(options),
+    }
+}
+
+/// A robot past the model stage, on its way through the stages that analyse it.
+struct RobotRun<'a> {
+    loaded: &'a Loaded,
+    robot: &'a urdf::Robot,
+    model: &'a Model,
+    options: &'a Options,
+}
+
+impl RobotRun<'_> {
+    /// Assets, checks, then (unless `structure_only`) the physics and the MuJoCo pass; their findings
+    /// added to `findings`.
+    fn analyse(
+        &self,
+        resolver: &PackageResolver,
+        findings: &mut Vec<diagnostics::Finding>,
+        clock: &mut Stopwatch,
+    ) -> Result<Option<analysis::Physics>, LoadError> {
+        let (loaded, robot, model, options) = (self.loaded, self.robot, self.model, self.options);
+        give_up_if_cancelled(options, &loaded.path)?;
+        let assets = Assets::load(robot, &asset_source(&loaded.path, options, resolver));
+        clock.lap("assets");
+        give_up_if_cancelled(options, &loaded.path)?;
+        findings.extend(checks::run(robot, model, &assets));
+        findings.extend(analysis::profiles::check(robot, model, &options.simulators));
+        clock.lap("checks");
+        if options.structure_only {
+            return Ok(None);
+        }
+        give_up_if_cancelled(options, &loaded.path)?;
+        // The workspace sampler stops early when a watchdog cancels the run.
+        let workspace = WorkspaceOptions {
+            progress: options.progress.clone(),
+            ..options.workspace.clone()
+        };
+        let inputs = analysis_inputs(&assets, options, &workspace);
+        let mut physics = analysis::analyse(robot, model, &inputs, clock)
+            .map_err(|message| usage(loaded, message))?;
+        findings.extend(physics.findings.iter().cloned());
+        give_up_if_cancelled(options, &loaded.path)?;
+        if let Some((section, deep_findings)) = self.deep(&assets, &physics)? {
+            analysis::deep::mark_simulated(&mut physics, &section);
+            physics.deep = Some(section);
+            findings.extend(deep_findings);
+            clock.lap("deep");
+        }
+        Ok(Some(physics))
+    }
+
+    /// The MuJoCo pass, when it runs (`--deep`, or by itself on a robot that tips over).
+    fn deep(
+        &self,
+        assets: &Assets,
+        physics: &analysis::Physics,
+    ) -> Result<Option<(analysis::deep::DeepSection, Vec<diagnostics::Finding>)>, LoadError> {
+        let (loaded, model, options) = (self.loaded, self.model, self.options);
+        // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
+        if model.up != model::UpAxis::default() {
+            if options.deep.requested {
+                return Err(usage(
+                    loaded,
+                    format!(
+                        "--deep with --up-axis {}: the MuJoCo pass loads the file z-up and cannot turn it yet",
+                        model.up.as_str()
+                    ),
+                ));
+            }
+            return Ok(None);
+        }
+        let mjcf_on_disk = mjcf_on_disk(loaded, options);
+        Ok(analysis::deep::run(&analysis::deep::DeepInput {
+            source: deep_source(loaded, &mjcf_on_disk),
+            robot: self.robot,
+            model,
+            assets,
+            physics,
+            payload: payload(model, options),
+            contact_links: options.overrides.contact_links.as_deref(),
+            options: &options.deep,
+            progress: options.progress.as_ref(),
+        }))
+    }
+}
+
+/// A failure of the run that is the input's or the options' (a bad override, a missing `--srdf`).
+fn usage(loaded: &Loaded, message: String) -> LoadError {
+    LoadError::Usage {
+        path: loaded.path.clone(),
+        message,
+    }
+}
+
 /// [`LoadError::DidNotFinish`] once a watchdog has cancelled the run (`--timeout`): nobody waits for its
 /// answer any more, so the stages left would only hold threads other files need.
 fn give_up_if_cancelled(options: &Options, path: &Path) -> Result<(), LoadError> {
@@ -352,14 +384,10 @@ fn parse_sdf(
     loaded: &Loaded,
     options: &Options,
 ) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
-    let files = loaded.sdf().ok_or_else(|| LoadError::Usage {
-        path: loaded.path.clone(),
-        message: "not an SDFormat file".to_string(),
-    })?;
-    sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| LoadError::Usage {
-        path: loaded.path.clone(),
-        message,
-    })
+    let files = loaded
+        .sdf()
+        .ok_or_else(|| usage(loaded, "not an SDFormat file".to_string()))?;
+    sdf::parse_sdf(files, options.sdf_model.as_deref()).map_err(|message| usage(loaded, message))
 }
 
 /// `--payload-mass` at the link statics carries it at.

@@ -167,8 +167,8 @@ fn message(finding: &FindingReport) -> String {
 /// docs/rules.md this program was built from, when it is still there (none otherwise).
 pub fn rule_link(code: &str) -> Option<CodeDescription> {
     let rule = rules::find(code)?;
-    let anchor = urdf_validator::render::sarif::rule_anchor(rule);
-    let page = match crate::rules_url() {
+    let anchor = rule.anchor();
+    let page = match rules::reference_url() {
         Some(url) => Url::parse(&url).ok()?,
         None => {
             let local = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/rules.md");

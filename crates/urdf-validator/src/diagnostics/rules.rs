@@ -23,6 +23,23 @@ pub struct Rule {
     pub fix: &'static str,
 }
 
+impl Rule {
+    /// The anchor of its entry in `docs/rules.md`, as GitHub renders its `## U205 `name`` heading:
+    /// `u205-inertia-not-positive-definite`.
+    pub fn anchor(&self) -> String {
+        format!("{}-{}", self.code.to_ascii_lowercase(), self.name)
+    }
+}
+
+/// The rules reference on the web: `docs/rules.md` of the repository the package metadata names
+/// (`repository` in Cargo.toml); none when it names none.
+pub fn reference_url() -> Option<String> {
+    option_env!("CARGO_PKG_REPOSITORY")
+        .map(|url| url.trim_end_matches('/'))
+        .filter(|url| !url.is_empty())
+        .map(|url| format!("{url}/blob/main/docs/rules.md"))
+}
+
 macro_rules! rules {
     ($($ident:ident = $code:literal $name:literal $sev:ident {
         $(section: $section:ident,)? what: $what:literal, why: $why:literal, fix: $fix:literal $(,)?

@@ -29,12 +29,6 @@ pub fn level(severity: Severity) -> &'static str {
     }
 }
 
-/// The anchor of a rule's entry in `docs/rules.md`, as GitHub renders its `## U205 `name`` heading:
-/// `u205-inertia-not-positive-definite`.
-pub fn rule_anchor(rule: &Rule) -> String {
-    format!("{}-{}", rule.code.to_ascii_lowercase(), rule.name)
-}
-
 /// The SARIF log of one run over every validation, pretty-printed with a final newline.
 pub fn render_sarif(
     validations: &[&Validation],
@@ -182,10 +176,7 @@ fn rule_descriptor(rule: &Rule, rules_url: Option<&str>) -> Value {
         }),
     );
     if let Some(url) = rules_url {
-        descriptor.insert(
-            "helpUri".into(),
-            json!(format!("{url}#{}", rule_anchor(rule))),
-        );
+        descriptor.insert("helpUri".into(), json!(format!("{url}#{}", rule.anchor())));
     }
     descriptor.insert(
         "defaultConfiguration".into(),
@@ -286,7 +277,7 @@ mod tests {
                 .filter(|c| c.is_alphanumeric() || *c == '-' || *c == ' ')
                 .map(|c| if c == ' ' { '-' } else { c })
                 .collect();
-            assert_eq!(rule_anchor(rule), slug);
+            assert_eq!(rule.anchor(), slug);
         }
     }
 }
