@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use urdf_validate_session::options::mesh_cache;
-use urdf_validate_session::{Batch, Request, Session};
+use urdf_validate_session::{tasks, Batch, Request, Session};
 use urdf_validator::input::LoadError;
 use urdf_validator::render::render_json;
-use urdf_validator::task_query::{self, TaskQueryRequest};
+use urdf_validator::task_query::TaskQueryRequest;
 use urdf_validator::Validation;
 
 /// The JSON report of `validation`, or for a file that could not be validated a document with its
@@ -128,14 +128,15 @@ fn validate_string(
 }
 
 /// The task-query API: `requests_json` is a JSON list of requests (the spec's field names); returns the
-/// JSON list of responses, in order, computed in parallel.
+/// JSON list of responses, in order, computed in parallel (each robot with its own configuration file).
 #[pyfunction]
 fn run_pick_sweep(py: Python<'_>, requests_json: String, options: String) -> PyResult<String> {
     py.detach(|| {
-        let requests: Vec<TaskQueryRequest> = serde_json::from_str(&requests_json)
+        let queries: Vec<TaskQueryRequest> = serde_json::from_str(&requests_json)
             .map_err(|e| PyValueError::new_err(format!("task requests: {e}")))?;
-        let session = session(&options, None)?;
-        let responses = task_query::run_pick_sweep(&requests, session.options());
+        let request = request(&options)?;
+        let responses = tasks::pick_sweep(&request, &queries, &mesh_cache(request.no_cache))
+            .map_err(PyValueError::new_err)?;
         serde_json::to_string(&responses).map_err(|e| PyValueError::new_err(e.to_string()))
     })
 }

@@ -12,6 +12,7 @@ pub mod discovery;
 pub mod options;
 pub mod request;
 mod session;
+pub mod tasks;
 pub mod watchdog;
 
 pub use request::Request;

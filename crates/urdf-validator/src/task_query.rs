@@ -21,7 +21,6 @@
 
 use std::path::PathBuf;
 
-use rayon::prelude::*;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -168,15 +167,6 @@ pub fn run_pick_task(request: &TaskQueryRequest, base: &Options) -> TaskQueryRes
         Err(error) => return TaskQueryResponse::unknown(request, "urdf_load", error.to_string()),
     };
     respond(request, &validation.report)
-}
-
-/// [`run_pick_task`] for every request, in parallel; one response per request, in order (a request that
-/// cannot run gives its own UNKNOWN response and the others still run).
-pub fn run_pick_sweep(requests: &[TaskQueryRequest], base: &Options) -> Vec<TaskQueryResponse> {
-    requests
-        .par_iter()
-        .map(|request| run_pick_task(request, base))
-        .collect()
 }
 
 /// The options of one request.

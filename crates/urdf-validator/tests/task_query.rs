@@ -4,9 +4,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use urdf_validator::task_query::{
-    run_pick_sweep, run_pick_task, TargetOrientation, TaskQueryRequest,
-};
+use urdf_validator::task_query::{run_pick_task, TargetOrientation, TaskQueryRequest};
 use urdf_validator::Options;
 
 fn example() -> PathBuf {
@@ -81,26 +79,6 @@ fn a_heavy_object_fails_payload_strength_naming_the_weakest_joint() {
     let payload = &response.sub_checks[2];
     assert_eq!(payload.status, "FAIL", "{payload:?}");
     assert!(payload.bottleneck.is_some(), "{payload:?}");
-}
-
-#[test]
-fn a_sweep_keeps_order_and_isolates_a_missing_file() {
-    let mut missing = pick([0.5, 0.0, 0.75], None);
-    missing.urdf_path = PathBuf::from("/nonexistent/robot.urdf");
-    let requests = vec![
-        pick([0.5, 0.0, 0.75], None),
-        missing,
-        pick([3.0, 0.0, 0.75], None),
-    ];
-    let responses = run_pick_sweep(&requests, &options());
-    assert_eq!(responses.len(), 3);
-    assert_eq!(responses[0].overall_status, "PASS");
-    assert_eq!(responses[1].overall_status, "UNKNOWN");
-    assert_eq!(responses[1].sub_checks[0].name, "urdf_load");
-    assert!(responses[1].sub_checks[0]
-        .reason
-        .contains("/nonexistent/robot.urdf"));
-    assert_eq!(responses[2].overall_status, "FAIL");
 }
 
 #[test]

@@ -101,8 +101,14 @@ pub(super) struct Flags {
 
 impl Flags {
     /// The command's options for the files near `anchor` (their configuration file applies), under the
-    /// server's policy: the path arguments must be inside its roots, and its sandbox flags are added.
+    /// server's policy ([`Flags::policed_request`]).
     pub(super) fn session(&self, anchor: &Path) -> Result<Session, String> {
+        Session::new(&self.policed_request()?, Some(anchor))
+    }
+
+    /// The arguments as a request under the server's policy: the path arguments must be inside its roots,
+    /// and its sandbox is added.
+    pub(super) fn policed_request(&self) -> Result<Request, String> {
         let policy = Policy::current();
         let paths = [
             ("srdf", self.srdf.as_slice()),
@@ -121,7 +127,7 @@ impl Flags {
         policy.check_timeout(self.timeout)?;
         let mut request = self.request()?;
         policy.apply(&mut request);
-        Session::new(&request, Some(anchor))
+        Ok(request)
     }
 
     /// The arguments as the session's request (named as the flags, with `_`).

@@ -6,8 +6,10 @@ use std::path::{Path, PathBuf};
 
 use rmcp::model::JsonObject;
 use serde_json::{json, Value};
+use urdf_validate_session::options::mesh_cache;
+use urdf_validate_session::tasks;
 use urdf_validator::diagnostics::rules;
-use urdf_validator::task_query::{self, TaskQueryRequest, TaskQueryResponse};
+use urdf_validator::task_query::{TaskQueryRequest, TaskQueryResponse};
 
 use super::arguments::{
     check_names, parse, parse_with, schema, FileInput, FixInput, Flags, RuleName, RunFlags, Sweep,
@@ -143,35 +145,17 @@ pub(super) fn run_pick_sweep(arguments: JsonObject) -> Result<Output, String> {
     Output::json(&json!({ "responses": responses }))
 }
 
-/// The answers to `requests`, in order. The requests on one robot share their options (its
-/// configuration file and the flags) and run in parallel.
+/// The responses to `requests`, in order: each robot's file must be inside the server's roots; each is
+/// validated with its configuration file (the session crate's task sweep).
 pub(super) fn pick_responses(
     requests: Vec<TaskQueryRequest>,
     flags: Flags,
 ) -> Result<Vec<TaskQueryResponse>, String> {
-    let mut robots: Vec<(PathBuf, Vec<usize>)> = Vec::new();
-    for (i, request) in requests.iter().enumerate() {
-        match robots
-            .iter_mut()
-            .find(|(path, _)| *path == request.urdf_path)
-        {
-            Some((_, indices)) => indices.push(i),
-            None => robots.push((request.urdf_path.clone(), vec![i])),
-        }
+    for request in &requests {
+        Policy::current().check_path("urdf_path", &request.urdf_path)?;
     }
-    let mut responses: Vec<Option<TaskQueryResponse>> = vec![None; requests.len()];
-    for (path, indices) in robots {
-        Policy::current().check_path("urdf_path", &path)?;
-        let session = flags.session(&path)?;
-        let batch: Vec<TaskQueryRequest> = indices.iter().map(|&i| requests[i].clone()).collect();
-        for (i, response) in indices
-            .into_iter()
-            .zip(task_query::run_pick_sweep(&batch, session.options()))
-        {
-            responses[i] = Some(response);
-        }
-    }
-    Ok(responses.into_iter().flatten().collect())
+    let request = flags.policed_request()?;
+    tasks::pick_sweep(&request, &requests, &mesh_cache(request.no_cache))
 }
 
 pub(super) fn list_rules(_arguments: JsonObject) -> Result<Output, String> {
