@@ -5,10 +5,10 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use urdf_validate_session::Session;
-use urdf_validator::input::LoadError;
+
 use urdf_validator::render::{render_html, render_json, render_junit, render_sarif, FormatOptions};
 use urdf_validator::report::Status;
-use urdf_validator::Validation;
+use urdf_validator::{Error, Validation};
 
 use crate::args::Format;
 
@@ -17,7 +17,7 @@ pub struct Outcome {
     /// The input.
     pub file: PathBuf,
     /// The validation, or why the file could not be loaded.
-    pub validation: Result<Validation, LoadError>,
+    pub validation: Result<Validation, Error>,
     /// Where the JSON report was written.
     pub written: Option<String>,
     /// The other report files written (SARIF, JUnit, HTML).

@@ -13,12 +13,12 @@ use urdf_validate_session::{tasks, Batch, Request, Session};
 use urdf_validator::input::LoadError;
 use urdf_validator::render::render_json;
 use urdf_validator::task_query::TaskQueryRequest;
-use urdf_validator::Validation;
+use urdf_validator::{Error, Validation};
 
 /// The JSON report of `validation`, or for a file that could not be validated a document with its
 /// path, `overall_status` UNKNOWN, `error` (the message the command prints) and `error_location`
 /// (`file`, `line`, `column`, `message`; line and column when the error has a position).
-fn report_json(path: &Path, validation: Result<Validation, LoadError>) -> String {
+fn report_json(path: &Path, validation: Result<Validation, Error>) -> String {
     match validation {
         Ok(validation) => render_json(&validation.report),
         Err(error) => {
@@ -35,25 +35,25 @@ fn report_json(path: &Path, validation: Result<Validation, LoadError>) -> String
 }
 
 /// Where a load error points: the file, line and column when known, and the message without them.
-fn location(path: &Path, error: &LoadError) -> (String, Option<u32>, Option<u32>, String) {
+fn location(path: &Path, error: &Error) -> (String, Option<u32>, Option<u32>, String) {
     let file = path.display().to_string();
     match error {
-        LoadError::Xml {
+        Error::Load(LoadError::Xml {
             path,
             line,
             column,
             message,
-        } => (
+        }) => (
             path.display().to_string(),
             Some(*line),
             Some(*column),
             format!("not well-formed XML: {message}"),
         ),
-        LoadError::Xacro {
+        Error::Load(LoadError::Xacro {
             message,
             location: Some(at),
             ..
-        } => {
+        }) => {
             // The message without its `file:line:col: ` prefix.
             let prefix = format!("{}:{}:{}: ", at.path.display(), at.line, at.col);
             let detail = message

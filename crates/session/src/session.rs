@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use urdf_validator::input::mesh::MeshCache;
-use urdf_validator::input::LoadError;
+use urdf_validator::Error;
 use urdf_validator::{Options, Validation};
 
 use crate::options::{mesh_cache, options_for, timeout_of};
@@ -65,7 +65,7 @@ impl Session {
     }
 
     /// Validate one file (within `--timeout`).
-    pub fn validate(&self, path: &Path) -> Result<Validation, LoadError> {
+    pub fn validate(&self, path: &Path) -> Result<Validation, Error> {
         crate::watchdog::validate_within(
             path,
             &self.options,
@@ -76,7 +76,7 @@ impl Session {
 
     /// Validate URDF `text`, as if read from `path` (relative meshes and the report's name use it), within
     /// `--timeout`.
-    pub fn validate_text(&self, text: String, path: &Path) -> Result<Validation, LoadError> {
+    pub fn validate_text(&self, text: String, path: &Path) -> Result<Validation, Error> {
         crate::watchdog::validate_within(path, &self.options, self.timeout, move |path, options| {
             urdf_validator::validate_text(text, path, options)
         })
@@ -141,7 +141,7 @@ impl Batch {
 
     /// Validate every file in parallel (on threads of their own: [`crate::batch::map_files`]), each with
     /// its session; one result per file, in order.
-    pub fn validate(&self) -> Vec<Result<Validation, LoadError>> {
+    pub fn validate(&self) -> Vec<Result<Validation, Error>> {
         let indexed: Vec<(usize, &PathBuf)> = self.files.iter().enumerate().collect();
         crate::batch::map_files(&indexed, |(index, file)| {
             self.session(*index).validate(file)

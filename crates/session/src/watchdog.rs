@@ -6,11 +6,11 @@ use std::time::Duration;
 
 use urdf_validator::input::LoadError;
 use urdf_validator::timings::Progress;
-use urdf_validator::{Options, Validation};
+use urdf_validator::{Error, Options, Validation};
 
 /// Validate `file` with `job` ([`urdf_validator::validate`], or [`urdf_validator::validate_text`] for text standing for
 /// `file`), giving up after `timeout` (`None`: no limit). A run that does not finish in time is reported
-/// as [`LoadError::DidNotFinish`], naming the stage it was in, and cancelled: it gives up before its next
+/// as [`Error::DidNotFinish`], naming the stage it was in, and cancelled: it gives up before its next
 /// stage, its sampling at the next chunk, and anything else it still does ends with it or with the process.
 /// The caller waits here, so it must not be a worker of the pool the stages use ([`crate::batch`]).
 pub fn validate_within<F>(
@@ -18,9 +18,9 @@ pub fn validate_within<F>(
     options: &Options,
     timeout: Option<Duration>,
     job: F,
-) -> Result<Validation, LoadError>
+) -> Result<Validation, Error>
 where
-    F: FnOnce(&Path, &Options) -> Result<Validation, LoadError> + Send + 'static,
+    F: FnOnce(&Path, &Options) -> Result<Validation, Error> + Send + 'static,
 {
     let Some(timeout) = timeout else {
         return job(file, options);
@@ -38,16 +38,16 @@ where
             let _ = done.send(job(&path, &options));
         });
     if let Err(error) = worker {
-        return Err(LoadError::Io {
+        return Err(Error::Load(LoadError::Io {
             path: file.to_path_buf(),
             error,
-        });
+        }));
     }
     result.recv_timeout(timeout).unwrap_or_else(|_| {
         let stage = progress.running();
         // Stop the sampling so the threads it holds go to the next files.
         progress.cancel();
-        Err(LoadError::DidNotFinish {
+        Err(Error::DidNotFinish {
             path: file.to_path_buf(),
             seconds: timeout.as_secs_f64(),
             stage,

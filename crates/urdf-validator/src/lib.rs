@@ -19,7 +19,7 @@
 //! let options = urdf_validator::Options::default();
 //! let validation = urdf_validator::validate(std::path::Path::new("robot.urdf"), &options)?;
 //! println!("{}", validation.report.overall_status.label());
-//! # Ok::<(), urdf_validator::input::LoadError>(())
+//! # Ok::<(), urdf_validator::Error>(())
 //! ```
 
 pub mod analysis;
@@ -95,6 +95,42 @@ pub struct Options {
     pub structure_only: bool,
 }
 
+/// Why a file gave no report (exit code 2, one line naming the file).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The file could not be loaded (read, expanded, parsed as XML).
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// The options ask of this robot what it cannot give (an unknown link, a missing SRDF, a bad pose).
+    #[error("{}: {source}", path.display())]
+    Request {
+        /// The file.
+        path: PathBuf,
+        /// What does not fit.
+        #[source]
+        source: analysis::RequestError,
+    },
+    /// The options do not fit this file: an `--override` of a value it does not declare, an SDFormat
+    /// world without the `--model` asked for, `--deep` with a turned up axis.
+    #[error("{}: {message}", path.display())]
+    Unusable {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, with suggestions.
+        message: String,
+    },
+    /// The validation did not finish in the time allowed (`--timeout`).
+    #[error("{}: analysis did not finish within {seconds} s (stage running: {stage}); the rest of the run goes on (raise --timeout, or 0 for none)", path.display())]
+    DidNotFinish {
+        /// The file.
+        path: PathBuf,
+        /// The time allowed.
+        seconds: f64,
+        /// The phase that was running.
+        stage: &'static str,
+    },
+}
+
 /// The result of validating one file: the report plus what renderers need to show source snippets.
 #[derive(Debug)]
 pub struct Validation {
@@ -115,12 +151,12 @@ impl Validation {
 }
 
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
-pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError> {
+pub fn validate(path: &Path, options: &Options) -> Result<Validation, Error> {
     let mut clock = Stopwatch::reporting_to(options.progress.clone());
     let sandbox = options.sandbox.for_input(path);
     sandbox
         .check_file(path)
-        .map_err(|refusal| LoadError::Usage {
+        .map_err(|refusal| LoadError::Refused {
             path: path.to_path_buf(),
             message: format!("refused to read: {refusal}"),
         })?;
@@ -133,11 +169,7 @@ pub fn validate(path: &Path, options: &Options) -> Result<Validation, LoadError>
 /// Validate URDF or SDFormat `text` that was read from `path` (used for positions, relative meshes and
 /// includes, and the report). SDFormat is told by its `<sdf>` root, as [`validate`] tells it. In untrusted
 /// mode only the sandbox's own roots are readable (`path`'s folder is not added: the text is not from there).
-pub fn validate_text(
-    text: String,
-    path: &Path,
-    options: &Options,
-) -> Result<Validation, LoadError> {
+pub fn validate_text(text: String, path: &Path, options: &Options) -> Result<Validation, Error> {
     let clock = Stopwatch::reporting_to(options.progress.clone());
     let resolver = options.resolver.with_sandbox(options.sandbox.clone());
     run(
@@ -151,11 +183,7 @@ pub fn validate_text(
 /// Validate `text`, the unsaved content of the file at `path` (an editor's buffer): expanded first when
 /// `path` is a xacro file (its includes read from disk), else URDF or SDFormat as [`validate`] tells them.
 /// The file's sandbox applies, as for [`validate`]; positions are in `path` and the files it includes.
-pub fn validate_unsaved(
-    text: String,
-    path: &Path,
-    options: &Options,
-) -> Result<Validation, LoadError> {
+pub fn validate_unsaved(text: String, path: &Path, options: &Options) -> Result<Validation, Error> {
     let clock = Stopwatch::reporting_to(options.progress.clone());
     let resolver = options
         .resolver
@@ -201,7 +229,7 @@ fn run(
     options: &Options,
     resolver: &PackageResolver,
     mut clock: Stopwatch,
-) -> Result<Validation, LoadError> {
+) -> Result<Validation, Error> {
     // A URDF's XML document is read once: the parse reads the robot from it, the report element paths.
     let urdf_text =
         (loaded.format() == input::Format::Urdf).then(|| urdf::parse::UrdfText::new(loaded.text()));
@@ -291,7 +319,7 @@ impl RobotRun<'_> {
         resolver: &PackageResolver,
         findings: &mut Vec<diagnostics::Finding>,
         clock: &mut Stopwatch,
-    ) -> Result<Option<analysis::Physics>, LoadError> {
+    ) -> Result<Option<analysis::Physics>, Error> {
         let (loaded, robot, model, options) = (self.loaded, self.robot, self.model, self.options);
         give_up_if_cancelled(options, &loaded.path)?;
         let assets = Assets::load(robot, &asset_source(&loaded.path, options, resolver));
@@ -310,8 +338,11 @@ impl RobotRun<'_> {
             ..options.workspace.clone()
         };
         let inputs = analysis_inputs(&assets, options, &workspace);
-        let mut physics = analysis::analyse(robot, model, &inputs, clock)
-            .map_err(|message| usage(loaded, message))?;
+        let mut physics =
+            analysis::analyse(robot, model, &inputs, clock).map_err(|source| Error::Request {
+                path: loaded.path.clone(),
+                source,
+            })?;
         findings.extend(physics.findings.iter().cloned());
         give_up_if_cancelled(options, &loaded.path)?;
         if let Some((section, deep_findings)) = self.deep(&assets, &physics)? {
@@ -328,7 +359,7 @@ impl RobotRun<'_> {
         &self,
         assets: &Assets,
         physics: &analysis::Physics,
-    ) -> Result<Option<(analysis::deep::DeepSection, Vec<diagnostics::Finding>)>, LoadError> {
+    ) -> Result<Option<(analysis::deep::DeepSection, Vec<diagnostics::Finding>)>, Error> {
         let (loaded, model, options) = (self.loaded, self.model, self.options);
         // MuJoCo loads the file z-up: with another declared up axis its pass would judge another robot.
         if model.up != model::UpAxis::default() {
@@ -358,19 +389,19 @@ impl RobotRun<'_> {
     }
 }
 
-/// A failure of the run that is the input's or the options' (a bad override, a missing `--srdf`).
-fn usage(loaded: &Loaded, message: String) -> LoadError {
-    LoadError::Usage {
+/// The options do not fit this file.
+fn usage(loaded: &Loaded, message: String) -> Error {
+    Error::Unusable {
         path: loaded.path.clone(),
         message,
     }
 }
 
-/// [`LoadError::DidNotFinish`] once a watchdog has cancelled the run (`--timeout`): nobody waits for its
+/// [`Error::DidNotFinish`] once a watchdog has cancelled the run (`--timeout`): nobody waits for its
 /// answer any more, so the stages left would only hold threads other files need.
-fn give_up_if_cancelled(options: &Options, path: &Path) -> Result<(), LoadError> {
+fn give_up_if_cancelled(options: &Options, path: &Path) -> Result<(), Error> {
     match &options.progress {
-        Some(progress) if progress.is_cancelled() => Err(LoadError::DidNotFinish {
+        Some(progress) if progress.is_cancelled() => Err(Error::DidNotFinish {
             path: path.to_path_buf(),
             seconds: progress.time_limit_seconds(),
             stage: progress.running(),
@@ -383,7 +414,7 @@ fn give_up_if_cancelled(options: &Options, path: &Path) -> Result<(), LoadError>
 fn parse_sdf(
     loaded: &Loaded,
     options: &Options,
-) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), LoadError> {
+) -> Result<(urdf::Robot, Vec<diagnostics::Finding>), Error> {
     let files = loaded
         .sdf()
         .ok_or_else(|| usage(loaded, "not an SDFormat file".to_string()))?;

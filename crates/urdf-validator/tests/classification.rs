@@ -791,7 +791,7 @@ fn a_y_up_quadruped_is_a_quadruped_with_a_warning_and_up_axis_y_stands_it_up() {
         &declared,
     );
     assert!(
-        matches!(&refused, Err(urdf_validator::input::LoadError::Usage { message, .. }) if message.contains("--deep with --up-axis +y")),
+        matches!(&refused, Err(urdf_validator::Error::Unusable { message, .. }) if message.contains("--deep with --up-axis +y")),
         "{refused:?}"
     );
 }

@@ -15,6 +15,7 @@ use urdf_validator::diagnostics::rules;
 use urdf_validator::diagnostics::Section;
 use urdf_validator::input::LoadError;
 use urdf_validator::report::{ConfidenceLevel, FindingReport, Report, Status};
+use urdf_validator::Error;
 use urdf_validator::{validate, validate_text, Options, Validation};
 
 // -------------------------------------------------------------------------------------------------
@@ -178,7 +179,7 @@ fn assert_xml_load_error(input: &str) {
         ),
     };
     let shown = error.to_string();
-    let LoadError::Xml { line, column, .. } = &error else {
+    let Error::Load(LoadError::Xml { line, column, .. }) = &error else {
         panic!("{input:?}: expected LoadError::Xml, got {error:?}");
     };
     assert!(*line >= 1 && *column >= 1, "{input:?}: {shown}");
@@ -2051,7 +2052,7 @@ fn an_error_on_a_later_line_reports_that_line() {
         &Options::default(),
     )
     .expect_err("mismatched tags");
-    let LoadError::Xml { line, .. } = error else {
+    let Error::Load(LoadError::Xml { line, .. }) = error else {
         panic!("{error:?}")
     };
     assert_eq!(line, 3, "{error}");
@@ -2144,12 +2145,18 @@ fn files_that_cannot_be_read_are_load_errors() {
     let binary = dir.path().join("t.urdf");
     fs::write(&binary, [0xff, 0xfe, 0x00, 0x3c, 0x80, 0x81]).unwrap();
     let error = validate(&binary, &Options::default()).expect_err("not UTF-8");
-    assert!(matches!(error, LoadError::NotUtf8 { .. }), "{error:?}");
+    assert!(
+        matches!(error, Error::Load(LoadError::NotUtf8 { .. })),
+        "{error:?}"
+    );
     assert!(error.to_string().contains("t.urdf:"), "{error}");
 
     let absent = dir.path().join("absent.urdf");
     let error = validate(&absent, &Options::default()).expect_err("missing file");
-    assert!(matches!(error, LoadError::Io { .. }), "{error:?}");
+    assert!(
+        matches!(error, Error::Load(LoadError::Io { .. })),
+        "{error:?}"
+    );
     assert!(error.to_string().contains("absent.urdf:"), "{error}");
 }
 

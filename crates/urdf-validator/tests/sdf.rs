@@ -10,6 +10,7 @@ use urdf_validator::input::resolve::PackageResolver;
 use urdf_validator::input::{LoadError, Loaded};
 use urdf_validator::report::FindingReport;
 use urdf_validator::urdf::robot::{JointKind, Robot};
+use urdf_validator::Error;
 use urdf_validator::{validate, validate_text, Options, Validation};
 
 fn data() -> PathBuf {
@@ -254,7 +255,7 @@ fn bad_input_is_a_finding_at_its_line() {
         "<sdf version=\"1.9\">\n<model name=\"m\">\n<link name=\"l\">\n</model></sdf>",
     );
     match validate(&broken, &options(Vec::new())) {
-        Err(LoadError::Xml { line, .. }) => assert_eq!(line, 4),
+        Err(Error::Load(LoadError::Xml { line, .. })) => assert_eq!(line, 4),
         other => panic!("{other:?}"),
     }
 }
@@ -441,7 +442,7 @@ fn a_world_analyses_its_robot_and_names_the_models_left_out() {
         .contains("left out: 'robot'"));
     chosen.sdf_model = Some("robott".to_string());
     match validate(&world, &chosen) {
-        Err(LoadError::Usage { message, .. }) => {
+        Err(Error::Unusable { message, .. }) => {
             assert!(
                 message.contains("'ground', 'robot'") && message.contains("did you mean 'robot'"),
                 "{message}"

@@ -8,6 +8,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use urdf_validator::input::LoadError;
+use urdf_validator::Error;
 use urdf_validator::{validate, Options};
 
 /// A fresh directory under the target dir for one test's files.
@@ -137,7 +138,7 @@ fn xacro_errors_are_load_errors_with_their_location() {
     )
     .unwrap();
     let error = validate(&robot, &Options::default()).expect_err("undefined property");
-    assert!(matches!(error, LoadError::Xacro { .. }));
+    assert!(matches!(error, Error::Load(LoadError::Xacro { .. })));
     let message = error.to_string();
     assert!(message.contains("typo.urdf.xacro:3:"), "{message}");
     assert!(message.contains("wheel_radius"), "{message}");
@@ -176,7 +177,10 @@ fn expressions_cannot_run_code() {
         )
         .unwrap();
         let error = validate(&robot, &Options::default()).expect_err(&expression);
-        assert!(matches!(error, LoadError::Xacro { .. }), "{expression}");
+        assert!(
+            matches!(error, Error::Load(LoadError::Xacro { .. })),
+            "{expression}"
+        );
         assert!(!marker.exists(), "{expression} ran");
     }
 }

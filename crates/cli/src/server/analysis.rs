@@ -11,9 +11,9 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Sender;
 use lsp_types::Url;
-use urdf_validator::input::LoadError;
+
 use urdf_validator::timings::Progress;
-use urdf_validator::{Options, Validation};
+use urdf_validator::{Error, Options, Validation};
 
 /// Which pass of a run an outcome is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,7 +37,7 @@ pub struct Outcome {
     /// The pass.
     pub pass: Pass,
     /// The validation, or why there is none.
-    pub result: Result<Validation, LoadError>,
+    pub result: Result<Validation, Error>,
     /// How long the pass took.
     pub elapsed: Duration,
 }

@@ -14,7 +14,7 @@ use urdf_validator::diagnostics::rules;
 use urdf_validator::diagnostics::Severity;
 use urdf_validator::input::LoadError;
 use urdf_validator::report::FindingReport;
-use urdf_validator::Validation;
+use urdf_validator::{Error, Validation};
 
 use super::positions::LineIndex;
 
@@ -111,17 +111,17 @@ pub fn of_validation(
 
 /// The diagnostic of a file that could not be validated: at the place the reader stopped (in the file it
 /// names), else at the start of `root`.
-pub fn of_error(root: &Url, error: &LoadError, text: &str) -> (Url, Diagnostic) {
+pub fn of_error(root: &Url, error: &Error, text: &str) -> (Url, Diagnostic) {
     let (uri, range) = match error {
-        LoadError::Xml { line, column, .. } => {
+        Error::Load(LoadError::Xml { line, column, .. }) => {
             let index = LineIndex::new(text);
             let at = index.position_of_line_column(text, *line, *column);
             (root.clone(), Range::new(at, at))
         }
-        LoadError::Xacro {
+        Error::Load(LoadError::Xacro {
             location: Some(location),
             ..
-        } => {
+        }) => {
             let uri = Url::from_file_path(&location.path).unwrap_or_else(|_| root.clone());
             let at = if uri == *root {
                 let index = LineIndex::new(text);

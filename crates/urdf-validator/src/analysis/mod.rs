@@ -89,32 +89,79 @@ pub struct Physics {
     pub deep: Option<deep::DeepSection>,
 }
 
-fn link_id(model: &Model, flag: &str, name: &str) -> Result<LinkId, String> {
-    model.link(name).ok_or_else(|| {
-        format!(
-            "{flag}: unknown link '{name}' ({})",
-            did_you_mean(name, model.link_names())
-        )
+/// What the run's options ask of a robot that it cannot give (an unknown link, a missing SRDF, a pose
+/// that does not fit): the run stops with it, before any section is computed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RequestError {
+    /// A flag names a link the robot does not have.
+    #[error("{flag}: unknown link '{name}' ({suggestion})")]
+    UnknownLink {
+        /// The flag (`--arm-root`, `--contact-links`, ...).
+        flag: &'static str,
+        /// The name given.
+        name: String,
+        /// `did you mean ...`.
+        suggestion: String,
+    },
+    /// `--arm-root` and `--arm-tip` name one link.
+    #[error(
+        "--arm-root and --arm-tip both name '{0}' (expected the arm's base and its end effector)"
+    )]
+    SameArmLinks(String),
+    /// The tip is not below the root.
+    #[error("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")]
+    TipNotBelowRoot {
+        /// `--arm-root`.
+        root: String,
+        /// `--arm-tip`.
+        tip: String,
+    },
+    /// No joint moves between root and tip.
+    #[error("no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)")]
+    NoActuatedJoint {
+        /// `--arm-root`.
+        root: String,
+        /// `--arm-tip`.
+        tip: String,
+    },
+    /// The explicit `--srdf` does not exist.
+    #[error("--srdf {}: no such file", .0.display())]
+    MissingSrdf(std::path::PathBuf),
+    /// The pose asked for (`--pose`, `--joint-angles`, `--state`) does not fit the robot.
+    #[error("{0}")]
+    Pose(String),
+    /// `--payload-mass` is not a mass.
+    #[error("--payload-mass {0}: expected a mass ≥ 0 in kg")]
+    PayloadMass(f64),
+}
+
+fn link_id(model: &Model, flag: &'static str, name: &str) -> Result<LinkId, RequestError> {
+    model.link(name).ok_or_else(|| RequestError::UnknownLink {
+        flag,
+        name: name.to_string(),
+        suggestion: did_you_mean(name, model.link_names()),
     })
 }
 
 /// One arm declared with `--arm-root`/`--arm-tip`: existing links, the tip below the root, an actuated
 /// joint between them.
-fn declared_arm(robot: &Robot, model: &Model, root: &str, tip: &str) -> Result<Arm, String> {
+fn declared_arm(robot: &Robot, model: &Model, root: &str, tip: &str) -> Result<Arm, RequestError> {
     let root_id = link_id(model, "--arm-root", root)?;
     let tip_id = link_id(model, "--arm-tip", tip)?;
     if root_id == tip_id {
-        return Err(format!(
-            "--arm-root and --arm-tip both name '{root}' (expected the arm's base and its end effector)"
-        ));
+        return Err(RequestError::SameArmLinks(root.to_string()));
     }
     let arm = arms::declared(robot, model, root_id, tip_id).ok_or_else(|| {
-        format!("--arm-tip '{tip}' is not below --arm-root '{root}' in the kinematic tree")
+        RequestError::TipNotBelowRoot {
+            root: root.to_string(),
+            tip: tip.to_string(),
+        }
     })?;
     if arm.first_joint(model).is_none() {
-        return Err(format!(
-            "no actuated joint between --arm-root '{root}' and --arm-tip '{tip}' (expected an arm that moves)"
-        ));
+        return Err(RequestError::NoActuatedJoint {
+            root: root.to_string(),
+            tip: tip.to_string(),
+        });
     }
     Ok(arm)
 }
@@ -137,7 +184,7 @@ pub fn analyse(
     model: &Model,
     inputs: &Inputs,
     clock: &mut Stopwatch,
-) -> Result<Physics, String> {
+) -> Result<Physics, RequestError> {
     let Inputs {
         assets,
         statics: statics_options,
@@ -153,13 +200,13 @@ pub fn analyse(
         .as_deref()
         .filter(|_| assets.srdf.is_none() && assets.srdf_refused.is_none())
     {
-        return Err(format!("--srdf {}: no such file", path.display()));
+        return Err(RequestError::MissingSrdf(path.to_path_buf()));
     }
     let declared = overrides
         .arms
         .iter()
         .map(|(root, tip)| declared_arm(robot, model, root, tip))
-        .collect::<Result<Vec<Arm>, String>>()?;
+        .collect::<Result<Vec<Arm>, RequestError>>()?;
     let declared_contacts = match &overrides.contact_links {
         Some(names) => Some(
             names
@@ -177,7 +224,8 @@ pub fn analyse(
     clock.lap("statics");
     let (symmetry, symmetry_findings) = symmetry::analyse(robot, model);
 
-    let reference = pose::resolve(robot, model, None, &PoseOptions::default())?;
+    let reference =
+        pose::resolve(robot, model, None, &PoseOptions::default()).map_err(RequestError::Pose)?;
     let mut data = Data::new(model);
     forward_kinematics(model, &reference.q, &mut data);
     let mut classification = classify(robot, model, &data, supports);
@@ -310,7 +358,7 @@ pub fn analyse(
     let collision = if !has_collisions || robot.links.len() > MAX_COLLISION_LINKS {
         None
     } else {
-        let (setup, setup_findings) = collision_setup(robot, model, &reference_data, inputs)?;
+        let (setup, setup_findings) = collision_setup(robot, model, &reference_data, inputs);
         findings.extend(setup_findings);
         Some(setup)
     };
@@ -362,7 +410,7 @@ fn collision_setup(
     model: &Model,
     data: &Data,
     inputs: &Inputs,
-) -> Result<(CollisionSetup, Vec<Finding>), String> {
+) -> (CollisionSetup, Vec<Finding>) {
     let mut findings = Vec::new();
     let srdf_problem = |message: String| Finding::new(&rules::SRDF_PROBLEM, None, message);
     let file = inputs.assets.srdf.as_ref();
@@ -409,7 +457,7 @@ fn collision_setup(
             },
         )));
     }
-    Ok((setup, findings))
+    (setup, findings)
 }
 
 /// One U601 finding per link pair in contact at the reference (clamped zero) pose, at the second link's

@@ -69,23 +69,13 @@ pub enum LoadError {
         /// Where the expander found the problem, when it knows.
         location: Option<::xacro::Location>,
     },
-    /// The options do not fit this robot (an unknown joint or link name, an unreadable SRDF).
+    /// The sandbox refused to read the file (`--untrusted`: outside the roots, not a regular file).
     #[error("{}: {message}", path.display())]
-    Usage {
+    Refused {
         /// The file.
         path: PathBuf,
-        /// What is wrong, with suggestions.
+        /// Why, as the sandbox says.
         message: String,
-    },
-    /// The validation did not finish in the time allowed (`--timeout`).
-    #[error("{}: analysis did not finish within {seconds} s (stage running: {stage}); the rest of the run goes on (raise --timeout, or 0 for none)", path.display())]
-    DidNotFinish {
-        /// The file.
-        path: PathBuf,
-        /// The time allowed.
-        seconds: f64,
-        /// The phase that was running.
-        stage: &'static str,
     },
     /// The text is not well-formed XML.
     #[error("{}:{line}:{column}: not well-formed XML: {message} (expected a URDF XML document)", path.display())]

@@ -48,20 +48,24 @@ pub fn analyse(
     model: &Model,
     srdf: Option<&Srdf>,
     options: &StaticsOptions,
-) -> Result<StaticsOutcome, String> {
-    let resolved = pose::resolve(robot, model, srdf, &options.pose)?;
+) -> Result<StaticsOutcome, super::RequestError> {
+    let resolved =
+        pose::resolve(robot, model, srdf, &options.pose).map_err(super::RequestError::Pose)?;
     let payload_link = match &options.payload_link {
-        Some(name) => Some(model.link(name).ok_or_else(|| {
-            format!(
-                "--payload-link: unknown link '{name}' ({})",
-                did_you_mean(name, model.link_names())
-            )
-        })?),
+        Some(name) => Some(
+            model
+                .link(name)
+                .ok_or_else(|| super::RequestError::UnknownLink {
+                    flag: "--payload-link",
+                    name: name.clone(),
+                    suggestion: did_you_mean(name, model.link_names()),
+                })?,
+        ),
         None => gravity::default_payload_link(model),
     };
     if let Some(mass) = options.payload_mass {
         if !(mass.is_finite() && mass >= 0.0) {
-            return Err(format!("--payload-mass {mass}: expected a mass ≥ 0 in kg"));
+            return Err(super::RequestError::PayloadMass(mass));
         }
     }
     let payload = options
