@@ -8,6 +8,10 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+use roxmltree::Node;
+
+use crate::diagnostics::finding::Finding;
+use crate::diagnostics::rules::Rule;
 use crate::diagnostics::span::Span;
 use crate::input::resolve::{IncludeFailure, PackageResolver};
 use crate::input::source::SourceText;
@@ -85,6 +89,86 @@ pub enum IncludeTarget {
     Unresolved(String),
     /// The sandbox refused to read it (untrusted mode); why.
     Refused(String),
+}
+
+/// An element and the file holding it: what the MJCF and SDFormat readers walk.
+#[derive(Clone, Copy, Debug)]
+pub struct El<'a> {
+    /// Index of the file in [`XmlFiles`].
+    pub file: usize,
+    /// The element.
+    pub node: Node<'a, 'a>,
+}
+
+impl<'a> El<'a> {
+    /// The tag name.
+    pub fn tag(&self) -> &'a str {
+        self.node.tag_name().name()
+    }
+
+    /// Attribute `name` as written.
+    pub fn attr(&self, name: &str) -> Option<&'a str> {
+        self.node.attribute(name)
+    }
+
+    /// The first child element named `tag`.
+    pub fn child(&self, tag: &str) -> Option<El<'a>> {
+        self.node
+            .children()
+            .find(|n| n.is_element() && n.has_tag_name(tag))
+            .map(|node| El {
+                file: self.file,
+                node,
+            })
+    }
+
+    /// Every child element named `tag`.
+    pub fn children(&self, tag: &'a str) -> impl Iterator<Item = El<'a>> + 'a {
+        let file = self.file;
+        self.node
+            .children()
+            .filter(move |n| n.is_element() && n.has_tag_name(tag))
+            .map(move |node| El { file, node })
+    }
+
+    /// The trimmed text of the element.
+    pub fn text(&self) -> &'a str {
+        self.node.text().unwrap_or("").trim()
+    }
+}
+
+/// Where a reader's findings go, with the files their spans point into (the MJCF and SDFormat readers
+/// build on it).
+pub struct FindingSink<'a> {
+    /// The files.
+    pub files: &'a XmlFiles,
+    /// Findings so far.
+    pub findings: Vec<Finding>,
+}
+
+impl<'a> FindingSink<'a> {
+    /// A sink for findings in `files`.
+    pub fn new(files: &'a XmlFiles) -> Self {
+        FindingSink {
+            files,
+            findings: Vec::new(),
+        }
+    }
+
+    /// The span of an element in the shared span space.
+    pub fn span(&self, el: El<'_>) -> Span {
+        self.files.span(el.file, el.node.range())
+    }
+
+    /// The span of attribute `name`'s value, or the element's when it is not written.
+    pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
+        self.files.attr_span(el.file, el.node, name)
+    }
+
+    /// Record a finding.
+    pub fn report(&mut self, rule: &'static Rule, span: Span, message: String) {
+        self.findings.push(Finding::new(rule, span, message));
+    }
 }
 
 /// The entry file (SDFormat or MJCF) and its includes.

@@ -61,7 +61,7 @@ pub fn parse_mjcf(
         .collect();
     let mut reader = xml::Reader::new(files, &docs);
     let Some(root) = reader.root() else {
-        return (Robot::default(), reader.findings);
+        return (Robot::default(), reader.into_findings());
     };
     let sections = reader.children(root);
     if !sections.iter().any(|s| s.tag() == "worldbody") {
@@ -76,5 +76,5 @@ pub fn parse_mjcf(
     let model_path: &Path = files.path(0);
     let builder = build::Builder::new(&mut reader, &sections, model_path, meshes, resolver);
     let robot = builder.robot(root, &sections);
-    (robot, reader.findings)
+    (robot, reader.into_findings())
 }

@@ -4,52 +4,43 @@
 use roxmltree::{Document, Node};
 
 use crate::diagnostics::finding::Finding;
-use crate::diagnostics::rules::{self, Rule};
-use crate::diagnostics::span::Span;
-use crate::input::xml_files::{IncludeTarget, XmlFiles, MAX_INCLUDE_DEPTH};
+use crate::diagnostics::rules;
+use crate::input::xml_files::{FindingSink, IncludeTarget, XmlFiles, MAX_INCLUDE_DEPTH};
 
 /// Most `<include>`s expanded in one model (a file included twice by a file included twice... is read
 /// once but expanded each time: bounded work on untrusted input).
 const MAX_EXPANSIONS: usize = 10_000;
 
-/// An element and the file holding it.
-#[derive(Clone, Copy, Debug)]
-pub struct El<'a> {
-    /// Index of the file in [`XmlFiles`].
-    pub file: usize,
-    /// The element.
-    pub node: Node<'a, 'a>,
-}
-
-impl<'a> El<'a> {
-    /// The tag name.
-    pub fn tag(&self) -> &'a str {
-        self.node.tag_name().name()
-    }
-
-    /// Attribute `name` as written.
-    pub fn attr(&self, name: &str) -> Option<&'a str> {
-        self.node.attribute(name)
-    }
-}
+pub use crate::input::xml_files::El;
 
 /// The parsed files, and the findings of the reading.
 pub struct Reader<'a> {
-    files: &'a XmlFiles,
+    sink: FindingSink<'a>,
     docs: &'a [Option<Document<'a>>],
     expansions: usize,
-    /// Findings so far.
-    pub findings: Vec<Finding>,
+}
+
+/// A reader is a finding sink (spans, `report`, `findings`) that also walks the files.
+impl<'a> std::ops::Deref for Reader<'a> {
+    type Target = FindingSink<'a>;
+    fn deref(&self) -> &FindingSink<'a> {
+        &self.sink
+    }
+}
+
+impl std::ops::DerefMut for Reader<'_> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.sink
+    }
 }
 
 impl<'a> Reader<'a> {
     /// A reader of `files`, parsed as `docs` (one per file, `None` when it does not parse).
     pub fn new(files: &'a XmlFiles, docs: &'a [Option<Document<'a>>]) -> Self {
         Reader {
-            files,
+            sink: FindingSink::new(files),
             docs,
             expansions: 0,
-            findings: Vec::new(),
         }
     }
 
@@ -63,22 +54,12 @@ impl<'a> Reader<'a> {
 
     /// The files read.
     pub fn files(&self) -> &'a XmlFiles {
-        self.files
+        self.sink.files
     }
 
-    /// The span of an element in the shared span space.
-    pub fn span(&self, el: El<'_>) -> Span {
-        self.files.span(el.file, el.node.range())
-    }
-
-    /// The span of attribute `name`'s value, or the element's when it is not written.
-    pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
-        self.files.attr_span(el.file, el.node, name)
-    }
-
-    /// Record a finding.
-    pub fn report(&mut self, rule: &'static Rule, span: Span, message: String) {
-        self.findings.push(Finding::new(rule, span, message));
+    /// The findings of the reading.
+    pub fn into_findings(self) -> Vec<Finding> {
+        self.sink.findings
     }
 
     /// The child elements of `el`, each `<include>` replaced by the children of the included file's root

@@ -28,10 +28,7 @@ pub fn parse_sdf(files: &XmlFiles, wanted: Option<&str>) -> Result<(Robot, Vec<F
     let docs: Vec<Option<Document>> = (0..files.len())
         .map(|i| Document::parse_with_options(files.text(i), xml_options()).ok())
         .collect();
-    let mut sink = Sink {
-        files,
-        findings: Vec::new(),
-    };
+    let mut sink = Sink::new(files);
     let versions: Vec<Version> = docs
         .iter()
         .enumerate()
@@ -50,7 +47,7 @@ pub fn parse_sdf(files: &XmlFiles, wanted: Option<&str>) -> Result<(Robot, Vec<F
         file: 0,
         node: d.root_element(),
     }) else {
-        return Ok((Robot::default(), sink.findings));
+        return Ok((Robot::default(), sink.into_findings()));
     };
     let mut collector = Collector {
         sink,
@@ -75,14 +72,14 @@ pub fn parse_sdf(files: &XmlFiles, wanted: Option<&str>) -> Result<(Robot, Vec<F
                 span,
                 ..Robot::default()
             };
-            return Ok((robot, collector.sink.findings));
+            return Ok((robot, collector.sink.into_findings()));
         }
     }
     let Collector {
         mut sink, scene, ..
     } = collector;
     let robot = build::robot(&scene, &mut sink);
-    Ok((robot, sink.findings))
+    Ok((robot, sink.into_findings()))
 }
 
 /// `<sdf version>` of a file's root, read as `(major, minor)`; a missing, malformed or unsupported version

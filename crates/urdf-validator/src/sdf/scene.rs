@@ -8,9 +8,9 @@ use roxmltree::{Document, Node};
 
 use super::pose::{self, Transform};
 use crate::diagnostics::finding::Finding;
-use crate::diagnostics::rules::{self, Rule};
+use crate::diagnostics::rules;
 use crate::diagnostics::span::{Span, Spanned};
-use crate::input::xml_files::{IncludeTarget, XmlFiles};
+use crate::input::xml_files::{FindingSink, IncludeTarget, XmlFiles};
 
 /// An SDFormat version, `(major, minor)`.
 pub type Version = (u32, u32);
@@ -25,41 +25,7 @@ const MAX_NESTING: usize = 32;
 /// a thousand times would otherwise be read a million times (untrusted input: bounded work).
 pub const MAX_MODELS: usize = 10_000;
 
-/// An element and the file holding it.
-#[derive(Clone, Copy, Debug)]
-pub struct El<'a> {
-    /// Index of the file in [`XmlFiles`].
-    pub file: usize,
-    /// The element.
-    pub node: Node<'a, 'a>,
-}
-
-impl<'a> El<'a> {
-    /// The first child element named `tag`.
-    pub fn child(&self, tag: &str) -> Option<El<'a>> {
-        self.node
-            .children()
-            .find(|n| n.is_element() && n.has_tag_name(tag))
-            .map(|node| El {
-                file: self.file,
-                node,
-            })
-    }
-
-    /// Every child element named `tag`.
-    pub fn children(&self, tag: &'a str) -> impl Iterator<Item = El<'a>> + 'a {
-        let file = self.file;
-        self.node
-            .children()
-            .filter(move |n| n.is_element() && n.has_tag_name(tag))
-            .map(move |node| El { file, node })
-    }
-
-    /// The trimmed text of the element.
-    pub fn text(&self) -> &'a str {
-        self.node.text().unwrap_or("").trim()
-    }
-}
+pub use crate::input::xml_files::El;
 
 /// A reference to a frame by name, resolved to its scoped name.
 #[derive(Clone, Debug)]
@@ -226,28 +192,36 @@ impl Scope {
     }
 }
 
-/// Where findings go, with the files their spans point into.
+/// Where findings go, with the files their spans point into, and the SDFormat values read on the way.
 pub struct Sink<'a> {
-    /// The files.
-    pub files: &'a XmlFiles,
-    /// Findings so far.
-    pub findings: Vec<Finding>,
+    base: FindingSink<'a>,
+}
+
+/// A sink is a finding sink (spans, `report`, `files`, `findings`) that also reads SDFormat values.
+impl<'a> std::ops::Deref for Sink<'a> {
+    type Target = FindingSink<'a>;
+    fn deref(&self) -> &FindingSink<'a> {
+        &self.base
+    }
+}
+
+impl std::ops::DerefMut for Sink<'_> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.base
+    }
 }
 
 impl<'a> Sink<'a> {
-    /// The span of an element in the shared span space.
-    pub fn span(&self, el: El<'_>) -> Span {
-        self.files.span(el.file, el.node.range())
+    /// A sink for findings in `files`.
+    pub fn new(files: &'a XmlFiles) -> Self {
+        Sink {
+            base: FindingSink::new(files),
+        }
     }
 
-    /// The span of attribute `name` of `el` (its value), or the element's.
-    pub fn attr_span(&self, el: El<'_>, name: &str) -> Span {
-        self.files.attr_span(el.file, el.node, name)
-    }
-
-    /// Record a finding.
-    pub fn report(&mut self, rule: &'static Rule, span: Span, message: String) {
-        self.findings.push(Finding::new(rule, span, message));
+    /// The findings so far.
+    pub fn into_findings(self) -> Vec<Finding> {
+        self.base.findings
     }
 
     /// `value`, or a U029 finding at `el` and `None`.
@@ -689,14 +663,12 @@ impl<'a> Collector<'a> {
             root.child("model")
         };
         let Some(model) = model else {
-            self.sink.report(
-                &rules::SDF_INCLUDE_UNRESOLVED,
-                span,
-                format!(
-                    "<include>: {} holds no <model>",
-                    self.sink.files.path(file).display()
-                ),
+            let message = format!(
+                "<include>: {} holds no <model>",
+                self.sink.files.path(file).display()
             );
+            self.sink
+                .report(&rules::SDF_INCLUDE_UNRESOLVED, span, message);
             return None;
         };
         if el.child("placement_frame").is_some() {
