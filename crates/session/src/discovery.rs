@@ -124,7 +124,8 @@ fn is_robot_xacro(path: &Path) -> bool {
     std::fs::read_to_string(path).is_ok_and(|text| is_robot_xacro_text(&text))
 }
 
-/// [`is_robot_xacro`] of a xacro file's `text` (false when it is not well-formed XML).
+/// Whether a xacro file's `text` builds a robot (see [`expand`]: its root element is `<robot>` with a link, a
+/// joint or a macro call at the top level); false when it is not well-formed XML.
 pub fn is_robot_xacro_text(text: &str) -> bool {
     let Ok(doc) = roxmltree::Document::parse(text) else {
         return false;
