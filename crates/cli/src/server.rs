@@ -16,6 +16,7 @@ mod here;
 mod hover;
 mod navigation;
 mod positions;
+mod transport;
 mod xacro_names;
 mod xml;
 
@@ -102,7 +103,7 @@ pub(crate) fn main(args: &[OsString]) -> u8 {
             return 2;
         }
     };
-    let (connection, io_threads) = Connection::stdio();
+    let (connection, io_threads) = transport::stdio();
     let status = match serve(&connection, settings, timeout) {
         Ok(()) => 0,
         Err(message) => {
@@ -113,7 +114,7 @@ pub(crate) fn main(args: &[OsString]) -> u8 {
     // Closing the connection ends the writer thread; the reader ends with stdin.
     drop(connection);
     if status == 0 {
-        let _ = io_threads.join();
+        io_threads.join();
     }
     status
 }
@@ -277,13 +278,16 @@ impl Server<'_> {
                     DidChangeTextDocument::METHOD,
                 ) {
                     let uri = params.text_document.uri;
-                    self.documents.change(
+                    let changed = self.documents.change(
                         &uri,
                         params.text_document.version,
                         params.content_changes,
                     );
-                    // The run under way is for an older text: this one replaces it.
-                    self.analyse(&uri, DEBOUNCE);
+                    match changed {
+                        // The run under way is for an older text: this one replaces it.
+                        Ok(()) => self.analyse(&uri, DEBOUNCE),
+                        Err(message) => errln!("urdf_validate server: {message}"),
+                    }
                 }
             }
             DidSaveTextDocument::METHOD => {

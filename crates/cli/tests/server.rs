@@ -69,6 +69,12 @@ impl Server {
         self.stdin.flush().expect("flush");
     }
 
+    /// Write `bytes` as they are (a malformed message).
+    fn send_raw(&mut self, bytes: &str) {
+        self.stdin.write_all(bytes.as_bytes()).expect("write");
+        self.stdin.flush().expect("flush");
+    }
+
     /// The first message satisfying `wanted` (others are kept for later waits).
     fn wait(&mut self, wanted: impl Fn(&Value) -> bool) -> Value {
         if let Some(i) = self.skipped.iter().position(&wanted) {
@@ -96,6 +102,63 @@ const BROKEN: &str = r#"<?xml version="1.0"?>
   </joint>
 </robot>
 "#;
+
+/// Bad messages before and after `initialize` — not JSON, a JSON array, an object that is no JSON-RPC
+/// message, a misspelt header, a change past the end of the document — each get their error (or a line
+/// on stderr) and the server goes on answering. It used to exit at the first one, silently.
+#[test]
+fn bad_messages_are_answered_and_the_server_goes_on() {
+    let frame = |body: &str| format!("Content-Length: {}\r\n\r\n{body}", body.len());
+    let mut server = Server::start();
+    server.send_raw(&frame("not json"));
+    let error = server.wait(|m| m["error"]["code"] == -32700);
+    assert_eq!(error["id"], Value::Null, "{error}");
+    server.send_raw(&frame("[1, 2]"));
+    server.wait(|m| m["error"]["code"] == -32600);
+    server.send_raw(&frame(r#"{"jsonrpc":"2.0"}"#));
+    server.wait(|m| m["error"]["code"] == -32600);
+    server.send(json!({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+        "params": {"processId": null, "capabilities": {}, "rootUri": null}}));
+    let init = server.wait(|m| m["id"] == 1);
+    assert!(init["result"]["capabilities"].is_object(), "{init}");
+    server.send(json!({"jsonrpc": "2.0", "method": "initialized", "params": {}}));
+    let hello = r#"{"jsonrpc":"2.0","id":2,"method":"shutdown","params":null}"#;
+    // A misspelt header: its message is lost (there is no length to read it by), the next one is read.
+    server.send_raw(&format!("Content-Lenght: {}\r\n\r\n{hello}", hello.len()));
+    server.wait(|m| m["error"]["code"] == -32700);
+    let dir = tempfile_dir();
+    let uri = format!("file://{}", dir.join("robot.urdf").display());
+    server.send(
+        json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {
+        "textDocument": {"uri": uri, "languageId": "xml", "version": 1, "text": BROKEN}}}),
+    );
+    server.send(
+        json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
+        "textDocument": {"uri": uri, "version": 2},
+        "contentChanges": [{"range": {"start": {"line": 400, "character": 0},
+            "end": {"line": 400, "character": 0}}, "text": "<link name='lost'/>"}]}}),
+    );
+    server.send(
+        json!({"jsonrpc": "2.0", "id": 3, "method": "textDocument/documentSymbol",
+        "params": {"textDocument": {"uri": uri}}}),
+    );
+    let symbols = server.wait(|m| m["id"] == 3);
+    let names: Vec<&Value> = symbols["result"]
+        .as_array()
+        .expect("symbols")
+        .iter()
+        .map(|s| &s["name"])
+        .collect();
+    assert!(
+        !names.contains(&&json!("lost")),
+        "a change past the end is not applied: {symbols}"
+    );
+    server.send(json!({"jsonrpc": "2.0", "id": 4, "method": "shutdown", "params": null}));
+    server.wait(|m| m["id"] == 4);
+    server.send(json!({"jsonrpc": "2.0", "method": "exit", "params": null}));
+    let status = server.child.wait().expect("exit");
+    assert!(status.success(), "{status}");
+}
 
 #[test]
 fn diagnostics_answers_and_a_clean_exit() {

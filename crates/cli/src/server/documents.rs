@@ -42,29 +42,42 @@ impl Documents {
         self.open.insert(uri, Document::new(text, version));
     }
 
-    /// `didChange`: apply the changes in order (a change without a range replaces the whole text).
+    /// `didChange`: apply the changes in order (a change without a range replaces the whole text). A
+    /// change whose range starts or ends past the last line is an error, and none of the changes is
+    /// applied (the text is as before); a position past the end of its line is the line's end, as LSP says.
     pub fn change(
         &mut self,
         uri: &Url,
         version: i32,
         changes: Vec<TextDocumentContentChangeEvent>,
-    ) {
+    ) -> Result<(), String> {
         let Some(document) = self.open.get_mut(uri) else {
-            return;
+            return Err(format!("didChange for {uri}, which is not open"));
         };
-        let mut text = std::mem::take(&mut document.text);
-        for change in changes {
+        let mut text = document.text.clone();
+        for (number, change) in changes.into_iter().enumerate() {
             match change.range {
                 Some(range) => {
                     let index = LineIndex::new(&text);
-                    let start = index.offset(&text, range.start);
-                    let end = index.offset(&text, range.end).max(start);
+                    let offset = |position: lsp_types::Position| {
+                        index.checked_offset(&text, position).ok_or_else(|| {
+                            format!(
+                                "didChange of {uri} (version {version}): change {number} reaches line {} \
+                                 of a {}-line text; none applied",
+                                position.line + 1,
+                                index.lines()
+                            )
+                        })
+                    };
+                    let start = offset(range.start)?;
+                    let end = offset(range.end)?.max(start);
                     text.replace_range(start..end, &change.text);
                 }
                 None => text = change.text,
             }
         }
         *document = Document::new(text, version);
+        Ok(())
     }
 
     /// `didClose`.
@@ -119,14 +132,30 @@ mod tests {
             range_length: None,
             text: text.into(),
         };
-        documents.change(
-            &uri,
-            2,
-            vec![change(0, 13, 14, "ab"), change(1, 0, 0, "  <link/>\n")],
-        );
+        documents
+            .change(
+                &uri,
+                2,
+                vec![change(0, 13, 14, "ab"), change(1, 0, 0, "  <link/>\n")],
+            )
+            .expect("in range");
         let document = documents.get(&uri).expect("open");
         assert_eq!(document.text, "<robot name=\"ab\">\n  <link/>\n</robot>");
         assert_eq!(document.version, 2);
+        // Past the end of a line: the line's end (LSP). Past the last line: an error, nothing applied.
+        documents
+            .change(&uri, 3, vec![change(2, 50, 50, "\n")])
+            .expect("a column past the end of the line");
+        let error = documents
+            .change(&uri, 4, vec![change(0, 0, 0, "x"), change(9, 0, 0, "lost")])
+            .expect_err("a line past the end");
+        assert!(error.contains("line 10 of a 4-line text"), "{error}");
+        let document = documents.get(&uri).expect("open");
+        assert_eq!(document.text, "<robot name=\"ab\">\n  <link/>\n</robot>\n");
+        assert_eq!(
+            document.version, 3,
+            "the failed change leaves text and version"
+        );
         assert!(is_robot_file(Path::new("a/b.URDF.xacro")));
         assert!(!is_robot_file(Path::new("a/b.xml")));
     }

@@ -55,6 +55,16 @@ impl LineIndex {
         start + line.len()
     }
 
+    /// [`LineIndex::offset`] of a position on a line of the text (`None` past the last line).
+    pub fn checked_offset(&self, text: &str, position: Position) -> Option<usize> {
+        ((position.line as usize) < self.starts.len()).then(|| self.offset(text, position))
+    }
+
+    /// The number of lines (a text ending with a line break has an empty last line).
+    pub fn lines(&self) -> usize {
+        self.starts.len()
+    }
+
     /// The LSP position of the validator's 1-based `line` and 1-based `column` counted in characters.
     pub fn position_of_line_column(&self, text: &str, line: u32, column: u32) -> Position {
         let Some(&start) = self.starts.get(line.saturating_sub(1) as usize) else {
