@@ -5,7 +5,9 @@
 
 use std::fmt::Write;
 
-use super::{card, escape, n, pill, shorten, status_class, svg_open, Bounds, Frame};
+use super::page::card;
+use super::svg::{n, svg_open, Bounds, Frame};
+use super::{escape, pill, shorten, status_class};
 use crate::analysis::deep::verdict::TIP_OVER_DEG;
 use crate::report::{DeepSection, DropTest, Status};
 
