@@ -139,10 +139,6 @@ const DISK_EXCEPTIONS: &[(&str, &str)] = &[
         "the MuJoCo pass runs MuJoCo in a process of its own, handing it files in a scratch folder",
     ),
     (
-        "analysis/deep/job.rs",
-        "binary STL is the one encoding MuJoCo reads: the mesh loader should say which a file is",
-    ),
-    (
         "report/baseline.rs",
         "--baseline: loaded by the front ends (Baseline::load); entries name files by canonical path",
     ),

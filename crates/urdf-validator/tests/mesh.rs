@@ -182,15 +182,28 @@ fn binary_stl_with_solid_header() {
     let bytes = binary_cube_stl();
     assert!(bytes.starts_with(b"solid"));
     assert_eq!(bytes.len(), 84 + 50 * 12);
-    assert_unit_cube(&load(&write(&dir, "cube.stl", &bytes)), 12);
+    let mesh = load(&write(&dir, "cube.stl", &bytes));
+    assert_unit_cube(&mesh, 12);
+    assert!(
+        mesh.binary_stl,
+        "a binary STL of its declared size: MuJoCo reads it"
+    );
     // Extension matching is case-insensitive.
     assert_unit_cube(&load(&write(&dir, "CUBE.STL", &bytes)), 12);
+    // Trailing bytes: read here, refused by MuJoCo's reader.
+    let mut longer = bytes.clone();
+    longer.extend_from_slice(&[0; 7]);
+    let mesh = load(&write(&dir, "longer.stl", &longer));
+    assert_unit_cube(&mesh, 12);
+    assert!(!mesh.binary_stl);
 }
 
 #[test]
 fn ascii_stl() {
     let dir = temp_dir("ascii_stl");
-    assert_unit_cube(&load(&write(&dir, "cube.stl", ascii_cube_stl())), 12);
+    let mesh = load(&write(&dir, "cube.stl", ascii_cube_stl()));
+    assert_unit_cube(&mesh, 12);
+    assert!(!mesh.binary_stl, "MuJoCo reads no ASCII STL");
 }
 
 #[test]

@@ -320,7 +320,7 @@ fn mesh_asset<'a>(assets: &'a Assets, uri: &str) -> Result<(&'a Path, bool), Str
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let readable = match ext.as_deref() {
-        Some("stl") => is_binary_stl(path),
+        Some("stl") => mesh.binary_stl,
         Some("obj") => true,
         _ => false,
     };
@@ -331,23 +331,6 @@ fn mesh_asset<'a>(assets: &'a Assets, uri: &str) -> Result<(&'a Path, bool), Str
     } else {
         Err("has no usable convex hull (flat or degenerate)".to_string())
     }
-}
-
-/// A binary STL: 84 header bytes and 50 bytes per triangle, as its count says (MuJoCo reads no ASCII).
-fn is_binary_stl(path: &Path) -> bool {
-    use std::io::Read;
-    let Ok(file) = std::fs::File::open(path) else {
-        return false;
-    };
-    let Ok(size) = file.metadata().map(|m| m.len()) else {
-        return false;
-    };
-    let mut header = [0u8; 84];
-    if file.take(84).read_exact(&mut header).is_err() {
-        return false;
-    }
-    let count = u32::from_le_bytes([header[80], header[81], header[82], header[83]]);
-    size == 84 + 50 * u64::from(count)
 }
 
 fn hull_asset(assets: &Assets, uri: &str, name: &str) -> Value {

@@ -130,6 +130,7 @@ pub(super) fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, 
             .finish("COLLADA <mesh> positions instantiated by the visual scene")?,
         triangles,
         declared_up_axis,
+        binary_stl: false,
         faces: None,
     })
 }

@@ -19,11 +19,11 @@ use super::{
 };
 
 /// First bytes of every entry (04: the mesh's solid, [`MeshData::solid`], joined the header).
-const MAGIC: &[u8; 8] = b"UVMESH04";
+const MAGIC: &[u8; 8] = b"UVMESH05";
 
 /// Bytes of an entry before its points, besides the key: magic, key length, bounds, triangle count, up
-/// axis, solid (source and 10 numbers), hull flag.
-const HEADER_BYTES: usize = 8 + 8 + 6 * 8 + 8 + 1 + 1 + SOLID_NUMBERS * 8 + 1;
+/// axis, binary-STL flag, solid (source and 10 numbers), hull flag.
+const HEADER_BYTES: usize = 8 + 8 + 6 * 8 + 8 + 1 + 1 + 1 + SOLID_NUMBERS * 8 + 1;
 
 /// A solid's numbers in an entry: volume, 3 first moments, 6 second moments (xx, xy, xz, yy, yz, zz).
 const SOLID_NUMBERS: usize = 10;
@@ -179,6 +179,7 @@ fn encode(mesh: &MeshData, key: &str) -> Vec<u8> {
         Some(ColladaUpAxis::Y) => 2,
         Some(ColladaUpAxis::Z) => 3,
     });
+    out.push(u8::from(mesh.binary_stl));
     out.push(match mesh.solid.map(|s| s.source) {
         None => 0,
         Some(SolidSource::ClosedSurface) => 1,
@@ -236,6 +237,11 @@ fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> 
         3 => Some(ColladaUpAxis::Z),
         _ => return None,
     };
+    let binary_stl = match reader.take(1)?[0] {
+        0 => false,
+        1 => true,
+        _ => return None,
+    };
     let source = match reader.take(1)?[0] {
         0 => None,
         1 => Some(SolidSource::ClosedSurface),
@@ -271,6 +277,7 @@ fn decode_header(reader: &mut Reader, key: &str) -> Option<(MeshSummary, bool)> 
         aabb,
         triangles,
         declared_up_axis,
+        binary_stl,
         solid,
     };
     Some((summary, hull_known))
@@ -317,6 +324,7 @@ fn decode(bytes: &[u8], key: &str) -> Option<MeshData> {
         aabb: summary.aabb,
         triangles: summary.triangles,
         declared_up_axis: summary.declared_up_axis,
+        binary_stl: summary.binary_stl,
         solid: summary.solid,
     })
 }
@@ -370,6 +378,7 @@ mod tests {
             aabb: ([0.0; 3], [1.0; 3]),
             triangles: 12,
             declared_up_axis: Some(ColladaUpAxis::Y),
+            binary_stl: true,
             solid: Some(MeshSolid {
                 integrals: VolumeIntegrals {
                     volume: 1.0,
@@ -393,6 +402,7 @@ mod tests {
         assert_eq!(back.hull, mesh.hull);
         assert_eq!(back.hull_triangles, mesh.hull_triangles);
         assert_eq!(back.aabb, mesh.aabb);
+        assert!(back.binary_stl, "the STL encoding survives the cache");
         assert_eq!(back.triangles, 12);
         assert_eq!(back.declared_up_axis, Some(ColladaUpAxis::Y));
         assert_eq!(back.solid, mesh.solid);

@@ -105,6 +105,9 @@ pub struct MeshData {
     /// The COLLADA `<asset><up_axis>` the file declares (`None` for STL/OBJ, or a COLLADA file
     /// without one), whether or not it was applied (see [`UpAxisPolicy`]).
     pub declared_up_axis: Option<ColladaUpAxis>,
+    /// A binary STL whose size is exactly 84 + 50 bytes per declared triangle: the one mesh encoding
+    /// MuJoCo reads as it is (the `--deep` pass hands it the file; anything else gets our hull).
+    pub binary_stl: bool,
     /// The solid the mesh bounds, for mass properties: its own surface when that is closed (STL, OBJ),
     /// else its convex hull; `None` when neither encloses a volume (a flat mesh).
     pub solid: Option<MeshSolid>,
@@ -119,6 +122,8 @@ pub struct MeshSummary {
     pub triangles: usize,
     /// The declared COLLADA up axis ([`MeshData::declared_up_axis`]).
     pub declared_up_axis: Option<ColladaUpAxis>,
+    /// A binary STL MuJoCo reads ([`MeshData::binary_stl`]).
+    pub binary_stl: bool,
     /// The solid it bounds ([`MeshData::solid`]).
     pub solid: Option<MeshSolid>,
 }
@@ -130,6 +135,7 @@ impl MeshData {
             aabb: self.aabb,
             triangles: self.triangles,
             declared_up_axis: self.declared_up_axis,
+            binary_stl: self.binary_stl,
             solid: self.solid,
         }
     }
@@ -225,6 +231,8 @@ struct RawMesh {
     vertices: Vec<[f64; 3]>,
     triangles: usize,
     declared_up_axis: Option<ColladaUpAxis>,
+    /// [`MeshData::binary_stl`].
+    binary_stl: bool,
     /// The surface's triangles (indices into `vertices`), or `None` when the format's are not read
     /// (COLLADA) or an OBJ face names no vertex read.
     faces: Option<Vec<[u32; 3]>>,
@@ -319,6 +327,7 @@ fn finish(raw: RawMesh) -> MeshData {
         aabb,
         triangles: raw.triangles,
         declared_up_axis: raw.declared_up_axis,
+        binary_stl: raw.binary_stl,
         solid,
     }
 }

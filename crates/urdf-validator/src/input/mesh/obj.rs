@@ -63,6 +63,7 @@ pub(super) fn parse(bytes: &[u8], reading: ObjReading) -> Result<RawMesh, String
         vertices: sink.finish("Wavefront OBJ 'v x y z' lines")?,
         triangles,
         declared_up_axis: None,
+        binary_stl: false,
         faces,
     })
 }

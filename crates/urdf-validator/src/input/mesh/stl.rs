@@ -10,7 +10,10 @@ pub(super) fn parse_stl(bytes: &[u8]) -> Result<RawMesh, String> {
         .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64);
     let binary_size = declared.map(|n| 84 + 50 * n);
     if binary_size == Some(bytes.len() as u64) {
-        return parse_binary_stl(bytes);
+        return parse_binary_stl(bytes).map(|raw| RawMesh {
+            binary_stl: true,
+            ..raw
+        });
     }
     let starts_with_solid = bytes
         .iter()
@@ -69,6 +72,7 @@ fn parse_binary_stl(bytes: &[u8]) -> Result<RawMesh, String> {
         vertices: sink.finish("binary STL triangles")?,
         triangles: count,
         declared_up_axis: None,
+        binary_stl: false,
         faces: Some(faces),
     })
 }
@@ -116,6 +120,7 @@ fn parse_ascii_stl(bytes: &[u8], declared: Option<u64>) -> Result<RawMesh, Strin
         vertices: sink.vertices,
         triangles: facets,
         declared_up_axis: None,
+        binary_stl: false,
         faces,
     })
 }
