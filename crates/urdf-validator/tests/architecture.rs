@@ -130,11 +130,6 @@ const DISK_OR_ENVIRONMENT: &[&str] = &[
 /// load stage, not a list to add to.
 const DISK_EXCEPTIONS: &[(&str, &str)] = &[
     (
-        "mjcf/build.rs",
-        "MuJoCo's asset look-up (meshdir, then the model's folder) picks the file a geom names, as the \
-         reader resolves includes",
-    ),
-    (
         "analysis/deep/bridge.rs",
         "the MuJoCo pass runs MuJoCo in a process of its own, handing it files in a scratch folder",
     ),

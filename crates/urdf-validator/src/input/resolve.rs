@@ -777,6 +777,39 @@ fn normalize_lexically(path: &Path) -> PathBuf {
     out
 }
 
+/// Where MuJoCo finds the file of a `<mesh>` asset, relative to the model's folder `model_dir` (or
+/// absolute): under the compiler's `meshdir`, else, for a mesh declared in an included file
+/// (`included_from`: that file's path as it was opened), in that file's folder when the file is there and
+/// not under `meshdir` (MuJoCo 4.0 looks there second).
+pub fn mjcf_mesh_path(
+    model_dir: &Path,
+    mesh_dir: Option<&str>,
+    included_from: Option<&Path>,
+    file: &str,
+) -> PathBuf {
+    let under_meshdir = match mesh_dir {
+        Some(dir) if !Path::new(file).is_absolute() => Path::new(dir).join(file),
+        _ => PathBuf::from(file),
+    };
+    let beside_include = included_from
+        .and_then(Path::parent)
+        .map(|folder| folder.join(file));
+    match beside_include {
+        Some(path) if !model_dir.join(&under_meshdir).is_file() && path.is_file() => {
+            match path.strip_prefix(model_dir) {
+                Ok(relative) => relative.to_path_buf(),
+                Err(_) => std::path::absolute(&path).unwrap_or(path),
+            }
+        }
+        _ => under_meshdir,
+    }
+}
+
+/// `path` when it is a file the sandbox lets the readers read.
+pub fn readable_file(sandbox: &Sandbox, path: PathBuf) -> Option<PathBuf> {
+    (sandbox.check_file(&path).is_ok() && path.is_file()).then_some(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -10,6 +10,7 @@ use super::Builder;
 use crate::diagnostics::rules;
 use crate::diagnostics::span::Span;
 use crate::input::mesh::load_surface;
+use crate::input::resolve::{mjcf_mesh_path, readable_file};
 use crate::mjcf::defaults::MAIN;
 use crate::mjcf::mass::{self, MeshVolume, Solid};
 use crate::mjcf::orientation;
@@ -125,31 +126,15 @@ impl<'a> Builder<'a, '_> {
         }
     }
 
-    /// Where MuJoCo finds a mesh file (relative to the model's folder): under `meshdir`, else, for a
-    /// mesh declared in an included file, in that file's folder (MuJoCo 4.0 looks there second).
+    /// Where MuJoCo finds a mesh file (relative to the model's folder): [`mjcf_mesh_path`].
     fn mesh_path(&self, el: El<'a>, file: &str) -> String {
-        let under_meshdir = match &self.compiler.mesh_dir {
-            Some(dir) if !Path::new(file).is_absolute() => Path::new(dir).join(file),
-            _ => PathBuf::from(file),
-        };
-        let beside_include = self
-            .reader
-            .files()
-            .path(el.file)
-            .parent()
-            .map(|folder| folder.join(file));
-        match beside_include {
-            // The included file's path is as it was opened; the asset checks join the result to `dir`.
-            Some(path)
-                if el.file != 0 && !self.dir.join(&under_meshdir).is_file() && path.is_file() =>
-            {
-                match path.strip_prefix(&self.dir) {
-                    Ok(relative) => relative.to_path_buf(),
-                    Err(_) => std::path::absolute(&path).unwrap_or(path),
-                }
-            }
-            _ => under_meshdir,
-        }
+        let included_from = (el.file != 0).then(|| self.reader.files().path(el.file));
+        mjcf_mesh_path(
+            &self.dir,
+            self.compiler.mesh_dir.as_deref(),
+            included_from,
+            file,
+        )
         .to_string_lossy()
         .into_owned()
     }
@@ -181,8 +166,7 @@ impl<'a> Builder<'a, '_> {
     /// The path of a mesh asset's file when the sandbox lets it be read and it is there (the asset
     /// checks report a missing or refused mesh file).
     pub(super) fn readable(&self, asset: &MeshAsset) -> Option<PathBuf> {
-        let path = self.dir.join(&asset.file);
-        (self.resolver.sandbox().check_file(&path).is_ok() && path.is_file()).then_some(path)
+        readable_file(self.resolver.sandbox(), self.dir.join(&asset.file))
     }
 
     /// The solid of a mesh asset, in the frame of the geoms that use it (`None` without a readable file, or
