@@ -561,7 +561,8 @@ rule_case! {
 <robot name="empty">
 </robot>
 "#,
-    at: (2, 1, "<robot"),
+    // A finding about the whole robot points at its name, not at the whole element.
+    at: (2, 14, "empty"),
     clean: r#"<?xml version="1.0"?>
 <robot name="empty">
   <link name="base"/>
@@ -672,7 +673,7 @@ rule_case! {
 rule_case! {
     u105_too_many_links, "U105",
     fires: chain_of_links(51),
-    at: (1, 1, "<robot name=\"big\""),
+    at: (1, 14, "big\""),
     clean: chain_of_links(50),
 }
 
@@ -3528,4 +3529,17 @@ rule_case! {
     fires: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U1O5 -->\n  <link name=\"base\"/>\n</robot>\n",
     at: (2, 30, "U1O5"),
     clean: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+}
+
+/// A finding about the whole robot spans the robot's name, so an editor underlines one word of the
+/// `<robot>` tag (it underlined the whole file, and topped every code-action menu in it).
+#[test]
+fn robot_wide_findings_span_the_name_not_the_file() {
+    let text = chain_of_links(51);
+    let report = validate_text(text, Path::new(FILE), &Options::default())
+        .unwrap()
+        .report;
+    let hit = the_one(&report.findings, "U105");
+    assert_eq!((hit.line, hit.column), (Some(1), Some(14)));
+    assert_eq!((hit.end_line, hit.end_column), (Some(1), Some(17)), "\"big\", end exclusive");
 }

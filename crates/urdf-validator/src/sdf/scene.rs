@@ -122,7 +122,7 @@ pub struct Scene<'a> {
     pub canonical: Option<Ref>,
     /// The model's name.
     pub name: Option<Spanned<String>>,
-    /// The `<model>` element.
+    /// Where a finding about the whole model points: its `name` (else the `<model>` element).
     pub span: Span,
     /// The model's pose in the world.
     pub model_pose: Transform,
@@ -394,7 +394,8 @@ impl<'a> Collector<'a> {
         let is_static = overrides.is_static.or(own_static);
         let span = self.sink.span(el);
         if scope.is_root() {
-            self.scene.span = span;
+            // A finding about the whole robot points at the model's name, not at the whole model.
+            self.scene.span = self.sink.attr_span(el, "name");
             self.scene.model_pose = pose;
             self.scene.name = overrides.name.clone().or_else(|| {
                 el.node.attribute("name").map(|n| Spanned {

@@ -193,6 +193,18 @@ fn span(node: Node) -> Span {
     Span::from_range(node.range())
 }
 
+/// Where a finding about the whole robot points: the `name` of `<robot>`, else the tag's name (never the
+/// whole element: an editor would underline the whole file).
+fn robot_span(root: Node) -> Span {
+    match root.attribute_node("name") {
+        Some(name) => Span::from_range(name.range_value()),
+        None => {
+            let start = root.range().start;
+            Span::from_range(start..start + 1 + root.tag_name().name().len())
+        }
+    }
+}
+
 /// Whether a `<gazebo>` block turns off fixed-joint lumping for its reference (sdformat's parser_urdf.cc
 /// accepts `true`, `yes` or `1`, case-insensitive for the words).
 fn keeps_fixed_joint(node: Node) -> bool {
@@ -374,7 +386,7 @@ impl Parser {
 
     fn robot(&mut self, root: Node) -> Robot {
         let mut robot = Robot {
-            span: span(root),
+            span: robot_span(root),
             ..Robot::default()
         };
         if !root.has_tag_name("robot") {

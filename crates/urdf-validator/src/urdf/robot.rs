@@ -16,7 +16,8 @@ pub const STANDARD_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
 pub struct Robot {
     /// `name` of `<robot>`.
     pub name: Option<Spanned<String>>,
-    /// The `<robot>` element.
+    /// Where a finding about the whole robot points: the `name` of `<robot>` (of the analysed SDFormat
+    /// `<model>`, of MJCF's `<mujoco model>`), else the tag; never the whole element.
     pub span: Span,
     /// `<link>` elements in document order.
     pub links: Vec<Link>,
