@@ -11,7 +11,7 @@ use lsp_types::{
     Url, WorkspaceEdit,
 };
 use urdf_validator::diagnostics::fix::Applicability;
-use urdf_validator::report::FindingReport;
+use urdf_validator::report::{FileEdit, FindingReport};
 use urdf_validator::Validation;
 
 use super::diagnostics::{finding_range, Texts};
@@ -32,18 +32,46 @@ pub fn actions(
         only.is_none_or(|only| only.iter().any(|o| kind.as_str().starts_with(o.as_str())))
     };
     let texts = Texts::of(validation);
-    let mut actions = Vec::new();
-    let here = validation.report.findings.iter().filter(|f| {
-        in_file(f, uri) && {
-            let at = finding_range(f, &texts);
-            at.start <= range.end && range.start <= at.end
-        }
+    let mut actions: Vec<CodeAction> = Vec::new();
+    // Every finding on the lines the cursor or selection touches (as rust-analyzer offers them), those
+    // under the cursor first, then the most severe.
+    let mut here: Vec<(&FindingReport, Range)> = validation
+        .report
+        .findings
+        .iter()
+        .filter(|f| in_file(f, uri))
+        .map(|f| (f, finding_range(f, &texts)))
+        .filter(|(_, at)| at.start.line <= range.end.line && range.start.line <= at.end.line)
+        .collect();
+    here.sort_by_key(|(f, at)| {
+        let under = at.start <= range.end && range.start <= at.end;
+        (std::cmp::Reverse(under), std::cmp::Reverse(f.severity))
     });
-    for finding in here {
+    // The edits of the fixes offered so far: a fix whose edits they already hold is that fix again (a
+    // xacro macro's literal, once per call), one whose edits overlap them is another fix of the same
+    // text (never offered beside the first).
+    let mut offered: Vec<&FileEdit> = Vec::new();
+    for (finding, _) in here {
         let diagnostic = diagnostic_of(finding, &texts);
-        if wants(&CodeActionKind::QUICKFIX) {
-            actions.extend(fix_action(finding, diagnostic.clone(), &texts, documents));
-            actions.extend(suppress_action(uri, finding, diagnostic, documents));
+        if !wants(&CodeActionKind::QUICKFIX) {
+            continue;
+        }
+        if let Some(fix) = finding.fix.as_ref().filter(|fix| {
+            !fix.edits.is_empty()
+                && !fix.edits.iter().any(|edit| {
+                    offered.iter().any(|o| o.file == edit.file && o.edit.conflicts_with(&edit.edit))
+                })
+                && !fix.edits.iter().all(|edit| offered.contains(&edit))
+        }) {
+            if let Some(action) = fix_action(finding, diagnostic.clone(), &texts, documents) {
+                offered.extend(&fix.edits);
+                actions.push(action);
+            }
+        }
+        if let Some(action) = suppress_action(uri, finding, diagnostic, documents) {
+            if !actions.iter().any(|a| a.title == action.title && a.edit == action.edit) {
+                actions.push(action);
+            }
         }
     }
     if wants(&CodeActionKind::SOURCE_FIX_ALL) {

@@ -266,6 +266,44 @@ async def test_xacro_findings_are_published_on_the_included_file(client, tmp_pat
     await wait_for("U310 gone after saving the include", lambda: "U310" not in codes(client, parts_uri))
 
 
+async def test_a_fix_is_offered_anywhere_on_its_line_and_once_for_a_macro(client, tmp_path):
+    # The arm macro called twice: its literal `0 0 2` is flagged for each arm, and fixed by one edit.
+    (tmp_path / "parts.xacro").write_text(XACRO_PARTS)
+    root = tmp_path / "robot.urdf.xacro"
+    root.write_text(XACRO_ROOT.replace(
+        '<xacro:arm prefix="left" parent="base"/>',
+        '<xacro:arm prefix="left" parent="base"/>\n  <xacro:arm prefix="right" parent="base"/>',
+    ))
+    parts_uri = (tmp_path / "parts.xacro").as_uri()
+    open_file(client, root)
+    await wait_for("U310 on parts.xacro", lambda: "U310" in codes(client, parts_uri))
+    axis = next(d for d in client.diagnostics[parts_uri] if d.code == "U310")
+    # The cursor at the start of the flagged line, nowhere near `0 0 2`: the fix is still offered.
+    start_of_line = types.Position(line=axis.range.start.line, character=0)
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=parts_uri),
+            range=types.Range(start=start_of_line, end=start_of_line),
+            context=types.CodeActionContext(diagnostics=[]),
+        )
+    )
+    titles = [a.title for a in actions]
+    fixes = [a for a in actions if a.title.startswith("Fix U310")]
+    assert len(fixes) == 1, f"one fix, not one per macro call: {titles}"
+    assert len([t for t in titles if t.startswith("Suppress U310")]) <= 1, titles
+    assert apply_edits(XACRO_PARTS, fixes[0].edit.changes[parts_uri]).count('xyz="0 0 1"') == 1
+    # A line without a finding offers no quick fix.
+    elsewhere = types.Position(line=0, character=0)
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=parts_uri),
+            range=types.Range(start=elsewhere, end=elsewhere),
+            context=types.CodeActionContext(diagnostics=[]),
+        )
+    )
+    assert not [a for a in actions if a.kind == types.CodeActionKind.QuickFix], [a.title for a in actions]
+
+
 async def test_xacro_macros_and_properties_navigate_across_includes(client, tmp_path):
     (tmp_path / "parts.xacro").write_text(XACRO_PARTS)
     root = tmp_path / "robot.urdf.xacro"
