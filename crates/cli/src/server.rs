@@ -278,14 +278,16 @@ impl Server<'_> {
                     DidChangeTextDocument::METHOD,
                 ) {
                     let uri = params.text_document.uri;
-                    let changed = self.documents.change(
-                        &uri,
-                        params.text_document.version,
-                        params.content_changes,
-                    );
+                    let version = params.text_document.version;
+                    let changed =
+                        self.documents
+                            .change(&uri, version, params.content_changes.clone());
                     match changed {
-                        // The run under way is for an older text: this one replaces it.
-                        Ok(()) => self.analyse(&uri, DEBOUNCE),
+                        Ok(()) => {
+                            self.follow_edit(&uri, version, &params.content_changes);
+                            // The run under way is for an older text: this one replaces it.
+                            self.analyse(&uri, DEBOUNCE);
+                        }
                         Err(message) => errln!("urdf_validate server: {message}"),
                     }
                 }
@@ -480,21 +482,61 @@ impl Server<'_> {
         files.dedup();
         self.published.insert(root.clone(), by_file);
         for file in files {
-            let mut diagnostics: Vec<Diagnostic> = Vec::new();
-            for shown in self.published.values() {
-                for diagnostic in shown.get(&file).into_iter().flatten() {
-                    if !diagnostics.contains(diagnostic) {
-                        diagnostics.push(diagnostic.clone());
-                    }
-                }
-            }
             // The version analysed, for the document analysed (another file's text was read from disk).
             let version = version.filter(|_| file == *root);
-            let params = PublishDiagnosticsParams::new(file, diagnostics, version);
-            self.send(Message::Notification(Notification::new(
-                PublishDiagnostics::METHOD.into(),
-                params,
-            )));
+            self.publish_file(file, version);
+        }
+    }
+
+    /// Publish what every analysis reading `file` shows of it, once each.
+    fn publish_file(&self, file: Url, version: Option<i32>) {
+        let mut diagnostics: Vec<Diagnostic> = Vec::new();
+        for shown in self.published.values() {
+            for diagnostic in shown.get(&file).into_iter().flatten() {
+                if !diagnostics.contains(diagnostic) {
+                    diagnostics.push(diagnostic.clone());
+                }
+            }
+        }
+        let params = PublishDiagnosticsParams::new(file, diagnostics, version);
+        self.send(Message::Notification(Notification::new(
+            PublishDiagnostics::METHOD.into(),
+            params,
+        )));
+    }
+
+    /// An edit of `uri` (`changes`, as applied): what is shown of it moves with the text until the next
+    /// analysis (a diagnostic below an inserted line goes down with it), and what an edit touched is
+    /// withdrawn; published again at once, for the edited `version`.
+    fn follow_edit(
+        &mut self,
+        uri: &Url,
+        version: i32,
+        changes: &[lsp_types::TextDocumentContentChangeEvent],
+    ) {
+        let mut moved = false;
+        for shown in self.published.values_mut() {
+            let Some(diagnostics) = shown.get_mut(uri) else {
+                continue;
+            };
+            if diagnostics.is_empty() {
+                continue;
+            }
+            diagnostics.retain_mut(|diagnostic| {
+                changes.iter().all(|change| {
+                    match positions::through_edit(diagnostic.range, change.range, &change.text) {
+                        Some(range) => {
+                            diagnostic.range = range;
+                            true
+                        }
+                        None => false,
+                    }
+                })
+            });
+            moved = true;
+        }
+        if moved {
+            self.publish_file(uri.clone(), Some(version));
         }
     }
 

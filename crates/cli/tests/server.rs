@@ -160,6 +160,61 @@ fn bad_messages_are_answered_and_the_server_goes_on() {
     assert!(status.success(), "{status}");
 }
 
+/// An edit moves what is shown with the text at once, for the edited version, before any new analysis:
+/// five lines inserted above the undefined link, and its U102 is five lines down in the very next
+/// publication (it stayed at its old line until the analysis caught up).
+#[test]
+fn published_diagnostics_follow_an_edit_at_once() {
+    let dir = tempfile_dir();
+    let uri = format!("file://{}", dir.join("moving.urdf").display());
+    let mut server = Server::start();
+    server.send(json!({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+        "params": {"processId": null, "capabilities": {}, "rootUri": null}}));
+    server.wait(|m| m["id"] == 1);
+    server.send(json!({"jsonrpc": "2.0", "method": "initialized", "params": {}}));
+    server.send(
+        json!({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": {
+        "textDocument": {"uri": uri, "languageId": "xml", "version": 1, "text": BROKEN}}}),
+    );
+    let u102_line = |published: &Value| {
+        published["params"]["diagnostics"]
+            .as_array()
+            .and_then(|all| all.iter().find(|d| d["code"] == "U102"))
+            .map(|d| d["range"]["start"]["line"].clone())
+    };
+    let first =
+        server.wait(|m| m["method"] == "textDocument/publishDiagnostics" && u102_line(m).is_some());
+    assert_eq!(u102_line(&first), Some(json!(5)), "{first}");
+    server.skipped.clear();
+    server.send(json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {
+        "textDocument": {"uri": uri, "version": 2},
+        "contentChanges": [{"range": {"start": {"line": 2, "character": 0},
+            "end": {"line": 2, "character": 0}}, "text": "<!-- -->\n<!-- -->\n<!-- -->\n<!-- -->\n<!-- -->\n"}]}}));
+    // Answered at once, while the new analysis waits for more typing: what came before it is the
+    // moved publication.
+    server.send(
+        json!({"jsonrpc": "2.0", "id": 2, "method": "textDocument/documentSymbol",
+        "params": {"textDocument": {"uri": uri}}}),
+    );
+    server.wait(|m| m["id"] == 2);
+    let moved = server
+        .skipped
+        .iter()
+        .find(|m| m["method"] == "textDocument/publishDiagnostics" && m["params"]["version"] == 2)
+        .unwrap_or_else(|| {
+            panic!(
+                "no publication for version 2 before the answer: {:?}",
+                server.skipped
+            )
+        })
+        .clone();
+    assert_eq!(u102_line(&moved), Some(json!(10)), "{moved}");
+    server.send(json!({"jsonrpc": "2.0", "id": 3, "method": "shutdown", "params": null}));
+    server.wait(|m| m["id"] == 3);
+    server.send(json!({"jsonrpc": "2.0", "method": "exit", "params": null}));
+    assert!(server.child.wait().expect("exit").success());
+}
+
 #[test]
 fn diagnostics_answers_and_a_clean_exit() {
     let dir = tempfile_dir();

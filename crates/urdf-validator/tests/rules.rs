@@ -3541,5 +3541,9 @@ fn robot_wide_findings_span_the_name_not_the_file() {
         .report;
     let hit = the_one(&report.findings, "U105");
     assert_eq!((hit.line, hit.column), (Some(1), Some(14)));
-    assert_eq!((hit.end_line, hit.end_column), (Some(1), Some(17)), "\"big\", end exclusive");
+    assert_eq!(
+        (hit.end_line, hit.end_column),
+        (Some(1), Some(17)),
+        "\"big\", end exclusive"
+    );
 }

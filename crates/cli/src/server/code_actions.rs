@@ -59,7 +59,9 @@ pub fn actions(
         if let Some(fix) = finding.fix.as_ref().filter(|fix| {
             !fix.edits.is_empty()
                 && !fix.edits.iter().any(|edit| {
-                    offered.iter().any(|o| o.file == edit.file && o.edit.conflicts_with(&edit.edit))
+                    offered
+                        .iter()
+                        .any(|o| o.file == edit.file && o.edit.conflicts_with(&edit.edit))
                 })
                 && !fix.edits.iter().all(|edit| offered.contains(&edit))
         }) {
@@ -69,7 +71,10 @@ pub fn actions(
             }
         }
         if let Some(action) = suppress_action(uri, finding, diagnostic, documents) {
-            if !actions.iter().any(|a| a.title == action.title && a.edit == action.edit) {
+            if !actions
+                .iter()
+                .any(|a| a.title == action.title && a.edit == action.edit)
+            {
                 actions.push(action);
             }
         }

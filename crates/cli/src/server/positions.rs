@@ -90,9 +90,69 @@ fn to_u32(n: usize) -> u32 {
     u32::try_from(n).unwrap_or(u32::MAX)
 }
 
+/// Where `range` is after an edit that replaced `edited` with `text` (`None` for the whole document):
+/// unchanged before the edit, moved with the text after it, `None` when the edit touched it.
+pub fn through_edit(range: Range, edited: Option<Range>, text: &str) -> Option<Range> {
+    let edited = edited?;
+    if range.end < edited.start || (range.end == edited.start && range.start < range.end) {
+        return Some(range);
+    }
+    if range.start < edited.end {
+        return None;
+    }
+    // Where the inserted text ends.
+    let breaks = text.matches('\n').count();
+    let last_line = text.rsplit('\n').next().unwrap_or("");
+    let last_width = to_u32(last_line.encode_utf16().count());
+    let end = if breaks == 0 {
+        Position::new(edited.start.line, edited.start.character + last_width)
+    } else {
+        Position::new(edited.start.line + to_u32(breaks), last_width)
+    };
+    let moved = |p: Position| {
+        if p.line == edited.end.line {
+            Position::new(
+                end.line,
+                end.character + (p.character - edited.end.character),
+            )
+        } else {
+            Position::new(p.line - edited.end.line + end.line, p.character)
+        }
+    };
+    Some(Range::new(moved(range.start), moved(range.end)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ranges_follow_the_edits_before_them() {
+        let range = |l0, c0, l1, c1| Range::new(Position::new(l0, c0), Position::new(l1, c1));
+        let finding = range(5, 17, 5, 24);
+        // Five lines inserted above: five lines down.
+        assert_eq!(
+            through_edit(finding, Some(range(0, 0, 0, 0)), "a\nb\nc\nd\ne\n"),
+            Some(range(10, 17, 10, 24))
+        );
+        // Text typed earlier on its line: further right.
+        assert_eq!(
+            through_edit(finding, Some(range(5, 2, 5, 2)), "xyz"),
+            Some(range(5, 20, 5, 27))
+        );
+        // A line deleted above, and an edit after it: as it was, but one line up; unchanged.
+        assert_eq!(
+            through_edit(finding, Some(range(1, 0, 2, 0)), ""),
+            Some(range(4, 17, 4, 24))
+        );
+        assert_eq!(
+            through_edit(finding, Some(range(6, 0, 6, 3)), ""),
+            Some(finding)
+        );
+        // An edit inside it, or the whole text replaced: withdrawn.
+        assert_eq!(through_edit(finding, Some(range(5, 18, 5, 19)), "Q"), None);
+        assert_eq!(through_edit(finding, None, "new text"), None);
+    }
 
     #[test]
     fn columns_count_utf16_code_units() {
