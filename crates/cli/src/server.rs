@@ -119,6 +119,26 @@ pub(crate) fn main(args: &[OsString]) -> u8 {
     status
 }
 
+/// `changes` with a range each where it can be told: a whole new text (the one change) becomes the edit
+/// of the part of `before` it changes, so what is shown can follow it.
+fn located_changes(
+    before: Option<&str>,
+    changes: &[lsp_types::TextDocumentContentChangeEvent],
+) -> Vec<lsp_types::TextDocumentContentChangeEvent> {
+    match (before, changes) {
+        (Some(before), [whole]) if whole.range.is_none() => {
+            let (start, end, text) = positions::changed_part(before, &whole.text);
+            let index = positions::LineIndex::new(before);
+            vec![lsp_types::TextDocumentContentChangeEvent {
+                range: Some(index.range(before, start, end)),
+                range_length: None,
+                text: text.to_string(),
+            }]
+        }
+        _ => changes.to_vec(),
+    }
+}
+
 /// What the server can do.
 fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
@@ -279,12 +299,12 @@ impl Server<'_> {
                 ) {
                     let uri = params.text_document.uri;
                     let version = params.text_document.version;
-                    let changed =
-                        self.documents
-                            .change(&uri, version, params.content_changes.clone());
-                    match changed {
+                    let before = self.documents.get(&uri).map(|d| d.text.clone());
+                    let changes = params.content_changes;
+                    let located = located_changes(before.as_deref(), &changes);
+                    match self.documents.change(&uri, version, changes) {
                         Ok(()) => {
-                            self.follow_edit(&uri, version, &params.content_changes);
+                            self.follow_edit(&uri, version, &located);
                             // The run under way is for an older text: this one replaces it.
                             self.analyse(&uri, DEBOUNCE);
                         }
@@ -454,14 +474,26 @@ impl Server<'_> {
                 self.publish_for(&root, outcome.version, by_file);
             }
             Err(error) => {
-                // The last good analysis stays for hover and navigation; the error is what is shown.
+                // The last good analysis stays for hover and navigation, and its findings stay shown
+                // (as they moved with the edits since), marked stale, beside the error: a half-typed
+                // tag does not wipe the file's findings.
                 let (file, diagnostic) = diagnostics::of_error(&root, &error, &outcome.text);
                 let mut by_file: HashMap<Url, Vec<Diagnostic>> = self
                     .published
                     .get(&root)
-                    .map(|old| old.keys().map(|k| (k.clone(), Vec::new())).collect())
+                    .map(|old| {
+                        old.iter()
+                            .map(|(file, shown)| {
+                                let kept = shown
+                                    .iter()
+                                    .filter(|d| !diagnostics::is_load_error(d))
+                                    .map(diagnostics::stale)
+                                    .collect();
+                                (file.clone(), kept)
+                            })
+                            .collect()
+                    })
                     .unwrap_or_default();
-                by_file.insert(root.clone(), Vec::new());
                 by_file.entry(file).or_default().push(diagnostic);
                 self.publish_for(&root, outcome.version, by_file);
             }

@@ -16,7 +16,7 @@ use urdf_validator::Validation;
 
 use super::diagnostics::{finding_range, Texts};
 use super::documents::Documents;
-use super::positions::LineIndex;
+use super::positions::{changed_part, LineIndex};
 use super::xml::Scan;
 use crate::fixes;
 
@@ -186,36 +186,6 @@ fn fix_all(validation: &Validation, documents: &Documents) -> Option<CodeAction>
     })
 }
 
-/// The part of `before` that differs from `after`: its byte range, and what `after` has there.
-fn changed_part<'a>(before: &str, after: &'a str) -> (usize, usize, &'a str) {
-    let mut prefix = before
-        .bytes()
-        .zip(after.bytes())
-        .take_while(|(a, b)| a == b)
-        .count();
-    while !before.is_char_boundary(prefix) || !after.is_char_boundary(prefix) {
-        prefix -= 1;
-    }
-    let limit = before.len().min(after.len()) - prefix;
-    let mut suffix = before
-        .bytes()
-        .rev()
-        .zip(after.bytes().rev())
-        .take(limit)
-        .take_while(|(a, b)| a == b)
-        .count();
-    while !before.is_char_boundary(before.len() - suffix)
-        || !after.is_char_boundary(after.len() - suffix)
-    {
-        suffix -= 1;
-    }
-    (
-        prefix,
-        before.len() - suffix,
-        &after[prefix..after.len() - suffix],
-    )
-}
-
 /// "Suppress this finding": `<!-- urdf-validate: ignore CODE -->` on its own line before the start tag
 /// that holds the finding (the comment covers the next start tag), else at the end of the finding's line
 /// (a trailing comment covers its line).
@@ -270,21 +240,5 @@ fn unchanged(file: &str, text: &str, documents: &Documents) -> bool {
     match documents.by_path(Path::new(file)) {
         Some(document) => document.text == text,
         None => std::fs::read_to_string(file).is_ok_and(|disk| disk == text),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::changed_part;
-
-    #[test]
-    fn the_changed_part_is_the_span_between_common_ends() {
-        assert_eq!(changed_part("a=\"1 0 0\"", "a=\"1 0 0\""), (9, 9, ""));
-        assert_eq!(
-            changed_part("<j axis=\"2 0 0\"/>", "<j axis=\"1 0 0\"/>"),
-            (9, 10, "1")
-        );
-        assert_eq!(changed_part("xé y", "xè y"), (1, 3, "è"));
-        assert_eq!(changed_part("ab", "aXb"), (1, 1, "X"));
     }
 }

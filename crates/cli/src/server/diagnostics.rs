@@ -109,42 +109,112 @@ pub fn of_validation(
     by_file
 }
 
-/// The diagnostic of a file that could not be validated: at the place the reader stopped (in the file it
-/// names), else at the start of `root`.
+/// The code of the diagnostic of a file that could not be validated.
+const LOAD_ERROR_CODES: [&str; 3] = ["xml-syntax", "xacro", "not-validated"];
+
+/// What a finding shown from an older text says (the last analysis that read the file; its place has
+/// followed the edits since).
+const STALE: &str = " (from the last text that parsed)";
+
+/// The diagnostic of a file that could not be validated: at the token where the reader stopped (in the
+/// file it names), else at the start of `root`; with a code, and a message without the file's path
+/// (the editor shows the file).
 pub fn of_error(root: &Url, error: &Error, text: &str) -> (Url, Diagnostic) {
-    let (uri, range) = match error {
-        Error::Load(LoadError::Xml { line, column, .. }) => {
+    let (uri, range, code, message) = match error {
+        Error::Load(LoadError::Xml {
+            line,
+            column,
+            message,
+            ..
+        }) => {
             let index = LineIndex::new(text);
             let at = index.position_of_line_column(text, *line, *column);
-            (root.clone(), Range::new(at, at))
+            (
+                root.clone(),
+                token_at(text, &index, at),
+                LOAD_ERROR_CODES[0],
+                format!("not well-formed XML: {message}"),
+            )
         }
         Error::Load(LoadError::Xacro {
+            message,
             location: Some(location),
             ..
         }) => {
             let uri = Url::from_file_path(&location.path).unwrap_or_else(|_| root.clone());
-            let at = if uri == *root {
+            let range = if uri == *root {
                 let index = LineIndex::new(text);
-                index.position(text, location.byte)
+                token_at(text, &index, index.position(text, location.byte))
             } else {
                 // Another file's text is not at hand: its column in characters stands for UTF-16 units.
-                Position::new(
+                let at = Position::new(
                     u32::try_from(location.line.saturating_sub(1)).unwrap_or(u32::MAX),
                     u32::try_from(location.col.saturating_sub(1)).unwrap_or(u32::MAX),
-                )
+                );
+                Range::new(at, at)
             };
-            (uri, Range::new(at, at))
+            // The message without its `file:line:col: ` prefix.
+            let prefix = format!(
+                "{}:{}:{}: ",
+                location.path.display(),
+                location.line,
+                location.col
+            );
+            let detail = message
+                .find(&prefix)
+                .map_or(message.as_str(), |i| &message[i + prefix.len()..]);
+            (uri, range, LOAD_ERROR_CODES[1], detail.to_string())
         }
-        _ => (root.clone(), Range::default()),
+        other => {
+            let text = other.to_string();
+            let path = super::documents::path_of(root).map(|p| format!("{}: ", p.display()));
+            let detail = path
+                .and_then(|p| text.strip_prefix(&p).map(str::to_string))
+                .unwrap_or(text);
+            (root.clone(), Range::default(), LOAD_ERROR_CODES[2], detail)
+        }
     };
     let diagnostic = Diagnostic {
         range,
         severity: Some(DiagnosticSeverity::ERROR),
+        code: Some(NumberOrString::String(code.to_string())),
         source: Some(SOURCE.to_string()),
-        message: error.to_string(),
+        message,
         ..Diagnostic::default()
     };
     (uri, diagnostic)
+}
+
+/// Whether `diagnostic` says a file could not be validated (not a finding).
+pub fn is_load_error(diagnostic: &Diagnostic) -> bool {
+    matches!(&diagnostic.code, Some(NumberOrString::String(code)) if LOAD_ERROR_CODES.contains(&code.as_str()))
+}
+
+/// `diagnostic` as shown from an older text: marked in its message (once).
+pub fn stale(diagnostic: &Diagnostic) -> Diagnostic {
+    let mut stale = diagnostic.clone();
+    if !stale.message.ends_with(STALE) {
+        stale.message.push_str(STALE);
+    }
+    stale
+}
+
+/// The range of the token starting at `at` (up to the next space, `<` or `>` on its line; empty at the
+/// end of a line), so an editor underlines the word the reader stopped at.
+fn token_at(text: &str, index: &LineIndex, at: Position) -> Range {
+    let start = index.offset(text, at);
+    let rest = &text[start..];
+    let length = rest
+        .char_indices()
+        .skip(1)
+        .find(|&(_, c)| c.is_whitespace() || c == '<' || c == '>')
+        .map_or(rest.len(), |(i, c)| if c == '>' { i + 1 } else { i });
+    let length = if rest.starts_with(char::is_whitespace) {
+        0
+    } else {
+        length
+    };
+    index.range(text, start, start + length)
 }
 
 fn severity(severity: Severity) -> DiagnosticSeverity {

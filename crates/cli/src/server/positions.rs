@@ -122,9 +122,50 @@ pub fn through_edit(range: Range, edited: Option<Range>, text: &str) -> Option<R
     Some(Range::new(moved(range.start), moved(range.end)))
 }
 
+/// The part of `before` that differs from `after`: its byte range, and what `after` has there.
+pub fn changed_part<'a>(before: &str, after: &'a str) -> (usize, usize, &'a str) {
+    let mut prefix = before
+        .bytes()
+        .zip(after.bytes())
+        .take_while(|(a, b)| a == b)
+        .count();
+    while !before.is_char_boundary(prefix) || !after.is_char_boundary(prefix) {
+        prefix -= 1;
+    }
+    let limit = before.len().min(after.len()) - prefix;
+    let mut suffix = before
+        .bytes()
+        .rev()
+        .zip(after.bytes().rev())
+        .take(limit)
+        .take_while(|(a, b)| a == b)
+        .count();
+    while !before.is_char_boundary(before.len() - suffix)
+        || !after.is_char_boundary(after.len() - suffix)
+    {
+        suffix -= 1;
+    }
+    (
+        prefix,
+        before.len() - suffix,
+        &after[prefix..after.len() - suffix],
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_changed_part_is_the_span_between_common_ends() {
+        assert_eq!(changed_part("a=\"1 0 0\"", "a=\"1 0 0\""), (9, 9, ""));
+        assert_eq!(
+            changed_part("<j axis=\"2 0 0\"/>", "<j axis=\"1 0 0\"/>"),
+            (9, 10, "1")
+        );
+        assert_eq!(changed_part("xé y", "xè y"), (1, 3, "è"));
+        assert_eq!(changed_part("ab", "aXb"), (1, 1, "X"));
+    }
 
     #[test]
     fn ranges_follow_the_edits_before_them() {

@@ -464,11 +464,15 @@ async def test_half_typed_xml_is_a_diagnostic_and_the_last_analysis_stays(client
     await wait_for("the XML error", lambda: any(
         "not well-formed" in d.message for d in client.diagnostics.get(uri, [])
     ))
-    [error] = client.diagnostics[uri]
+    [error] = [d for d in client.diagnostics[uri] if d.code == "xml-syntax"]
     assert error.severity == types.DiagnosticSeverity.Error
+    assert str(tmp_path) not in error.message, "the editor shows the file: no path in the message"
     # roxmltree stops where the attribute value breaks: on the child line or just after it.
     child_line = BROKEN_AXIS.split("\n").index('    <child link="upper"/>')
     assert child_line <= error.range.start.line <= child_line + 1, error
+    # The last analysis's findings stay shown, marked stale, instead of all vanishing while typing.
+    [stale] = [d for d in client.diagnostics[uri] if d.code == "U310"]
+    assert stale.message.endswith("(from the last text that parsed)"), stale
     # Hover still answers from the last good analysis, and the server goes on answering.
     hover = await client.text_document_hover_async(
         types.HoverParams(
@@ -485,7 +489,16 @@ async def test_half_typed_xml_is_a_diagnostic_and_the_last_analysis_stays(client
     )
     assert {item.label for item in completion} >= {"base", "upper"}
     change(client, uri, 3, BROKEN_AXIS)
-    await wait_for("U310 back", lambda: "U310" in codes(client, uri))
+    await wait_for("U310 back", lambda: "U310" in codes(client, uri) and "xml-syntax" not in codes(client, uri))
+    assert not any(d.message.endswith("(from the last text that parsed)") for d in client.diagnostics[uri])
+
+    # `</robot>` deleted: the error is at the end of the file, where the end tag is missing (not line 1).
+    unclosed = BROKEN_AXIS.replace("</robot>", "")
+    change(client, uri, 4, unclosed)
+    await wait_for("the unclosed root", lambda: "xml-syntax" in codes(client, uri))
+    [error] = [d for d in client.diagnostics[uri] if d.code == "xml-syntax"]
+    last_line = len(unclosed.rstrip().split("\n")) - 1
+    assert error.range.start.line == last_line and "never closed" in error.message, error
 
 
 async def test_a_xacro_library_alone_is_only_checked_to_be_xml(client, tmp_path):

@@ -88,11 +88,22 @@ impl<'t> UrdfText<'t> {
     pub fn document(&self, path: &Path) -> Result<roxmltree::Document<'_>, LoadError> {
         roxmltree::Document::parse_with_options(&self.text, xml_options()).map_err(|e| {
             let pos = e.pos();
+            let (line, column, message) = match e {
+                // roxmltree points at the start of the document: what is missing is at its end.
+                roxmltree::Error::UnclosedRootNode => {
+                    let (line, column) = end_of(&self.text);
+                    let message = "the root element is never closed (expected its end tag, \
+                                   such as </robot>, at the end of the file)"
+                        .to_string();
+                    (line, column, message)
+                }
+                other => (pos.row, pos.col, other.to_string()),
+            };
             LoadError::Xml {
                 path: path.to_path_buf(),
-                line: pos.row,
-                column: pos.col,
-                message: e.to_string(),
+                line,
+                column,
+                message,
             }
         })
     }
@@ -106,6 +117,17 @@ impl<'t> UrdfText<'t> {
         let robot = parser.robot(doc.root_element());
         (robot, parser.findings)
     }
+}
+
+/// The 1-based line and column (in characters) just past the last non-blank character of `text`.
+fn end_of(text: &str) -> (u32, u32) {
+    let content = text.trim_end();
+    let line = content.matches('\n').count() + 1;
+    let column = content.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(column).unwrap_or(u32::MAX),
+    )
 }
 
 /// XML whitespace (the `S` production).
