@@ -3547,3 +3547,26 @@ fn robot_wide_findings_span_the_name_not_the_file() {
         "\"big\", end exclusive"
     );
 }
+
+/// A root element never closed (`</robot>` deleted) is reported where the end tag is missing, at the end
+/// of the file; roxmltree points at 1:1.
+#[test]
+fn an_unclosed_root_is_reported_at_the_end_of_the_file() {
+    let error = validate_text(
+        "<robot name=\"r\">\n  <link name=\"a\"/>\n\n".to_string(),
+        Path::new(FILE),
+        &Options::default(),
+    )
+    .expect_err("unclosed root");
+    let Error::Load(LoadError::Xml {
+        line,
+        column,
+        message,
+        ..
+    }) = &error
+    else {
+        panic!("{error:?}")
+    };
+    assert_eq!((*line, *column), (2, 19), "{error}");
+    assert!(message.contains("never closed"), "{message}");
+}
