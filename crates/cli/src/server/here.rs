@@ -146,10 +146,12 @@ pub fn srdf_reference_kind(element: &Element, attribute: &str) -> Option<Kind> {
     }
 }
 
-/// Whether `element`'s `attribute` defines the name (rather than refers to it).
+/// Whether `element`'s `attribute` defines the name (rather than refers to it). What a `<gazebo>` block
+/// holds (Gazebo's own links and joints, SDFormat inside URDF) defines nothing of the robot.
 pub fn is_definition(scan: &Scan, element: &Element, attribute: &Attribute) -> bool {
     let parent = element.parent.map(|p| scan.elements[p].name.as_str());
     attribute.name == "name"
+        && !scan.is_inside(element, "gazebo")
         && (element.name == "link"
             || element.name == "frame"
             || element.name == "joint" && parent != Some("transmission")

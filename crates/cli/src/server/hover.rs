@@ -36,7 +36,14 @@ pub fn text(
             kind: Kind::Joint,
             name,
             ..
-        } => report.and_then(|r| joint(r, name)),
+        } => match undefined_end(files, name, report) {
+            // The joint is not in the tree the analyses read: say why rather than "not actuated".
+            Some((end, link)) => Some(format!(
+                "**joint `{name}`**  \nits {end} link `{link}` is not defined: the joint is not part of \
+                 the kinematic tree, so no analysis reads it (U102)"
+            )),
+            None => report.and_then(|r| joint(r, name)),
+        },
         Target::Name {
             kind: Kind::Material,
             name,
@@ -169,6 +176,61 @@ fn subtree_mass(report: &Report, files: &[File], link: &str) -> Option<f64> {
         stack.extend(below.get(name).into_iter().flatten());
     }
     total
+}
+
+/// The end of joint `name` (`parent` or `child`) naming a link no file defines, and that link's name; when
+/// the files define links through xacro expressions, only what the last analysis confirmed (its U102).
+fn undefined_end(
+    files: &[File],
+    name: &str,
+    report: Option<&Report>,
+) -> Option<(&'static str, String)> {
+    let templated = files.iter().any(|file| {
+        file.scan.elements.iter().any(|e| {
+            e.name == "link" && e.attribute("name").is_some_and(|a| a.value.contains("${"))
+        })
+    });
+    let confirmed = |link: &str| {
+        report.is_some_and(|r| {
+            r.findings.iter().any(|f| {
+                f.rule == rules::UNDEFINED_LINK.code && f.message.contains(&format!("'{link}'"))
+            })
+        })
+    };
+    let defined = |link: &str| {
+        files.iter().any(|file| {
+            file.scan.elements.iter().any(|element| {
+                element.name == "link"
+                    && element.attribute("name").is_some_and(|a| {
+                        a.value == link && here::is_definition(&file.scan, element, a)
+                    })
+            })
+        })
+    };
+    for file in files {
+        let joints = file.scan.elements.iter().enumerate().filter(|(_, e)| {
+            e.name == "joint"
+                && !file.scan.is_inside(e, "gazebo")
+                && e.attribute("name").is_some_and(|a| a.value == name)
+        });
+        for (index, _) in joints {
+            for end in ["parent", "child"] {
+                let link = file
+                    .scan
+                    .children(index)
+                    .find(|e| e.name == end)
+                    .and_then(|e| e.attribute("link"))
+                    .map(|a| a.value.clone());
+                let missing = |link: &String| {
+                    !link.contains("${") && !defined(link) && (!templated || confirmed(link))
+                };
+                if let Some(link) = link.filter(missing) {
+                    return Some((end, link));
+                }
+            }
+        }
+    }
+    None
 }
 
 /// A joint's statics at the analysed pose.

@@ -114,10 +114,13 @@ pub fn references(target: &Target, files: &[File], include_declaration: bool) ->
 #[allow(deprecated)] // DocumentSymbol::deprecated must be written; `tags` replaces it.
 pub fn symbols(file: &File) -> Vec<DocumentSymbol> {
     let scan = &file.scan;
+    // The robot's own: a `<gazebo>` block's links and joints are Gazebo's.
+    let robots = |i: &usize| !scan.is_inside(&scan.elements[*i], "gazebo");
     let links: Vec<usize> = (0..scan.elements.len())
         .filter(|&i| {
             scan.elements[i].name == "link" && scan.elements[i].attribute("name").is_some()
         })
+        .filter(robots)
         .collect();
     let joints: Vec<(usize, Option<String>, Option<String>)> = (0..scan.elements.len())
         .filter(|&i| {
@@ -126,6 +129,7 @@ pub fn symbols(file: &File) -> Vec<DocumentSymbol> {
                 && element.attribute("type").is_some()
                 && element.attribute("name").is_some()
         })
+        .filter(robots)
         .map(|i| {
             let end = |tag: &str| {
                 scan.children(i)

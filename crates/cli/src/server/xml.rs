@@ -105,6 +105,22 @@ impl Scan {
             .iter()
             .filter(move |e| e.parent == Some(parent))
     }
+
+    /// Whether `element` is inside an element named `name` (at any depth): a `<link>` inside `<gazebo>`
+    /// is Gazebo's, not the robot's.
+    pub fn is_inside(&self, element: &Element, name: &str) -> bool {
+        let mut parent = element.parent;
+        while let Some(index) = parent {
+            let Some(enclosing) = self.elements.get(index) else {
+                return false;
+            };
+            if enclosing.name == name {
+                return true;
+            }
+            parent = enclosing.parent;
+        }
+        false
+    }
 }
 
 /// The start tag at `lt`: the element, the byte after it, and whether it closes itself (`/>`).

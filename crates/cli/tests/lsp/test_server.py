@@ -540,3 +540,47 @@ async def test_a_10_mb_document_and_an_include_cycle_are_diagnostics(client, tmp
     ])
     shown = [d for p in client.published for d in p.diagnostics if p.uri != uri]
     assert any(d.severity == types.DiagnosticSeverity.Error and "includ" in d.message for d in shown), shown
+
+
+async def test_gazebo_links_are_not_the_robots_and_an_orphan_joint_says_why(client, tmp_path):
+    # A <gazebo> block with SDFormat links of its own, and a joint whose parent link is not defined.
+    text = BROKEN_AXIS.replace(
+        "</robot>",
+        """  <gazebo>
+    <link name="gz_only"/>
+  </gazebo>
+  <joint name="orphan" type="fixed">
+    <parent link="nowhere"/>
+    <child link="upper"/>
+  </joint>
+</robot>""",
+    )
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(text)
+    uri = open_file(client, robot)
+    await wait_for("U102", lambda: "U102" in codes(client, uri))
+    symbols = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
+    )
+
+    def names(items):
+        for item in items:
+            yield item.name
+            yield from names(item.children or [])
+
+    assert "gz_only" not in set(names(symbols)), list(names(symbols))
+    completion = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(text, '<parent link="', len('<parent link="')),
+        )
+    )
+    labels = {item.label for item in completion}
+    assert {"base", "upper"} <= labels and "gz_only" not in labels, labels
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=position_of(text, '<joint name="orphan"', len('<joint name="') + 1),
+        )
+    )
+    assert "parent link `nowhere` is not defined" in hover.contents.value, hover.contents.value
