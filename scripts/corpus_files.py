@@ -1,6 +1,9 @@
-"""The robot files below a path, as the comparison scripts (verdict-diff.py, report-identity.py) walk them."""
+"""What the comparison scripts (verdict-diff.py, report-identity.py) share: the robot files below a path, and
+one binary's JSON report of one of them."""
 
+import json
 import pathlib
+import subprocess
 
 
 def robot_files(arguments):
@@ -21,3 +24,18 @@ def robot_files(arguments):
                     continue
                 if "<mujoco" in head or "<robot" in head:
                     yield candidate
+
+
+def json_report(binary, path):
+    """`binary`'s JSON report of `path` (`--format json --no-write --no-config`), or `None` when it gives
+    none; and the finished process (exit status, stderr)."""
+    run = subprocess.run(
+        [binary, str(path), "--format", "json", "--no-write", "--no-config"],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    try:
+        return json.loads(run.stdout), run
+    except json.JSONDecodeError:
+        return None, run

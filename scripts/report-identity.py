@@ -19,10 +19,9 @@ import difflib
 import json
 import os
 import pathlib
-import subprocess
 import sys
 
-from corpus_files import robot_files
+from corpus_files import json_report, robot_files
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
 
@@ -43,15 +42,8 @@ def default_corpora():
 
 def report(binary, path):
     """The report's text without its timestamp, and the exit status (stderr when there is no report)."""
-    run = subprocess.run(
-        [binary, str(path), "--format", "json", "--no-write", "--no-config"],
-        capture_output=True,
-        text=True,
-        timeout=900,
-    )
-    try:
-        document = json.loads(run.stdout)
-    except json.JSONDecodeError:
+    document, run = json_report(binary, path)
+    if document is None:
         return f"(no report) exit {run.returncode}\n{run.stderr}"
     document.pop("timestamp", None)
     return f"exit {run.returncode}\n" + json.dumps(document, indent=1, sort_keys=False)

@@ -14,25 +14,16 @@ Exit code 0 (the differences are for a person to judge); 2 when a binary is miss
 
 import argparse
 import collections
-import json
 import pathlib
-import subprocess
 import sys
 
-from corpus_files import robot_files
+from corpus_files import json_report, robot_files
 
 
 def outcome(binary, path):
     """(overall status or 'refused', Counter of rule codes)."""
-    run = subprocess.run(
-        [binary, str(path), "--format", "json", "--no-write", "--no-config"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    try:
-        report = json.loads(run.stdout)
-    except json.JSONDecodeError:
+    report, run = json_report(binary, path)
+    if report is None:
         return f"refused (exit {run.returncode})", collections.Counter()
     return report.get("overall_status", "?"), collections.Counter(f["rule"] for f in report["findings"])
 

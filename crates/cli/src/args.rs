@@ -197,9 +197,9 @@ pub struct Args {
     pub no_cache: bool,
 
     /// Also load the robot into MuJoCo (from PyPI: pip install "urdf-validator[mujoco]"; the Python of
-    /// URDF_VALIDATOR_PYTHON, else python3): what MuJoCo refuses or changes, its gravity torques and
-    /// centre of mass against statics, and a 2-second drop test. Runs by itself when the stability
-    /// margin is negative.
+    /// URDF_VALIDATOR_PYTHON, else the python3 beside this binary, else python3 on PATH): what MuJoCo
+    /// refuses or changes, its gravity torques and centre of mass against statics, and a 2-second drop
+    /// test. Runs by itself when the stability margin is negative.
     #[arg(long)]
     pub deep: bool,
 

@@ -299,9 +299,9 @@ impl Server<'_> {
                 ) {
                     let uri = params.text_document.uri;
                     let version = params.text_document.version;
-                    let before = self.documents.get(&uri).map(|d| d.text.clone());
                     let changes = params.content_changes;
-                    let located = located_changes(before.as_deref(), &changes);
+                    let before = self.documents.get(&uri).map(|d| d.text.as_str());
+                    let located = located_changes(before, &changes);
                     match self.documents.change(&uri, version, changes) {
                         Ok(()) => {
                             self.follow_edit(&uri, version, &located);
