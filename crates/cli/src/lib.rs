@@ -195,7 +195,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     }
     let format_options = FormatOptions {
         base_dir: std::env::current_dir().ok(),
-        rules_url: rules::reference_url(),
+        rules_url: Some(rules::reference_url()),
     };
     let files_to_write = outputs::Files {
         // --diff writes nothing.

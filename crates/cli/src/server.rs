@@ -325,7 +325,7 @@ impl Server<'_> {
                 {
                     let uri = params.text_document.uri;
                     self.documents.close(&uri);
-                    self.analyses.cancel(&uri);
+                    self.analyses.forget(&uri);
                     self.analysed.remove(&uri);
                     self.publish_for(&uri, None, HashMap::new());
                 }
@@ -401,6 +401,7 @@ impl Server<'_> {
                     version: Some(version),
                     options,
                     pause,
+                    log_timings: self.log_timings,
                 });
             }
             Err(message) => {
@@ -437,14 +438,13 @@ impl Server<'_> {
         }
         if self.log_timings {
             errln!(
-                "urdf_validate server: {} pass of {} (version {:?}) in {:.1} ms",
-                match outcome.pass {
-                    Pass::Structure => "structure",
-                    Pass::Physics => "physics",
-                },
+                "urdf_validate server: {} pass of {} (version {:?}) in {:.1} ms (arms kept {}, sampled {})",
+                outcome.pass.name(),
                 outcome.root,
                 outcome.version,
-                outcome.elapsed.as_secs_f64() * 1e3
+                outcome.elapsed.as_secs_f64() * 1e3,
+                outcome.arms.0,
+                outcome.arms.1
             );
         }
         let root = outcome.root;

@@ -152,6 +152,7 @@ pub(crate) fn workspace_options(request: &Request) -> Result<WorkspaceOptions, S
             .map(parse_axis)
             .transpose()?,
         progress: None,
+        memo: None,
     })
 }
 

@@ -2,8 +2,7 @@
 //! where a run stands for a watchdog (`--timeout`): shared by every stage, it imports none of them.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::Instant;
 
 use schemars::JsonSchema;
@@ -54,7 +53,7 @@ impl Serialize for Timings {
 }
 
 /// The phases of the pipeline, in the order they run.
-pub const PHASES: [&str; 12] = [
+pub const PHASES: [&str; 13] = [
     "load",
     "parse",
     "model",
@@ -65,6 +64,7 @@ pub const PHASES: [&str; 12] = [
     "stability",
     "collision_setup",
     "workspace",
+    "start_contacts",
     "deep",
     "report",
 ];
@@ -74,7 +74,8 @@ pub const PHASES: [&str; 12] = [
 #[derive(Clone, Debug, Default)]
 pub struct Progress {
     finished: Arc<Mutex<Option<&'static str>>>,
-    cancelled: Arc<AtomicBool>,
+    /// When [`Progress::cancel`] was first called.
+    cancelled: Arc<OnceLock<Instant>>,
     time_limit_seconds: f64,
 }
 
@@ -93,14 +94,20 @@ impl Progress {
     }
 
     /// Ask the run to stop: the pipeline gives up before its next stage, and sampling stages end at
-    /// their next chunk (their results are then partial and the report is not to be used).
+    /// their next batch of samples (their results are then partial and the report is not to be used).
     pub fn cancel(&self) {
-        self.cancelled.store(true, Ordering::Relaxed);
+        self.cancelled.get_or_init(Instant::now);
     }
 
     /// Whether [`cancel`](Self::cancel) was called.
     pub fn is_cancelled(&self) -> bool {
-        self.cancelled.load(Ordering::Relaxed)
+        self.cancelled.get().is_some()
+    }
+
+    /// When [`cancel`](Self::cancel) was first called (how long a cancelled run took to stop is measured
+    /// from it).
+    pub fn cancelled_at(&self) -> Option<Instant> {
+        self.cancelled.get().copied()
     }
 
     /// The phase running now: the one after the last finished phase ([`PHASES`] order).
@@ -176,5 +183,8 @@ mod tests {
         assert_eq!(progress.running(), "model");
         clock.lap("collision_setup");
         assert_eq!(progress.running(), "workspace");
+        // Every phase a run laps is one of them (a lap outside the list named the first phase instead).
+        clock.lap("start_contacts");
+        assert_eq!(progress.running(), "deep");
     }
 }

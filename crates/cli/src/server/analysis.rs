@@ -1,7 +1,8 @@
 //! Running validations off the main loop: one thread per run, two passes (structure at once, then
 //! physics once typing has paused), a newer run of the same document cancelling the older, and a
 //! watchdog time limit. The main loop never waits for a run: outcomes come back on a channel it selects
-//! on.
+//! on. Each document keeps a memo of its runs' sampled arms, so an edit that leaves an arm's kinematics
+//! and geometry as they were (an effort, a mass, a comment) does not sample it again.
 
 use std::collections::HashMap;
 use std::io::Write;
@@ -12,6 +13,7 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Sender;
 use lsp_types::Url;
 
+use urdf_validator::analysis::memo::Memo;
 use urdf_validator::timings::Progress;
 use urdf_validator::{Error, Options, Validation};
 
@@ -22,6 +24,16 @@ pub enum Pass {
     Structure,
     /// Everything: statics, stability, workspace.
     Physics,
+}
+
+impl Pass {
+    /// Its name in log lines.
+    pub fn name(self) -> &'static str {
+        match self {
+            Pass::Structure => "structure",
+            Pass::Physics => "physics",
+        }
+    }
 }
 
 /// What a pass of a run gave.
@@ -40,6 +52,8 @@ pub struct Outcome {
     pub result: Result<Validation, Error>,
     /// How long the pass took.
     pub elapsed: Duration,
+    /// Sampled arms the pass took from the document's memo, and arms it sampled.
+    pub arms: (usize, usize),
 }
 
 /// One validation to run.
@@ -56,6 +70,8 @@ pub struct Job {
     pub options: Options,
     /// How long typing must pause before the physics pass starts (a newer edit cancels the run first).
     pub pause: Duration,
+    /// Write how long a cancelled pass took to stop to stderr (`URDF_VALIDATOR_LSP_TIMINGS`).
+    pub log_timings: bool,
 }
 
 /// A run under way.
@@ -68,6 +84,8 @@ struct Running {
 /// The runs under way, one at most per document.
 pub struct Analyses {
     running: HashMap<Url, Running>,
+    /// Per document, the results its runs keep for the next.
+    memos: HashMap<Url, Memo>,
     outcomes: Sender<Outcome>,
     next_id: u64,
     time_limit: Duration,
@@ -78,6 +96,7 @@ impl Analyses {
     pub fn new(outcomes: Sender<Outcome>, time_limit: Duration) -> Analyses {
         Analyses {
             running: HashMap::new(),
+            memos: HashMap::new(),
             outcomes,
             next_id: 0,
             time_limit,
@@ -85,8 +104,10 @@ impl Analyses {
     }
 
     /// Start `job`, cancelling the run of the same document still under way.
-    pub fn start(&mut self, job: Job) {
+    pub fn start(&mut self, mut job: Job) {
         self.cancel(&job.root);
+        let memo = self.memos.entry(job.root.clone()).or_default();
+        job.options.workspace.memo = Some(memo.clone());
         self.next_id += 1;
         let id = self.next_id;
         let progress = Progress::with_time_limit(self.time_limit.as_secs_f64());
@@ -112,6 +133,12 @@ impl Analyses {
         if let Some(running) = self.running.remove(root) {
             running.progress.cancel();
         }
+    }
+
+    /// Cancel the run of `root` and drop what its runs kept (the document was closed).
+    pub fn forget(&mut self, root: &Url) {
+        self.cancel(root);
+        self.memos.remove(root);
     }
 
     /// Whether `outcome` is of the run under way for its document (not of one cancelled since); a
@@ -161,10 +188,22 @@ fn run(job: Job, id: u64, progress: &Progress, outcomes: &Sender<Outcome>) {
             ..job.options.clone()
         };
         let started = Instant::now();
+        let memo = job.options.workspace.memo.as_ref();
+        let before = memo.map_or((0, 0), |m| (m.reused(), m.computed()));
         let result = urdf_validator::validate_unsaved(job.text.to_string(), &job.path, &options);
-        if progress.is_cancelled() {
+        if let Some(cancelled) = progress.cancelled_at() {
+            if job.log_timings {
+                errln!(
+                    "urdf_validate server: cancelled {} pass of {} stopped {:.1} ms after its cancellation (in {})",
+                    pass.name(),
+                    job.root,
+                    cancelled.elapsed().as_secs_f64() * 1e3,
+                    progress.running()
+                );
+            }
             return;
         }
+        let after = memo.map_or((0, 0), |m| (m.reused(), m.computed()));
         let failed = result.is_err();
         let outcome = Outcome {
             root: job.root.clone(),
@@ -174,6 +213,7 @@ fn run(job: Job, id: u64, progress: &Progress, outcomes: &Sender<Outcome>) {
             pass,
             result,
             elapsed: started.elapsed(),
+            arms: (after.0 - before.0, after.1 - before.1),
         };
         if outcomes.send(outcome).is_err() || failed {
             return;
@@ -192,4 +232,72 @@ fn paused(until: Instant, progress: &Progress) -> bool {
         std::thread::sleep(left.min(STEP));
     }
     false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// The example robot's physics pass as a run of the server gives it: (arms kept, arms sampled) and
+    /// the effort of its shoulder in the report.
+    fn physics_pass(
+        analyses: &mut Analyses,
+        outcomes: &crossbeam_channel::Receiver<Outcome>,
+        text: String,
+    ) -> ((usize, usize), f64) {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/robots/mobile_manipulator.urdf");
+        let root = Url::from_file_path(&path).expect("absolute");
+        analyses.start(Job {
+            root: root.clone(),
+            path,
+            text: Arc::new(text),
+            version: Some(1),
+            options: Options::default(),
+            pause: Duration::ZERO,
+            log_timings: false,
+        });
+        loop {
+            let outcome = outcomes
+                .recv_timeout(Duration::from_secs(60))
+                .expect("an outcome");
+            assert!(analyses.is_current(&outcome));
+            if outcome.pass == Pass::Physics {
+                let report = outcome.result.expect("validates").report;
+                let shoulder = report
+                    .statics
+                    .iter()
+                    .flat_map(|statics| &statics.joints)
+                    .find(|j| j.name == "shoulder_pan_joint")
+                    .and_then(|j| j.declared_effort)
+                    .expect("the shoulder's effort");
+                return (outcome.arms, shoulder);
+            }
+        }
+    }
+
+    #[test]
+    fn an_effort_edit_takes_the_sampled_arm_from_the_documents_memo() {
+        let (sender, outcomes) = crossbeam_channel::unbounded();
+        let mut analyses = Analyses::new(sender, Duration::from_secs(60));
+        let text = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../examples/robots/mobile_manipulator.urdf"),
+        )
+        .expect("the example robot");
+        let (arms, effort) = physics_pass(&mut analyses, &outcomes, text.clone());
+        assert_eq!(
+            (arms, effort),
+            ((0, 1), 120.0),
+            "the first pass samples the arm"
+        );
+        let edited = text.replacen("effort=\"120.0\"", "effort=\"150.0\"", 1);
+        let (arms, effort) = physics_pass(&mut analyses, &outcomes, edited);
+        assert_eq!(
+            (arms, effort),
+            ((1, 0), 150.0),
+            "the edit is analysed, the arm kept"
+        );
+    }
 }

@@ -4,7 +4,6 @@
 //! well-formed, a xacro error) gets one diagnostic at the place the reader stopped.
 
 use std::collections::HashMap;
-use std::path::Path;
 
 use lsp_types::{
     CodeDescription, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location,
@@ -233,20 +232,12 @@ fn message(finding: &FindingReport) -> String {
     }
 }
 
-/// The rule's entry in docs/rules.md: on the repository's web site when Cargo.toml names one, else in the
-/// docs/rules.md this program was built from, when it is still there (none otherwise).
+/// The rule's entry in docs/rules.md on the repository's web site (the package metadata's `repository`),
+/// never a file of the machine that built the binary.
 pub fn rule_link(code: &str) -> Option<CodeDescription> {
     let rule = rules::find(code)?;
-    let anchor = rule.anchor();
-    let page = match rules::reference_url() {
-        Some(url) => Url::parse(&url).ok()?,
-        None => {
-            let local = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/rules.md");
-            Url::from_file_path(local.canonicalize().ok()?).ok()?
-        }
-    };
-    let mut href = page;
-    href.set_fragment(Some(&anchor));
+    let mut href = Url::parse(&rules::reference_url()).ok()?;
+    href.set_fragment(Some(&rule.anchor()));
     Some(CodeDescription { href })
 }
 
@@ -328,6 +319,23 @@ fn trailing_location(entry: &str) -> Option<(&str, u32, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A rule's link is its entry on the project's web site, wherever the binary runs (it was a
+    /// `file://` path into the checkout the binary was built from).
+    #[test]
+    fn a_rule_links_to_the_published_reference() {
+        let link = rule_link("U105").expect("a known rule").href;
+        assert_eq!(link.scheme(), "https");
+        assert_eq!(
+            link.as_str(),
+            format!(
+                "{}/blob/main/docs/rules.md#u105-{}",
+                env!("CARGO_PKG_REPOSITORY"),
+                rules::find("U105").expect("U105").name
+            )
+        );
+        assert!(rule_link("U999").is_none());
+    }
 
     #[test]
     fn a_pair_of_links_names_both_definitions() {

@@ -9,6 +9,7 @@ pub mod collision;
 pub mod deep;
 pub mod geometry_inertia;
 pub(crate) mod mass;
+pub mod memo;
 pub mod pose;
 pub mod profiles;
 pub mod stability;

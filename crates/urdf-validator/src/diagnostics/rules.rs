@@ -32,12 +32,10 @@ impl Rule {
 }
 
 /// The rules reference on the web: `docs/rules.md` of the repository the package metadata names
-/// (`repository` in Cargo.toml); none when it names none.
-pub fn reference_url() -> Option<String> {
-    option_env!("CARGO_PKG_REPOSITORY")
-        .map(|url| url.trim_end_matches('/'))
-        .filter(|url| !url.is_empty())
-        .map(|url| format!("{url}/blob/main/docs/rules.md"))
+/// (`repository` in the workspace's Cargo.toml), wherever the binary was built or copied to.
+pub fn reference_url() -> String {
+    let repository = env!("CARGO_PKG_REPOSITORY").trim_end_matches('/');
+    format!("{repository}/blob/main/docs/rules.md")
 }
 
 macro_rules! rules {

@@ -46,6 +46,7 @@ use std::ops::Range;
 use nalgebra::{Isometry3, Vector3};
 use rayon::prelude::*;
 
+use crate::analysis::memo::Fingerprint;
 use crate::assets::LinkSupports;
 use crate::model::{JointId, LinkId, Model};
 use crate::urdf::robot::Robot;
@@ -111,6 +112,26 @@ struct Body {
 }
 
 impl CollisionModel {
+    /// Feed everything a check reads of the model: every link's shapes and the allowed-collision matrix.
+    pub(crate) fn fingerprint(&self, print: &mut Fingerprint) {
+        print.value(self.shapes.len());
+        for (shape, source) in self.shapes.iter().zip(&self.sources) {
+            shape.fingerprint(print);
+            print.value(source);
+        }
+        for body in &self.bodies {
+            print
+                .value(&body.shapes)
+                .vector(&body.centre)
+                .float(body.radius);
+        }
+        print
+            .value(&self.geometric)
+            .value(&self.allowed)
+            .value(&self.parent)
+            .value(&self.depth);
+    }
+
     /// The collision shapes of every link (`<collision>` elements only: primitives, and meshes as their
     /// convex hull), from the links' supports the assets stage built (`supports[link]`). Markers (≤ 1 mm)
     /// and unusable shapes are left out there. The allowed-collision matrix starts with the adjacent and

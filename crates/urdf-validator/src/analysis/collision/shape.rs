@@ -16,6 +16,7 @@ use parry3d_f64::shape::SupportMap;
 
 use super::enclose::{enclose, Enclosure};
 use super::inside::Inside;
+use crate::analysis::memo::Fingerprint;
 use crate::assets::supports::Support;
 use crate::input::mesh::surface::{self, SurfaceEdges};
 
@@ -615,6 +616,28 @@ pub fn boxes_apart(
 }
 
 impl ConvexShape {
+    /// Feed what the shape is (its core, radius and frame; the rest is derived from them).
+    pub(crate) fn fingerprint(&self, print: &mut Fingerprint) {
+        match &self.core {
+            Core::Point => {
+                print.value(0u8);
+            }
+            Core::Segment { half } => {
+                print.value(1u8).float(*half);
+            }
+            Core::Cylinder { radius, half } => {
+                print.value(2u8).float(*radius).float(*half);
+            }
+            Core::Hull(hull) => {
+                print.value(3u8).value(hull.points.len());
+                for p in &hull.points {
+                    print.float(p.x).float(p.y).float(p.z);
+                }
+            }
+        }
+        print.float(self.radius).placement(&self.frame);
+    }
+
     /// The collision shape of one [`Support`]; `None` when its numbers are unusable.
     pub fn from_support(support: &Support) -> Option<ConvexShape> {
         let (mut core, radius, frame) = match support {

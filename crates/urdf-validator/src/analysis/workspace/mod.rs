@@ -27,6 +27,7 @@ use rayon::prelude::*;
 use crate::analysis::arms::Arm;
 use crate::analysis::classify::RobotType;
 use crate::analysis::collision::{Allowed, CheckScratch, CollisionModel, PairSet};
+use crate::analysis::memo::{Fingerprint, Memo};
 use crate::analysis::stability::support_polygon::{margin, Point2};
 use crate::analysis::statics::gravity::{evaluate, mass_and_com, StaticsData};
 use crate::assets::LinkSupports;
@@ -92,8 +93,11 @@ pub struct WorkspaceOptions {
     pub orientation_tolerance_deg: f64,
     /// `--approach-axis` (tip frame); default: towards the fingers, else +z.
     pub approach_axis: Option<Vector3<f64>>,
-    /// When cancelled, sampling stops at the next chunk (the section is then partial).
+    /// When cancelled, sampling stops at the next batch of samples (the section is then partial).
     pub progress: Option<Progress>,
+    /// Sampled arms kept from earlier runs on the same document (the language server's): an arm whose
+    /// sampling inputs did not change is not sampled again.
+    pub memo: Option<Memo>,
 }
 
 impl Default for WorkspaceOptions {
@@ -106,6 +110,7 @@ impl Default for WorkspaceOptions {
             orientation_tolerance_deg: 30.0,
             approach_axis: None,
             progress: None,
+            memo: None,
         }
     }
 }
@@ -399,6 +404,9 @@ fn sample_chunk(ctx: &SampleContext, job: &ArmJob, arm_index: usize, chunk: usiz
     let keep_rows = collision_state.is_some() || target_height.is_some();
     let approach = ctx.matcher.map(|_| &job.approach);
     for first in (0..count).step_by(BATCH) {
+        if is_cancelled(ctx.options) {
+            break;
+        }
         let batch = BATCH.min(count - first);
         let poses = if keep_rows {
             for row in &mut rows[..batch] {
@@ -660,22 +668,144 @@ pub fn analyse(
             nearest: SharedMinimum::new(),
         })
         .collect();
+    // Arms whose sampling inputs match a run kept in the memo take its statistics.
+    let keys: Vec<Option<u64>> = match &options.memo {
+        Some(_) => {
+            let collision_print = collision.map(|c| {
+                let mut print = Fingerprint::new("collision model");
+                c.model.fingerprint(&mut print);
+                print.finish()
+            });
+            jobs.iter()
+                .map(|job| Some(sampling_fingerprint(scene, job, collision_print, options)))
+                .collect()
+        }
+        None => vec![None; jobs.len()],
+    };
+    let mut per_arm: Vec<Option<ArmStats>> = keys
+        .iter()
+        .map(|key| Option::zip(options.memo.as_ref(), *key).and_then(|(m, k)| m.take(k)))
+        .collect();
+    let to_sample: Vec<usize> = (0..jobs.len()).filter(|&a| per_arm[a].is_none()).collect();
     // Every arm's chunks in one parallel loop (no thread waits for the last chunk of one arm before the
     // next arm starts), merged as they finish into one statistics value per arm.
-    let per_arm: Vec<ArmStats> = (0..jobs.len() * chunks)
+    let sampled = (0..to_sample.len() * chunks)
         .into_par_iter()
         .map(|k| {
-            let arm = k / chunks;
+            let arm = to_sample[k / chunks];
             vec![(
                 arm,
                 sample_chunk(&contexts[arm], &jobs[arm], arm, k % chunks),
             )]
         })
-        .reduce(Vec::new, merge_runs)
+        .reduce(Vec::new, merge_runs);
+    let whole = !is_cancelled(options);
+    for (arm, stats) in sampled {
+        if let (Some(memo), Some(key), true) = (&options.memo, keys[arm], whole) {
+            memo.keep(key, stats.clone());
+        }
+        per_arm[arm] = Some(stats);
+    }
+    let per_arm: Vec<ArmStats> = per_arm
         .into_iter()
-        .map(|(_, stats)| stats)
+        .map(|stats| stats.unwrap_or_else(ArmStats::new))
         .collect();
     summarize(scene, &jobs, &per_arm, collision, options)
+}
+
+/// Whether the run was cancelled (sampling then stops, and its statistics are partial).
+fn is_cancelled(options: &WorkspaceOptions) -> bool {
+    options
+        .progress
+        .as_ref()
+        .is_some_and(Progress::is_cancelled)
+}
+
+/// A fingerprint of everything sampling `job`'s arm reads: the options, the ground, the pose, the
+/// placements at the pose of the links it moves or checks against, the joints it moves, the collision
+/// model (`collision`, its fingerprint) and the link names (the statistics name links by index). Masses,
+/// efforts and everything else the sampling does not read are left out, so editing them keeps the arm.
+fn sampling_fingerprint(
+    scene: &Scene,
+    job: &ArmJob,
+    collision: Option<u64>,
+    options: &WorkspaceOptions,
+) -> u64 {
+    let (robot, model, arm) = (scene.robot, scene.model, job.arm);
+    let mut print = Fingerprint::new("workspace arm sampling");
+    print
+        .value(options.samples)
+        .value(options.seed)
+        .value(format!("{:?} {:?}", options.task, options.orientation))
+        .float(options.orientation_tolerance_deg)
+        .value(
+            options
+                .approach_axis
+                .map(|a| [a.x, a.y, a.z].map(f64::to_bits)),
+        )
+        .float(scene.ground)
+        .floats(scene.q)
+        .value(model.up.as_str())
+        .value(collision);
+    print.value(robot.links.len());
+    for link in &robot.links {
+        print.value(&link.name.value);
+    }
+    print
+        .value((
+            arm.base,
+            arm.tip,
+            &arm.path,
+            arm.hand,
+            &arm.fingers,
+            arm.declared,
+        ))
+        .vector(&job.approach);
+    let mut links: Vec<LinkId> = job.moving_links.clone();
+    links.push(arm.base);
+    links.extend(
+        job.pairs
+            .iter()
+            .flat_map(|pairs| pairs.links().iter().copied()),
+    );
+    for joint in &arm.path {
+        links.extend(
+            model.joint_links[joint.0]
+                .iter()
+                .flat_map(|(p, c)| [*p, *c]),
+        );
+    }
+    links.sort_unstable();
+    links.dedup();
+    for link in links {
+        if let Some(placement) = scene.data.link_placement.get(link.0) {
+            print.value(link).placement(placement);
+        }
+    }
+    let moving: std::collections::HashSet<LinkId> = job.moving_links.iter().copied().collect();
+    for (index, links) in model.joint_links.iter().enumerate() {
+        let joint = JointId(index);
+        if !links.is_some_and(|(_, child)| moving.contains(&child)) && !arm.path.contains(&joint) {
+            continue;
+        }
+        let data = &model.joint_data[index];
+        print
+            .value((joint, *links, data.kind.as_str()))
+            .placement(&data.placement)
+            .vector(&data.axis)
+            .optional(data.lower)
+            .optional(data.upper)
+            .value(model.independent_leader[index].0)
+            .float(model.independent_leader[index].1);
+        match &model.mimic[index] {
+            Some(mimic) => print
+                .value(mimic.leader)
+                .float(mimic.multiplier)
+                .float(mimic.offset),
+            None => print.value(0u8),
+        };
+    }
+    print.finish()
 }
 
 /// `known` (the largest horizontal distance so far), raised to `offset`'s horizontal distance when that is
