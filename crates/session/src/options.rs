@@ -153,6 +153,7 @@ pub(crate) fn workspace_options(request: &Request) -> Result<WorkspaceOptions, S
             .transpose()?,
         progress: None,
         memo: None,
+        sample_from: None,
     })
 }
 

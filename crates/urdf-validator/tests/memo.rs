@@ -32,6 +32,10 @@ struct Edit {
     left_shoulder_z: f64,
     /// The right forearm's collision box length.
     right_box: f64,
+    /// The left tool frame's (no geometry) offset from the left forearm.
+    left_tool_z: f64,
+    /// The camera frame's (no geometry) height on the torso.
+    camera_z: f64,
 }
 
 const ORIGINAL: Edit = Edit {
@@ -39,6 +43,8 @@ const ORIGINAL: Edit = Edit {
     mass: 2.0,
     left_shoulder_z: 0.4,
     right_box: 0.3,
+    left_tool_z: 0.3,
+    camera_z: 0.5,
 };
 
 fn box_link(name: &str, mass: f64, length: f64) -> String {
@@ -77,8 +83,13 @@ fn dual_arm(edit: Edit) -> String {
         revolute("r_shoulder", "torso", "r_upper", "0 -0.12 0.4", 40.0),
         revolute("r_elbow", "r_upper", "r_fore", "0 0 0.3", 20.0),
     ];
+    let frames = format!(
+        r#"<link name="l_tool"/><joint name="l_tool_joint" type="fixed"><parent link="l_fore"/><child link="l_tool"/><origin xyz="0 0 {}"/></joint>
+<link name="camera"/><joint name="camera_joint" type="fixed"><parent link="torso"/><child link="camera"/><origin xyz="0.05 0 {}"/></joint>"#,
+        edit.left_tool_z, edit.camera_z
+    );
     format!(
-        "<robot name=\"dual\">\n<!-- a comment -->\n{}\n{}\n</robot>\n",
+        "<robot name=\"dual\">\n<!-- a comment -->\n{}\n{}\n{frames}\n</robot>\n",
         links.join("\n"),
         joints.join("\n")
     )
@@ -100,7 +111,7 @@ fn options(memo: Option<&Memo>) -> Options {
 fn arms() -> Overrides {
     Overrides {
         arms: vec![
-            ("torso".to_string(), "l_fore".to_string()),
+            ("torso".to_string(), "l_tool".to_string()),
             ("torso".to_string(), "r_fore".to_string()),
         ],
         ..Overrides::default()
@@ -190,6 +201,24 @@ fn an_edit_of_what_sampling_reads_samples_again() {
         }),
     );
     assert_eq!(arms, (0, 2), "a collision box");
+    // The left tool frame (no geometry) moves: the left arm's tip, not a link the right arm can hit.
+    let (_, arms) = run(
+        &memo,
+        &dual_arm(Edit {
+            left_tool_z: 0.32,
+            ..ORIGINAL
+        }),
+    );
+    assert_eq!(arms, (1, 1), "the left tool frame");
+    // A frame without geometry that no arm moves.
+    let (_, arms) = run(
+        &memo,
+        &dual_arm(Edit {
+            camera_z: 0.45,
+            ..ORIGINAL
+        }),
+    );
+    assert_eq!(arms, (2, 0), "a camera frame");
     // Back to the original: both arms are still kept.
     let (_, arms) = run(&memo, &dual_arm(ORIGINAL));
     assert_eq!(arms, (2, 0), "the original again");
@@ -258,10 +287,29 @@ fn with_effort_edited(text: &str) -> String {
     }
 }
 
-/// Every real robot of the corpora, validated, then validated again after an effort edit: the second run
-/// takes every sampled arm from the memo, and its report is the one a run without the memo gives.
+/// `text` with the first `attribute="x y z"` inside the `nth` (modulo their count) element starting with
+/// `element`: its first number raised by 0.01 (`None` when no such element holds the attribute).
+fn with_first_number_raised(
+    text: &str,
+    element: &str,
+    end: &str,
+    attribute: &str,
+    nth: usize,
+) -> Option<String> {
+    let starts: Vec<usize> = text.match_indices(element).map(|(at, _)| at).collect();
+    let start = *starts.get(nth % starts.len().max(1))?;
+    let close = start + text[start..].find(end)?;
+    let value = start + text[start..close].find(attribute)? + attribute.len();
+    let number_end = value + text[value..].find([' ', '"'])?;
+    let raised = text[value..number_end].trim().parse::<f64>().ok()? + 0.01;
+    Some(format!("{}{raised}{}", &text[..value], &text[number_end..]))
+}
+
+/// Every real robot of the corpora, validated, then validated again after edits: after an effort edit
+/// every sampled arm comes from the memo; after a joint-origin or a collision-box edit some may be sampled
+/// again; and the report is always the one a run without the memo gives.
 #[test]
-fn on_real_robots_an_effort_edit_keeps_every_arm_and_the_same_report() {
+fn on_real_robots_the_memo_never_changes_a_report() {
     let mut files: Vec<std::path::PathBuf> = Vec::new();
     for dir in [common::corpus(), common::shared_robots()]
         .into_iter()
@@ -269,14 +317,22 @@ fn on_real_robots_an_effort_edit_keeps_every_arm_and_the_same_report() {
     {
         files.extend(common::urdfs_below(&dir));
     }
-    let mut sampled_arms = 0;
-    for path in &files {
+    let (mut sampled_arms, mut kinematic_edits) = (0, 0);
+    for (index, path) in files.iter().enumerate() {
         let text = std::fs::read_to_string(path).expect("readable");
         let memo = Memo::default();
+        // Fewer samples than the default: what is kept does not depend on how many.
+        let without_memo = Options {
+            workspace: WorkspaceOptions {
+                samples: 4000,
+                ..WorkspaceOptions::default()
+            },
+            ..Options::default()
+        };
         let with_memo = Options {
             workspace: WorkspaceOptions {
                 memo: Some(memo.clone()),
-                ..WorkspaceOptions::default()
+                ..without_memo.workspace.clone()
             },
             ..Options::default()
         };
@@ -284,27 +340,42 @@ fn on_real_robots_an_effort_edit_keeps_every_arm_and_the_same_report() {
             continue; // refused files are another test's business
         }
         let first = memo.computed();
-        let edited = with_effort_edited(&text);
-        let again = validate_text(edited.clone(), path, &with_memo).expect("validates");
+        sampled_arms += first;
+        let same_report = |edited: &str, what: &str| {
+            let again = validate_text(edited.to_string(), path, &with_memo).expect("validates");
+            let without =
+                validate_text(edited.to_string(), path, &without_memo).expect("validates");
+            assert!(
+                json_of(&again) == json_of(&without),
+                "{} after {what}: the report with the memo differs from the one without",
+                path.display()
+            );
+        };
+        same_report(&with_effort_edited(&text), "an effort edit");
         assert_eq!(
             (memo.reused(), memo.computed()),
             (first, first),
-            "{}: every arm kept",
+            "{}: every arm kept after an effort edit",
             path.display()
         );
-        let without = validate_text(edited, path, &Options::default()).expect("validates");
-        assert!(
-            json_of(&again) == json_of(&without),
-            "{}: the report with the memo differs from the one without",
-            path.display()
-        );
-        sampled_arms += first;
+        let kinematic = [
+            with_first_number_raised(&text, "<joint ", "</joint>", "xyz=\"", index),
+            with_first_number_raised(&text, "<collision", "</collision>", "size=\"", index),
+        ];
+        for edited in kinematic.iter().flatten() {
+            same_report(edited, "a joint-origin or collision-box edit");
+            kinematic_edits += 1;
+        }
     }
     if !files.is_empty() {
         assert!(
             sampled_arms > 20,
             "only {sampled_arms} arms sampled in {} files",
             files.len()
+        );
+        assert!(
+            kinematic_edits > 50,
+            "only {kinematic_edits} kinematic edits"
         );
     }
 }

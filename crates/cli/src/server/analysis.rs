@@ -1,6 +1,6 @@
-//! Running validations off the main loop: one thread per run, two passes (structure at once, then
-//! physics once typing has paused), a newer run of the same document cancelling the older, and a
-//! watchdog time limit. The main loop never waits for a run: outcomes come back on a channel it selects
+//! Running validations off the main loop: one thread per run, two passes (structure, then physics, whose
+//! sampling of arms the document's memo does not hold waits for typing to pause), a newer run of the same
+//! document cancelling the older, and a watchdog time limit. The main loop never waits for a run: outcomes come back on a channel it selects
 //! on. Each document keeps a memo of its runs' sampled arms, so an edit that leaves an arm's kinematics
 //! and geometry as they were (an effort, a mass, a comment) does not sample it again.
 
@@ -68,7 +68,8 @@ pub struct Job {
     pub version: Option<i32>,
     /// The options its configuration gives.
     pub options: Options,
-    /// How long typing must pause before the physics pass starts (a newer edit cancels the run first).
+    /// How long typing must pause before the physics pass samples an arm its memo does not hold (a newer
+    /// edit cancels the run first); a pass whose arms are all kept does not wait.
     pub pause: Duration,
     /// Write how long a cancelled pass took to stop to stderr (`URDF_VALIDATOR_LSP_TIMINGS`).
     pub log_timings: bool,
@@ -179,14 +180,12 @@ impl Analyses {
 fn run(job: Job, id: u64, progress: &Progress, outcomes: &Sender<Outcome>) {
     let start = Instant::now();
     for pass in [Pass::Structure, Pass::Physics] {
-        if pass == Pass::Physics && !paused(start + job.pause, progress) {
-            return;
-        }
-        let options = Options {
+        let mut options = Options {
             structure_only: pass == Pass::Structure,
             progress: Some(progress.clone()),
             ..job.options.clone()
         };
+        options.workspace.sample_from = Some(start + job.pause);
         let started = Instant::now();
         let memo = job.options.workspace.memo.as_ref();
         let before = memo.map_or((0, 0), |m| (m.reused(), m.computed()));
@@ -219,19 +218,6 @@ fn run(job: Job, id: u64, progress: &Progress, outcomes: &Sender<Outcome>) {
             return;
         }
     }
-}
-
-/// Wait until `until` unless the run is cancelled first; whether it was not.
-fn paused(until: Instant, progress: &Progress) -> bool {
-    const STEP: Duration = Duration::from_millis(5);
-    while !progress.is_cancelled() {
-        let left = until.saturating_duration_since(Instant::now());
-        if left.is_zero() {
-            return true;
-        }
-        std::thread::sleep(left.min(STEP));
-    }
-    false
 }
 
 #[cfg(test)]

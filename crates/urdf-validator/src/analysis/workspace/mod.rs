@@ -20,6 +20,7 @@ pub use verdict::findings;
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -98,6 +99,10 @@ pub struct WorkspaceOptions {
     /// Sampled arms kept from earlier runs on the same document (the language server's): an arm whose
     /// sampling inputs did not change is not sampled again.
     pub memo: Option<Memo>,
+    /// Arms the memo does not hold are sampled from this instant on, not before: the language server's
+    /// typing pause (a newer edit cancels the run first, and the sampling never starts), while a run
+    /// whose arms are all kept finishes at once.
+    pub sample_from: Option<Instant>,
 }
 
 impl Default for WorkspaceOptions {
@@ -111,6 +116,7 @@ impl Default for WorkspaceOptions {
             approach_axis: None,
             progress: None,
             memo: None,
+            sample_from: None,
         }
     }
 }
@@ -687,6 +693,9 @@ pub fn analyse(
         .map(|key| Option::zip(options.memo.as_ref(), *key).and_then(|(m, k)| m.take(k)))
         .collect();
     let to_sample: Vec<usize> = (0..jobs.len()).filter(|&a| per_arm[a].is_none()).collect();
+    if !to_sample.is_empty() {
+        wait_for_sampling(options);
+    }
     // Every arm's chunks in one parallel loop (no thread waits for the last chunk of one arm before the
     // next arm starts), merged as they finish into one statistics value per arm.
     let sampled = (0..to_sample.len() * chunks)
@@ -713,6 +722,21 @@ pub fn analyse(
     summarize(scene, &jobs, &per_arm, collision, options)
 }
 
+/// Wait until [`WorkspaceOptions::sample_from`], or until the run is cancelled.
+fn wait_for_sampling(options: &WorkspaceOptions) {
+    const STEP: Duration = Duration::from_millis(2);
+    let Some(from) = options.sample_from else {
+        return;
+    };
+    while !is_cancelled(options) {
+        let left = from.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return;
+        }
+        std::thread::sleep(left.min(STEP));
+    }
+}
+
 /// Whether the run was cancelled (sampling then stops, and its statistics are partial).
 fn is_cancelled(options: &WorkspaceOptions) -> bool {
     options
@@ -722,8 +746,9 @@ fn is_cancelled(options: &WorkspaceOptions) -> bool {
 }
 
 /// A fingerprint of everything sampling `job`'s arm reads: the options, the ground, the pose, the
-/// placements at the pose of the links it moves or checks against, the joints it moves, the collision
-/// model (`collision`, its fingerprint) and the link names (the statistics name links by index). Masses,
+/// placements at the pose of the links it places (its path, the links of its self-collision pairs and the
+/// moving links above them), the joints that move them, the collision model (`collision`, its
+/// fingerprint) and the link names (the statistics name links by index). Masses,
 /// efforts and everything else the sampling does not read are left out, so editing them keeps the arm.
 fn sampling_fingerprint(
     scene: &Scene,
@@ -761,13 +786,9 @@ fn sampling_fingerprint(
             arm.declared,
         ))
         .vector(&job.approach);
-    let mut links: Vec<LinkId> = job.moving_links.clone();
-    links.push(arm.base);
-    links.extend(
-        job.pairs
-            .iter()
-            .flat_map(|pairs| pairs.links().iter().copied()),
-    );
+    // The links sampling places: the arm's path, its self-collision pairs' links and the moving links
+    // above them (a moved frame without geometry that no pair reaches is never read).
+    let mut links: Vec<LinkId> = vec![arm.base];
     for joint in &arm.path {
         links.extend(
             model.joint_links[joint.0]
@@ -775,22 +796,32 @@ fn sampling_fingerprint(
                 .flat_map(|(p, c)| [*p, *c]),
         );
     }
+    if let Some(pairs) = &job.pairs {
+        links.extend(pairs.links());
+        links.extend(links_to_place(model, &job.moving_links, pairs));
+    }
     links.sort_unstable();
     links.dedup();
-    for link in links {
+    for &link in &links {
         if let Some(placement) = scene.data.link_placement.get(link.0) {
             print.value(link).placement(placement);
         }
     }
+    // The joints that move them, and the arm's own.
     let moving: std::collections::HashSet<LinkId> = job.moving_links.iter().copied().collect();
-    for (index, links) in model.joint_links.iter().enumerate() {
-        let joint = JointId(index);
-        if !links.is_some_and(|(_, child)| moving.contains(&child)) && !arm.path.contains(&joint) {
-            continue;
-        }
+    let mut joints: Vec<JointId> = links
+        .iter()
+        .filter(|link| moving.contains(link))
+        .filter_map(|link| model.parent_joint[link.0])
+        .chain(arm.path.iter().copied())
+        .collect();
+    joints.sort_unstable();
+    joints.dedup();
+    for joint in joints {
+        let index = joint.0;
         let data = &model.joint_data[index];
         print
-            .value((joint, *links, data.kind.as_str()))
+            .value((joint, model.joint_links[index], data.kind.as_str()))
             .placement(&data.placement)
             .vector(&data.axis)
             .optional(data.lower)
