@@ -9,8 +9,9 @@
 #   1. with the bad robots: `colcon test --return-code-on-test-failure` must fail, `colcon test-result`
 #      must count failures in both packages' result files and `--verbose` must show U701 and its message;
 #   2. with the bad robots removed: colcon test passes and test-result counts tests and 0 failures;
-#   3. the linter's own command line: exit codes of a WARN robot with --fail-on warn / fail, an
-#      --exclude, and a missing urdf_validate named in the error.
+#   3. the linter's own command line: exit codes of a WARN robot with --fail-on warn / fail, --exclude,
+#      -- args, urdf-validate.toml, --config and package.xml options; a folder of macro libraries
+#      (passes), one without robots (exit 1); a bad package.xml and a missing urdf_validate (exit 2).
 # colcon, ament_package, ament_cmake and ament_lint come from Debian (bookworm: colcon 0.12.1,
 # python3-ament-package 0.15.1, ament-cmake 1.5.2, ament-lint 0.13.2), installed with apt-get when
 # missing and running as root. Under CI=true a missing tool is a failure, never a skip.
@@ -323,6 +324,12 @@ grep -qF "WARN U201 missing-inertial" "$scratch/x/w.xunit.xml" || fail "the xuni
 expect_rc 0 "a WARN robot, --fail-on fail" ament_urdf_validate --fail-on fail
 expect_rc 0 "a WARN robot excluded" ament_urdf_validate --exclude warn_arm.urdf
 expect_rc 0 "a WARN robot, -- --ignore U201" ament_urdf_validate -- --ignore U201
+# urdf-validate.toml: urdf_validate finds it itself, from each input upwards (the package's root here).
+printf 'ignore = ["U201"]\n' >urdf-validate.toml
+expect_rc 0 "a WARN robot, U201 ignored in the package's urdf-validate.toml" ament_urdf_validate
+mkdir -p config && mv urdf-validate.toml config/strict.toml
+expect_rc 1 "the configuration moved away" ament_urdf_validate
+expect_rc 0 "--config config/strict.toml" ament_urdf_validate --config config/strict.toml
 sed -i 's|<export>|<export>\n    <urdf_validate fail-on="fail"/>|' package.xml
 expect_rc 0 "a WARN robot, package.xml fail-on=\"fail\"" ament_urdf_validate
 sed -i 's|<urdf_validate fail-on="fail"/>|<urdf_validate fial-on="fail"/>|' package.xml
@@ -330,6 +337,11 @@ expect_rc 2 "package.xml with a misspelt attribute" ament_urdf_validate
 grep -qF "package.xml: <urdf_validate> has unknown attribute(s) fial-on" "$scratch/cli.log" ||
     fail "the error does not name package.xml and the attribute"
 sed -i 's|    <urdf_validate fial-on="fail"/>||' package.xml
+mkdir -p "$scratch/macros_only" "$scratch/no_robots"
+cp urdf/macros.xacro "$scratch/macros_only/"
+expect_rc 0 "a folder of xacro macro libraries only" ament_urdf_validate "$scratch/macros_only"
+expect_rc 1 "a folder without robot descriptions" ament_urdf_validate "$scratch/no_robots"
+grep -qF "No files found" "$scratch/cli.log" || fail "no 'No files found' for a folder without robots"
 expect_rc 2 "URDF_VALIDATE pointing nowhere" env URDF_VALIDATE=/nonexistent/urdf_validate ament_urdf_validate --fail-on fail
 grep -qF "URDF_VALIDATE='/nonexistent/urdf_validate' is not an executable file" "$scratch/cli.log" ||
     fail "the error does not name URDF_VALIDATE"

@@ -7,8 +7,8 @@ the exit code. Standard library only: it runs in ROS environments.
 What is validated is what ``urdf_validate DIR`` discovers: every ``*.urdf``, ``*.sdf`` and ``*.world``,
 every ``*.xml`` with a ``<mujoco>`` root, every ``*.xacro`` that builds a robot (macro libraries are
 left out); hidden folders and what ``.gitignore`` excludes are skipped. With ``--exclude`` names, or an
-``AMENT_IGNORE``/``COLCON_IGNORE`` marker below a folder, this module lists that folder's files itself
-and passes them with ``--skip-xacro-libraries``.
+``AMENT_IGNORE``/``COLCON_IGNORE`` marker below a folder, or when a folder's only candidates are xacro
+files, this module lists that folder's files itself and passes them with ``--skip-xacro-libraries``.
 
 Exit code: 0 when every robot passes (``fail-on = fail``: or only warns), 1 when a robot warns,
 2 when one fails or cannot be read, or the validator could not run.
@@ -147,7 +147,7 @@ def _run(argv):
 
     if not suites and validator_rc == 0:
         # Only xacro macro libraries (they build no robot on their own): nothing to fail.
-        print('No robot found: the xacro files are macro libraries; nothing to check')
+        print('No robot found: the xacro files are macro libraries; nothing to check', flush=True)
 
     testname = xunit_testname(args.xunit_file) if args.xunit_file else 'urdf_validate'
     cases = convert_cases(suites, testname, fail_on)
@@ -163,8 +163,9 @@ def _run(argv):
     errors = [c['failure'] or c['error'] for c in cases if c['failure'] or c['error']]
 
     if rc == 0:
-        print('No problems found')
+        print('No problems found', flush=True)
     else:
+        sys.stdout.flush()
         print('%d check(s) failed (fail-on = %s)' % (len(errors), fail_on), file=sys.stderr)
 
     if args.xunit_file:
@@ -249,7 +250,8 @@ def collect_inputs(paths, excludes):
     """Return (inputs for urdf_validate, whether xacro files are listed by name).
 
     A folder is passed as it is (urdf_validate discovers its robots) unless an excluded name or an
-    AMENT_IGNORE/COLCON_IGNORE marker lies below it: then its candidate files are listed here.
+    AMENT_IGNORE/COLCON_IGNORE marker lies below it, or its only candidates are xacro files: then its
+    candidate files are listed here.
     """
     inputs = []
     listed_xacro = False
@@ -260,8 +262,12 @@ def collect_inputs(paths, excludes):
                 listed_xacro = listed_xacro or path.endswith('.xacro')
             continue
         if not _needs_listing(path, excludes):
-            inputs.append(path)
-            continue
+            candidates = list_robot_files(path, excludes)
+            # Only xacro files: listed with --skip-xacro-libraries, so that a folder of macro
+            # libraries passes (urdf_validate DIR refuses a folder without a robot).
+            if not (candidates and all(f.endswith('.xacro') for f in candidates)):
+                inputs.append(path)
+                continue
         for filename in list_robot_files(path, excludes):
             inputs.append(filename)
             listed_xacro = listed_xacro or filename.endswith('.xacro')
