@@ -5,7 +5,8 @@
 # (git-ignored), findings go to its artifacts/ folder; a summary line per target ends the run, and the exit
 # status is 1 when any target found a crash, a timeout or an out-of-memory.
 #
-#   bash scripts/fuzz-campaign.sh            # one hour per target: urdf, mesh, mjcf, sdf, xacro expand, expression
+#   bash scripts/fuzz-campaign.sh            # one hour per target: urdf, mesh, mjcf, sdf, xacro expand, expression,
+#                                            # lsp_messages (the language server's message loop)
 #   bash scripts/fuzz-campaign.sh 600 urdf   # ten minutes, one target
 #
 # Limits as the fuzz READMEs state them: the validator targets 10 s and 1.5 GB per input (they keep going
@@ -20,7 +21,7 @@ seconds="${1:-3600}"
 niceness="${FUZZ_NICE:-19}"
 shift || true
 targets=("$@")
-((${#targets[@]} > 0)) || targets=(urdf mesh mjcf sdf expand expression)
+((${#targets[@]} > 0)) || targets=(urdf mesh mjcf sdf expand expression lsp_messages)
 logs="${FUZZ_LOG_DIR:-$(mktemp -d)}"
 mkdir -p "$logs"
 echo "fuzz-campaign: ${targets[*]} for ${seconds}s each; logs in $logs" >&2
@@ -49,12 +50,21 @@ run_target() {
                 -max_total_time="$seconds" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
                 -print_final_stats=1 -artifact_prefix="fuzz/artifacts/$target/"
             ;;
+        lsp_messages)
+            cd "$repo_root/crates/cli" || return 1
+            mkdir -p "fuzz/corpus/$target" "fuzz/artifacts/$target"
+            RAYON_NUM_THREADS=1 RUSTC_BOOTSTRAP=1 nice -n "$niceness" cargo fuzz run -s none "$target" \
+                "fuzz/corpus/$target" "fuzz/seeds/$target" -- \
+                -dict=fuzz/lsp.dict -timeout=10 -rss_limit_mb=1536 -max_len=20000 \
+                -max_total_time="$seconds" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+                -print_final_stats=1 -artifact_prefix="fuzz/artifacts/$target/"
+            ;;
         expand | expression)
             nice -n "$niceness" bash "$repo_root/crates/xacro/fuzz/run.sh" "$target" "$seconds" \
                 -timeout=10 -rss_limit_mb=1536
             ;;
         *)
-            echo "fuzz-campaign: unknown target $target (urdf, mesh, mjcf, sdf, expand, expression)" >&2
+            echo "fuzz-campaign: unknown target $target (urdf, mesh, mjcf, sdf, expand, expression, lsp_messages)" >&2
             return 2
             ;;
     esac

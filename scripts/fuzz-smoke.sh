@@ -45,6 +45,25 @@ run_validator_target() {
     summary+=("$target: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
 }
 
+# The language server's message loop (crates/cli/fuzz): framed byte streams through its reader, main loop
+# and writer, in process; its own dictionary of LSP tokens.
+run_cli_target() {
+    local target="$1" max_len="$2"
+    local dir="$repo_root/crates/cli"
+    mkdir -p "$work/$target/corpus" "$work/$target/artifacts"
+    echo "fuzz-smoke: $target for ${seconds}s" >&2
+    (cd "$dir" && RAYON_NUM_THREADS=1 RUSTC_BOOTSTRAP=1 cargo fuzz run -s none "$target" \
+        "$work/$target/corpus" "fuzz/seeds/$target" -- \
+        -dict=fuzz/lsp.dict -timeout=10 -rss_limit_mb=1536 -max_len="$max_len" \
+        -max_total_time="$seconds" -seed="$seed" -print_final_stats=1 \
+        -artifact_prefix="$work/$target/artifacts/") 2>"$work/$target.log" || {
+        grep -a -v '^urdf_validate server: ' "$work/$target.log" | tail -40 >&2
+        echo "fuzz-smoke: FAIL: $target found a crash, timeout or OOM (see above)" >&2
+        exit 1
+    }
+    summary+=("$target: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
+}
+
 run_xacro_target() {
     local target="$1"
     echo "fuzz-smoke: xacro $target for ${seconds}s" >&2
@@ -62,6 +81,7 @@ run_validator_target urdf 40000
 run_validator_target mesh 32768
 run_validator_target mjcf 512 fuzz/seeds/mjcf/inputs ""
 run_validator_target sdf 512 fuzz/seeds/sdf/inputs ""
+run_cli_target lsp_messages 20000
 run_xacro_target expand
 run_xacro_target expression
 

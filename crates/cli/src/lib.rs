@@ -37,6 +37,10 @@ mod progress;
 mod request;
 mod server;
 
+/// The language server's message loop on bytes in memory, for its fuzz target (crates/cli/fuzz).
+#[doc(hidden)]
+pub use server::fuzzing;
+
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};

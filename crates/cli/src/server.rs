@@ -12,8 +12,11 @@ mod code_actions;
 mod completion;
 mod diagnostics;
 mod documents;
+#[doc(hidden)]
+pub mod fuzzing;
 mod here;
 mod hover;
+mod lifecycle;
 mod navigation;
 mod positions;
 mod transport;
@@ -177,11 +180,9 @@ fn serve(
     settings: Settings,
     timeout: Option<Duration>,
 ) -> Result<(), String> {
-    let (id, _params) = match connection.initialize_start() {
-        Ok(started) => started,
-        // stdin closed before `initialize`: nothing was asked.
-        Err(error) if error.channel_is_disconnected() => return Ok(()),
-        Err(error) => return Err(format!("initialize: {error}")),
+    // stdin closed (or `exit`) before `initialize`: nothing was asked.
+    let Some((id, _params)) = lifecycle::initialize(connection) else {
+        return Ok(());
     };
     let result = lsp_types::InitializeResult {
         capabilities: capabilities(),
@@ -191,9 +192,8 @@ fn serve(
         }),
     };
     let result = serde_json::to_value(result).map_err(|e| e.to_string())?;
-    connection
-        .initialize_finish(id, result)
-        .map_err(|e| format!("initialize: {e}"))?;
+    (connection.sender.send(Response::new_ok(id, result).into()))
+        .map_err(|_| "initialize: the client is gone".to_string())?;
     let (sender, outcomes) = crossbeam_channel::unbounded();
     // A run never ends by itself past the time limit: the watchdog cancels it (none: an hour).
     let time_limit = timeout.unwrap_or(Duration::from_secs(3600));
@@ -246,7 +246,7 @@ impl Server<'_> {
                     let Ok(message) = message else { return Ok(()) };
                     match message {
                         Message::Request(request) => {
-                            if self.connection.handle_shutdown(&request).map_err(|e| e.to_string())? {
+                            if lifecycle::shut_down(self.connection, &request) {
                                 return Ok(());
                             }
                             self.request(request);

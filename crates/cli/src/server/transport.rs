@@ -83,7 +83,8 @@ pub fn read_messages(input: &mut impl BufRead, messages: &Sender<Message>, error
     }
 }
 
-/// Write the server's messages and the error replies to `output` until both channels close.
+/// Write the server's messages and the error replies to `output` until the server's channel closes (the
+/// error replies queued by then are written too).
 pub fn write_messages(
     output: &mut impl Write,
     messages: &Receiver<Message>,
@@ -95,7 +96,15 @@ pub fn write_messages(
             select! {
                 recv(messages) -> message => match message {
                     Ok(message) => message.write(output),
-                    Err(_) => return,
+                    Err(_) => {
+                        // The server is done; the replies to bad messages read before are not lost.
+                        for reply in errors.try_iter() {
+                            if write_frame(output, &reply).is_err() {
+                                break;
+                            }
+                        }
+                        return;
+                    }
                 },
                 recv(errors) -> reply => match reply {
                     Ok(reply) => write_frame(output, &reply),
@@ -234,7 +243,12 @@ fn parse(body: &[u8]) -> Result<Message, Bad> {
             Value::Null,
         )
     })?;
-    let id = value.get("id").cloned().unwrap_or(Value::Null);
+    // JSON-RPC: an id that cannot be told (not a number or a string) is answered with null.
+    let id = value
+        .get("id")
+        .filter(|id| id.is_number() || id.is_string())
+        .cloned()
+        .unwrap_or(Value::Null);
     if !value.is_object() {
         return Err(Bad::new(
             INVALID_REQUEST,
@@ -303,6 +317,7 @@ mod tests {
             frame("[1, 2]"),
             frame(r#"{"jsonrpc":"2.0"}"#),
             frame(r#"{"jsonrpc":"2.0","id":7}"#),
+            frame(r#"{"jsonrpc":"2.0","id":{"not":"an id"}}"#),
             format!("Content-Lenght: {}\r\n\r\n{good}", good.len()),
             frame(good),
         ]
@@ -319,6 +334,7 @@ mod tests {
                 INVALID_REQUEST,
                 INVALID_REQUEST,
                 INVALID_REQUEST,
+                INVALID_REQUEST,
                 PARSE_ERROR
             ]
         );
@@ -327,10 +343,39 @@ mod tests {
             "the id of a request that can be named: {replies:?}"
         );
         assert_eq!(
+            replies[4]["id"],
+            Value::Null,
+            "an id that is neither a number nor a string is null: {replies:?}"
+        );
+        assert_eq!(
             messages.len(),
             1,
             "the good message after the bad ones is read: {messages:?}"
         );
+    }
+
+    /// The server ends while error replies are still queued (a bad message just before the end of the
+    /// input): they are written. The writer used to return as soon as the server's channel closed, and
+    /// dropped them (found by the `lsp_messages` fuzz target).
+    #[test]
+    fn error_replies_queued_when_the_server_ends_are_written() {
+        let (messages, server) = crossbeam_channel::unbounded::<Message>();
+        let (errors, replies) = crossbeam_channel::unbounded();
+        for code in [PARSE_ERROR, INVALID_REQUEST, PARSE_ERROR] {
+            errors
+                .send(json!({"jsonrpc": "2.0", "id": null, "error": {"code": code, "message": "bad"}}))
+                .expect("open");
+        }
+        drop(messages);
+        let mut output = Vec::new();
+        write_messages(&mut output, &server, &replies);
+        let written = String::from_utf8(output).expect("UTF-8");
+        assert_eq!(
+            written.matches("Content-Length:").count(),
+            3,
+            "every queued reply: {written}"
+        );
+        drop(errors);
     }
 
     #[test]
