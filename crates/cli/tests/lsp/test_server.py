@@ -359,12 +359,16 @@ async def test_a_newer_edit_cancels_the_analysis_under_way(client, tmp_path):
     text = pr2.read_text()
     uri = open_file(client, pr2)
     await wait_for("PR2 analysed", lambda: "U701" in codes(client, uri), timeout=120)
-    # Version 2 makes a joint far too weak; as soon as its structural pass is out (physics running),
-    # version 3 takes it back. Version 2's physics (U701 on that joint) must never be published.
+    # Version 2 makes a joint far too weak and raises the torso (so its physics pass samples both arms
+    # again, after the typing pause; an effort edit alone would take them from the memo and publish at
+    # once); as soon as its structural pass is out, version 3 takes it back. Version 2's physics (U701
+    # on that joint) must never be published.
     joint = "r_elbow_flex_joint"
     at = text.index('effort="30"', text.index(f'<joint name="{joint}"'))
     assert not [d for d in client.diagnostics[uri] if d.code == "U701" and f"'{joint}'" in d.message]
     weak = text[:at] + 'effort="0.001"' + text[at + len('effort="30"') :]
+    torso = weak.index('xyz="-0.05 0 0.739675"', weak.index('<joint name="torso_lift_joint"'))
+    weak = weak[:torso] + 'xyz="-0.05 0 0.75"' + weak[torso + len('xyz="-0.05 0 0.739675"') :]
     change(client, uri, 2, weak)
     await wait_for("version 2's structural pass", lambda: any(
         p.uri == uri and p.version == 2 for p in client.published
