@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Soak of `urdf_validate server` on PR2: N random edits (inserts, deletes, replacements at random ranges,
 some breaking the XML, some restoring the original text) with random pauses of 0-150 ms, so analyses
-start and are cancelled by the next edit, and hover, completion, code-action and outline requests among
+start and are cancelled by the next edit (one edit in 100, --settle-rate, waits for its physics pass), and hover, completion, code-action and outline requests among
 them, some cancelled ($/cancelRequest) as soon as sent. Standard library only (scripts/lsp_client.py).
 
     python3 scripts/soak-lsp.py [--edits 10000] [--seed 1] [--bin BINARY | --profile release]
@@ -110,6 +110,17 @@ def outline(symbols):
     ]
 
 
+LOAD_ERRORS = {"xml-syntax", "xacro", "not-validated"}
+
+
+def unvalidated(message, uri, version):
+    """Whether `message` publishes, for `uri` at `version`, that its text could not be validated."""
+    params = message.get("params") or {}
+    return (message.get("method") == "textDocument/publishDiagnostics" and params.get("uri") == uri
+            and params.get("version") == version
+            and any(d.get("code") in LOAD_ERRORS for d in params.get("diagnostics", [])))
+
+
 def quarters(values):
     """`values` cut into four runs in order (the last ones longer when it does not divide)."""
     n = len(values)
@@ -141,6 +152,8 @@ def main():
     parser.add_argument("--max-pause-ms", type=float, default=150.0)
     parser.add_argument("--request-rate", type=float, default=0.3, help="chance of a request after an edit")
     parser.add_argument("--cancel-rate", type=float, default=0.3, help="chance a request is cancelled at once")
+    parser.add_argument("--settle-rate", type=float, default=0.01,
+                        help="chance that typing pauses after an edit until its physics pass is published")
     parser.add_argument("--checkpoint-every", type=int, default=500)
     parser.add_argument("--sample-every", type=int, help="edits between RSS samples (default: 100, fewer for short runs)")
     parser.add_argument("--warmup", type=float, default=0.1, help="share of the edits before RSS counts")
@@ -169,7 +182,9 @@ def soak(args, binary, pr2_source, work, rng, sample_every):
     shutil.copy(pr2_source, pr2)
     document = Document(pr2.read_text())
     uri, twin_uri = pr2.as_uri(), (work / "pr2_twin.urdf").as_uri()
-    env = dict(os.environ, URDF_VALIDATOR_CACHE_DIR=str(work / "cache"))
+    # The server logs each pass it publishes (URDF_VALIDATOR_LSP_TIMINGS): how many physics passes ran to
+    # the end, the others cancelled by the next edit.
+    env = dict(os.environ, URDF_VALIDATOR_CACHE_DIR=str(work / "cache"), URDF_VALIDATOR_LSP_TIMINGS="1")
     package_path = pathlib.Path(args.robots) / "pr2"
     client = Client([binary, "server", "--package-path", str(package_path)], env)
     failures = []
@@ -209,7 +224,7 @@ def soak(args, binary, pr2_source, work, rng, sample_every):
     original_outline = symbols(uri)
     samples = [(0, client.rss_mib())]
     kinds = {}
-    checkpoints = 0
+    checkpoints = settled = settled_broken = 0
     version = 1
     try:
         for edit in range(1, args.edits + 1):
@@ -231,7 +246,24 @@ def soak(args, binary, pr2_source, work, rng, sample_every):
                 pending.append(request_id)
                 if rng.random() < args.cancel_rate:
                     client.cancel(request_id)
-            time.sleep(rng.uniform(0, args.max_pause_ms) / 1000)
+            if rng.random() < args.settle_rate:
+                # A longer pause: this text's physics pass runs to the end and is published (unless the
+                # text cannot be validated: then its structure pass publishes the error, and that is all).
+                wanted = f"physics pass of {uri} (version Some({version}))"
+                deadline = time.perf_counter() + 120
+                while True:
+                    if any(wanted in line for line in client.stderr[-20:]):
+                        settled += 1
+                        break
+                    if any(unvalidated(m, uri, version) for m in client.drain_notifications()):
+                        settled_broken += 1
+                        break
+                    if time.perf_counter() > deadline or client.process.poll() is not None:
+                        fail(f"edit {edit}: no physics pass published for version {version} within 120 s")
+                        break
+                    time.sleep(0.01)
+            else:
+                time.sleep(rng.uniform(0, args.max_pause_ms) / 1000)
             client.drain_notifications()
             if client.process.poll() is not None:
                 fail(f"the server exited (status {client.process.returncode}) after edit {edit}")
@@ -282,10 +314,13 @@ def soak(args, binary, pr2_source, work, rng, sample_every):
     if refused:
         fail(f"the server refused {len(refused)} change(s): {refused[0]}")
 
+    passes = {kind: sum(1 for line in client.stderr if f"{kind} pass of {uri}" in line)
+              for kind in ("structure", "physics")}
     warm = [rss for edit, rss in samples if edit >= args.warmup * args.edits]
     print(f"soak-lsp: {args.edits} edits of PR2 (seed {args.seed}; {', '.join(f'{k} {v}' for k, v in sorted(kinds.items()))}) "
           f"in {elapsed:.0f} s; {checkpoints} checkpoints; requests: {answered} answered, {cancelled} cancelled "
-          f"(-32800), {errors} errors; server CPU {cpu:.1f} s")
+          f"(-32800), {errors} errors; server CPU {cpu:.1f} s; passes published: {passes['structure']} structure, "
+          f"{passes['physics']} physics (the others cancelled by a newer edit; {settled} pauses waited for one, {settled_broken} more on a text that does not parse)")
     print(f"soak-lsp: RSS {samples[0][1]:.1f} MiB after opening; {len(samples)} samples, every {sample_every} edits")
     for number, quarter in enumerate(quarters(samples), 1):
         if quarter:

@@ -1,6 +1,6 @@
 //! The language server's message loop on bytes in memory, for the fuzz target `lsp_messages`
-//! (crates/cli/fuzz): the real reader ([`transport::read_messages`]), main loop (`serve`, lifecycle
-//! included) and writer ([`transport::write_messages`]), with channels in place of stdin and stdout. Not
+//! (crates/cli/fuzz): the real reader (`transport::read_messages`), main loop (`serve`, lifecycle
+//! included) and writer (`transport::write_messages`), with channels in place of stdin and stdout. Not
 //! an API (hidden from the docs): it changes with the fuzz target. Messages are JSON values here, so the
 //! fuzz crate needs no LSP crate of its own.
 
