@@ -28,89 +28,25 @@ import argparse
 import json
 import os
 import pathlib
-import queue
 import re
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import threading
 import time
 
-
-class Client:
-    """A minimal LSP client over the server's stdin/stdout."""
-
-    def __init__(self, command, env):
-        self.process = subprocess.Popen(
-            command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env
-        )
-        self.messages = queue.Queue()
-        self.stderr = []
-        self.stderr_times = []
-        threading.Thread(target=self._read, daemon=True).start()
-        threading.Thread(target=self._read_stderr, daemon=True).start()
-        self.next_id = 0
-
-    def _read(self):
-        stream = self.process.stdout
-        while True:
-            header = b""
-            while not header.endswith(b"\r\n\r\n"):
-                byte = stream.read(1)
-                if not byte:
-                    return
-                header += byte
-            length = int(header.split(b"Content-Length:")[1].split(b"\r\n")[0])
-            self.messages.put((time.perf_counter(), json.loads(stream.read(length))))
-
-    def _read_stderr(self):
-        for line in self.process.stderr:
-            text = line.decode(errors="replace").rstrip()
-            self.stderr_times.append((time.perf_counter(), text))
-            self.stderr.append(text)
-
-    def send(self, message):
-        body = json.dumps(message).encode()
-        self.process.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
-        self.process.stdin.flush()
-
-    def request(self, method, params):
-        self.next_id += 1
-        self.send({"jsonrpc": "2.0", "id": self.next_id, "method": method, "params": params})
-        while True:
-            _, message = self.messages.get(timeout=120)
-            if message.get("id") == self.next_id:
-                return message
-
-    def notify(self, method, params):
-        self.send({"jsonrpc": "2.0", "method": method, "params": params})
-
-    def diagnostics(self, version, count, timeout=120):
-        """The arrival times of the first `count` publications for `version`."""
-        times = []
-        deadline = time.perf_counter() + timeout
-        while len(times) < count:
-            at, message = self.messages.get(timeout=max(0.0, deadline - time.perf_counter()))
-            if message.get("method") == "textDocument/publishDiagnostics":
-                if message["params"].get("version") == version:
-                    times.append((at, message["params"]["diagnostics"]))
-        return times
+from lsp_client import Client, position, rss_mib
 
 
-def rss_mib(pid):
-    for line in pathlib.Path(f"/proc/{pid}/status").read_text().splitlines():
-        if line.startswith("VmRSS:"):
-            return int(line.split()[1]) / 1024
-    return float("nan")
-
-
-def position(text, offset):
-    """The LSP position (UTF-16 columns) of `offset` in `text`."""
-    line = text.count("\n", 0, offset)
-    start = text.rfind("\n", 0, offset) + 1
-    return {"line": line, "character": len(text[start:offset].encode("utf-16-le")) // 2}
+def publications(client, version, count, timeout=120):
+    """The arrival times and diagnostics of the first `count` publications for `version`."""
+    found = []
+    while len(found) < count:
+        message = client.wait_notification(
+            lambda m: m.get("method") == "textDocument/publishDiagnostics" and m["params"].get("version") == version,
+            timeout)
+        found.append((time.perf_counter(), message["params"]["diagnostics"]))
+    return found
 
 
 def value_span(text, element, tag, attribute):
@@ -236,7 +172,7 @@ def main():
     client.notify("initialized", {})
     start = time.perf_counter()
     document = Document(client, pr2.as_uri(), pr2.read_text())
-    [(structure, _), (physics, findings)] = client.diagnostics(1, 2)
+    [(structure, _), (physics, findings)] = publications(client, 1, 2)
     print(f"open: structure {1e3 * (structure - start):.1f} ms, physics {1e3 * (physics - start):.1f} ms "
           f"({len(findings)} diagnostics)")
     results = [
@@ -268,13 +204,13 @@ def main():
     for k in range(args.edits):
         edit(document, k)
         time.sleep(0.06)
-    client.diagnostics(document.version, 2)
+    publications(client, document.version, 2)
     cancelled = document.cancellations()
     stops = [ms for ms, _ in cancelled]
     stages = sorted({stage for _, stage in cancelled})
     print(f"cancel: {len(stops)} physics passes cancelled (in {', '.join(stages)}); stopped after median "
           f"{median(stops):.2f} ms, max {max(stops, default=float('nan')):.2f} ms")
-    rss = rss_mib(client.process.pid)
+    rss = client.rss_mib()
     print(f"RSS at the end: {rss:.1f} MiB")
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps({
@@ -282,9 +218,7 @@ def main():
             "cancel_stop_ms": {"count": len(stops), "median": median(stops), "max": max(stops, default=None)},
             "rss_mib": rss,
         }, indent=2) + "\n")
-    client.request("shutdown", None)
-    client.notify("exit", None)
-    client.process.wait(timeout=30)
+    client.shutdown()
     shutil.rmtree(work)
 
 

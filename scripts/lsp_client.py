@@ -30,6 +30,8 @@ class Client:
         )
         self.notifications = queue.Queue()
         self.stderr = []
+        # (the time it was read, the line): for latencies measured on the server's log lines.
+        self.stderr_times = []
         self._responses = {}
         self._answered = threading.Condition()
         self._closed = False
@@ -74,7 +76,9 @@ class Client:
 
     def _read_stderr(self):
         for line in self.process.stderr:
-            self.stderr.append(line.decode(errors="replace").rstrip("\n"))
+            text = line.decode(errors="replace").rstrip("\n")
+            self.stderr_times.append((time.perf_counter(), text))
+            self.stderr.append(text)
 
     # Writing.
 
