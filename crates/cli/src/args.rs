@@ -19,7 +19,7 @@ use urdf_validator::analysis::profiles::Simulator;
     about,
     long_about,
     after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
-                  see docs/mcp.md and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
+                  see https://urdf-validator.github.io/urdf-validator/integrations/mcp.html and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
                   `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`). \
                   Editors: `urdf_validate server` is the language server (LSP over stdio; `urdf_validate server --help`)."
 )]
@@ -303,9 +303,14 @@ pub struct Args {
     #[arg(long)]
     pub list_rules: bool,
 
-    /// Print the rules reference (docs/rules.md) and exit.
+    /// Print the rules reference as one Markdown page and exit.
     #[arg(long, hide = true)]
     pub list_rules_markdown: bool,
+
+    /// Write the book's generated pages (the rule pages and the command-line reference) below DIR
+    /// (`docs`) and exit.
+    #[arg(long, hide = true, value_name = "DIR")]
+    pub write_book_pages: Option<PathBuf>,
 
     /// Print the JSON Schema of the report and exit.
     #[arg(long)]

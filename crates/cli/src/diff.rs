@@ -17,7 +17,7 @@ use urdf_validator::report::diff::compare;
 use crate::args::Args;
 use crate::request::{first_line, request_of};
 
-const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 Compare two robot descriptions: verdicts, findings, masses, centre of mass, gravity torques and margins,
 stability margin and reach.
 

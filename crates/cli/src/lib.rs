@@ -28,6 +28,7 @@ macro_rules! errln {
 }
 
 mod args;
+mod book;
 mod diff;
 mod fixes;
 mod formats;
@@ -109,6 +110,20 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     if args.list_rules_markdown {
         out!("{}", rules::reference_markdown());
         return 0;
+    }
+    if let Some(dir) = &args.write_book_pages {
+        return match book::write_pages(dir) {
+            Ok(written) => {
+                for path in written {
+                    outln!("wrote {}", dir.join(path).display());
+                }
+                0
+            }
+            Err(error) => {
+                errln!("error: --write-book-pages {}: {error}", dir.display());
+                2
+            }
+        };
     }
     if args.json_schema_markdown {
         out!(
@@ -199,7 +214,7 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
     }
     let format_options = FormatOptions {
         base_dir: std::env::current_dir().ok(),
-        rules_url: Some(rules::reference_url()),
+        rules_url: Some(rules::index_url()),
     };
     let files_to_write = outputs::Files {
         // --diff writes nothing.

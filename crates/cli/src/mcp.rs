@@ -21,7 +21,7 @@ use rmcp::service::{NotificationContext, Peer, RequestContext, ServerInitializeE
 use rmcp::{ErrorData, RoleServer, ServerHandler, ServiceExt};
 
 /// `urdf_validate mcp --help`.
-const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 Serve the validator to AI agents over the Model Context Protocol (MCP), on stdin/stdout.
 
 Usage: urdf_validate mcp [--root DIR]... [--allow-env NAME]... [--trusted]
@@ -29,7 +29,7 @@ Usage: urdf_validate mcp [--root DIR]... [--allow-env NAME]... [--trusted]
 An MCP client (Claude Desktop, an agent framework) starts this command and speaks JSON-RPC to it, one
 message a line; messages for people go to stderr. Tools: validate_urdf, validate_urdf_string,
 run_pick_task, run_pick_sweep, list_rules, explain_rule. Client set-up and every tool's arguments:
-docs/mcp.md. Relative paths in tool arguments start from this command's working directory.
+https://urdf-validator.github.io/urdf-validator/integrations/mcp.html. Relative paths in tool arguments start from this command's working directory.
 
 Untrusted by default: an agent passes on files and text from anywhere, so every validation runs as
 `urdf_validate --untrusted` (see SECURITY.md). Path arguments must be inside the --root folders
@@ -64,7 +64,7 @@ pub(crate) fn main(args: &[OsString]) -> u8 {
     if std::io::stdin().is_terminal() {
         errln!(
             "urdf_validate mcp: an MCP server, waiting for JSON-RPC on stdin (one message a line); \
-             Ctrl-D ends it. An MCP client starts it: see docs/mcp.md."
+             Ctrl-D ends it. An MCP client starts it: see https://urdf-validator.github.io/urdf-validator/integrations/mcp.html."
         );
     }
     let runtime = match tokio::runtime::Builder::new_current_thread()

@@ -60,7 +60,7 @@ use documents::Documents;
 use navigation::File;
 
 /// `urdf_validate server --help`.
-const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 Serve the validator to editors over the Language Server Protocol (LSP), on stdin/stdout.
 
 Usage: urdf_validate server [FLAGS]...
@@ -70,7 +70,7 @@ it publishes the findings as diagnostics (structural ones as you type, physics w
 finishes), offers each finding's fix, \"fix all safe\" and \"suppress this finding\" as code actions, and
 answers hover (mass properties of links, gravity torque and effort margin of joints, resolved mesh paths),
 go to definition, references, document symbols (the kinematic tree) and completion. Set-up per editor:
-README.md, section Editors.
+https://urdf-validator.github.io/urdf-validator/integrations/editors.html.
 
 FLAGS are the command's own (`--package-path DIR`, `--samples N`, `--select`, ...: see `urdf_validate
 --help`), applied to every file; each file's urdf-validate.toml or pyproject.toml applies too, as on the

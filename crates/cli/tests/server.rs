@@ -274,7 +274,7 @@ fn help_names_the_editors_section() {
     let help = String::from_utf8_lossy(&output.stdout);
     assert!(output.status.success());
     assert!(help.contains("Language Server Protocol"), "{help}");
-    assert!(help.contains("section Editors"), "{help}");
+    assert!(help.contains("/integrations/editors.html"), "{help}");
 }
 
 #[test]

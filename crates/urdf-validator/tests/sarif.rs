@@ -108,7 +108,7 @@ fn sarif_of_a_broken_robot_and_an_unreadable_input_is_valid() {
     ];
     let options = FormatOptions {
         base_dir: Some(dir.clone()),
-        rules_url: Some("https://example.org/urdf-validator/blob/main/docs/rules.md".into()),
+        rules_url: Some("https://example.org/urdf-validator/rules/".into()),
     };
     let sarif = render_sarif(&[&validation], &unreported, &options);
     let value = assert_valid(&sarif);
@@ -122,7 +122,7 @@ fn sarif_of_a_broken_robot_and_an_unreadable_input_is_valid() {
     let rule = &run["tool"]["driver"]["rules"][0];
     assert_eq!(
         rule["helpUri"],
-        "https://example.org/urdf-validator/blob/main/docs/rules.md#u001-not-a-robot"
+        "https://example.org/urdf-validator/rules/u001.html"
     );
     // Outside the base directory: an absolute file URI.
     let elsewhere = render_sarif(

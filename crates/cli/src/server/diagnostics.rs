@@ -1,5 +1,5 @@
 //! Findings → LSP diagnostics, each published on the file it is in (an included xacro file gets its own),
-//! with the rule code linked to its entry in docs/rules.md, the severity, the exact range and the xacro
+//! with the rule code linked to its page in the book, the severity, the exact range and the xacro
 //! macro calls that produced it as related information. A file that cannot be read as a robot (XML not
 //! well-formed, a xacro error) gets one diagnostic at the place the reader stopped.
 
@@ -232,12 +232,11 @@ fn message(finding: &FindingReport) -> String {
     }
 }
 
-/// The rule's entry in docs/rules.md on the repository's web site (the package metadata's `repository`),
-/// never a file of the machine that built the binary.
+/// The rule's page in the book (under the package metadata's `homepage`), never a file of the machine
+/// that built the binary.
 pub fn rule_link(code: &str) -> Option<CodeDescription> {
     let rule = rules::find(code)?;
-    let mut href = Url::parse(&rules::reference_url()).ok()?;
-    href.set_fragment(Some(&rule.anchor()));
+    let href = Url::parse(&rules::reference_url(rule)).ok()?;
     Some(CodeDescription { href })
 }
 
@@ -328,11 +327,7 @@ mod tests {
         assert_eq!(link.scheme(), "https");
         assert_eq!(
             link.as_str(),
-            format!(
-                "{}/blob/main/docs/rules.md#u105-{}",
-                env!("CARGO_PKG_REPOSITORY"),
-                rules::find("U105").expect("U105").name
-            )
+            format!("{}rules/u105.html", env!("CARGO_PKG_HOMEPAGE"))
         );
         assert!(rule_link("U999").is_none());
     }

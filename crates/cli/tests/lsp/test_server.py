@@ -60,7 +60,7 @@ async def test_pr2_diagnostics_hover_and_navigation(client, tmp_path):
     for diagnostic in undersized:
         assert diagnostic.severity == types.DiagnosticSeverity.Error
         assert diagnostic.source == "urdf_validate"
-        assert diagnostic.code_description.href.endswith("rules.md#u701-joint-undersized")
+        assert diagnostic.code_description.href.endswith("/rules/u701.html")
         line = text.split("\n")[diagnostic.range.start.line]
         flagged = line[diagnostic.range.start.character : diagnostic.range.end.character]
         assert flagged, f"an empty range on {line!r}"

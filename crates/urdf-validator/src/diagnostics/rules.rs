@@ -1,6 +1,7 @@
 //! The rule registry: every check's stable code, name, default severity and documentation, in one table.
 //!
-//! `urdf_validate --explain CODE` and `docs/rules.md` are both generated from [`ALL`].
+//! `urdf_validate --explain CODE`, `--list-rules-markdown` and the book's rule pages (`docs/rules/`) are
+//! all generated from [`ALL`].
 
 use crate::diagnostics::finding::{Section, Severity};
 
@@ -24,18 +25,34 @@ pub struct Rule {
 }
 
 impl Rule {
-    /// The anchor of its entry in `docs/rules.md`, as GitHub renders its `## U205 `name`` heading:
-    /// `u205-inertia-not-positive-definite`.
+    /// The anchor of its entry in the single-page reference (`--list-rules-markdown`), as GitHub and
+    /// mdBook render its `## U205 `name`` heading: `u205-inertia-not-positive-definite`.
     pub fn anchor(&self) -> String {
         format!("{}-{}", self.code.to_ascii_lowercase(), self.name)
     }
+
+    /// The file name of its page in the book, `u205` (`docs/rules/u205.md`, published as `u205.html`).
+    pub fn page(&self) -> String {
+        self.code.to_ascii_lowercase()
+    }
 }
 
-/// The rules reference on the web: `docs/rules.md` of the repository the package metadata names
-/// (`repository` in the workspace's Cargo.toml), wherever the binary was built or copied to.
-pub fn reference_url() -> String {
-    let repository = env!("CARGO_PKG_REPOSITORY").trim_end_matches('/');
-    format!("{repository}/blob/main/docs/rules.md")
+/// The book on the web (the package metadata's `homepage`, which is also its `documentation`), ending
+/// in `/`: every link the tool prints starts here, wherever the binary was built or copied to.
+pub fn documentation_url() -> String {
+    let home = env!("CARGO_PKG_HOMEPAGE").trim_end_matches('/');
+    format!("{home}/")
+}
+
+/// The rules index of the book (`docs/rules/index.md`), ending in `/`: a rule's page is this followed
+/// by `u205.html`.
+pub fn index_url() -> String {
+    format!("{}rules/", documentation_url())
+}
+
+/// The rule's page in the book, e.g. `https://…/rules/u205.html`.
+pub fn reference_url(rule: &Rule) -> String {
+    format!("{}{}.html", index_url(), rule.page())
 }
 
 macro_rules! rules {
@@ -683,7 +700,8 @@ pub fn explain(rule: &Rule) -> String {
     )
 }
 
-/// The rules reference as Markdown (`docs/rules.md`).
+/// The rules reference as one Markdown page (`--list-rules-markdown`); the book has one page per rule
+/// instead ([`book_pages`]).
 pub fn reference_markdown() -> String {
     let mut out = String::from(
         "# Rules reference\n\n<!-- Generated from crates/urdf-validator/src/rules.rs by `urdf_validate --list-rules-markdown`; a test fails when this file is stale. -->\n\n\
@@ -711,6 +729,82 @@ pub fn reference_markdown() -> String {
         ));
     }
     out
+}
+
+/// The family a rule belongs to (its code's range) and the book page that explains the family's checks.
+pub fn family(rule: &Rule) -> (&'static str, &'static str) {
+    let number: u32 = rule.code[1..].parse().unwrap_or(0);
+    match number {
+        0..=19 => ("Input and syntax", "../checks/index.md"),
+        20..=29 => ("SDFormat input", "../sdf.md"),
+        30..=99 => ("MJCF input", "../mjcf-input.md"),
+        100..=199 => ("Structure (the kinematic tree)", "../checks/index.md"),
+        200..=299 => ("Inertial data", "../checks/index.md"),
+        300..=399 => ("Joints", "../checks/index.md"),
+        400..=499 => ("References", "../checks/index.md"),
+        500..=599 => ("Geometry and meshes", "../checks/index.md"),
+        600..=699 => ("Contacts at the start pose", "../checks/index.md"),
+        700..=739 | 770..=799 => ("Physics verdicts", "../checks/verdicts.md"),
+        740..=749 => ("Deep (MuJoCo)", "../checks/deep.md"),
+        750..=769 => ("Simulator load profiles", "../checks/simulators.md"),
+        _ => ("Suppressions and settings", "../configuration.md"),
+    }
+}
+
+/// The book's rule pages, generated from [`ALL`]: `(path below docs/, Markdown)`, first the index
+/// (`rules/index.md`), then one page per rule (`rules/u205.md`). Examples of failing and passing input
+/// are not in the registry, so the pages have none.
+pub fn book_pages() -> Vec<(String, String)> {
+    const GENERATED: &str = "<!-- Generated from crates/urdf-validator/src/diagnostics/rules.rs by `urdf_validate --write-book-pages docs`; a test fails when this file is stale. -->\n";
+    let mut index = format!(
+        "# Rules\n\n{GENERATED}\nEvery finding names one of these {} rules. `urdf_validate --explain CODE` prints \
+         one entry; `urdf_validate --list-rules` lists them. Severities are the defaults: \
+         [configuration](../configuration.md) can change them (`[severity]`) or silence a rule \
+         (`ignore`, `per-file-ignores`, a [suppression comment](../configuration.md#suppressions)).\n",
+        ALL.len()
+    );
+    let mut pages = Vec::new();
+    let mut current = "";
+    for rule in ALL {
+        let (family, family_page) = family(rule);
+        if family != current {
+            index.push_str(&format!(
+                "\n## {family}\n\n| Code | Name | Severity | What |\n|---|---|---|---|\n"
+            ));
+            current = family;
+        }
+        index.push_str(&format!(
+            "| [{code}]({page}.md) | `{name}` | {sev} | {what} |\n",
+            code = rule.code,
+            page = rule.page(),
+            name = rule.name,
+            sev = rule.severity.label(),
+            what = rule.what.replace('|', "\\|"),
+        ));
+        let page = format!(
+            "# {code} `{name}`\n\n{GENERATED}\n\
+             | Code | Name | Default severity | Report section | Family |\n|---|---|---|---|---|\n\
+             | `{code}` | `{name}` | {sev} | `{section}` | [{family}]({family_page}) |\n\n\
+             ## What it does\n\n{what}\n\n## Why is this bad?\n\n{why}\n\n## How to fix it\n\n{fix}\n\n\
+             ## Silencing it\n\n\
+             - for a run: `urdf_validate --ignore {code} robot.urdf`;\n\
+             - in `urdf-validate.toml`: `ignore = [\"{code}\"]`, or `{code} = \"info\"` under `[severity]` to keep it \
+             but change its severity;\n\
+             - for one element: `<!-- urdf-validate: ignore {code} -->` on the line before it \
+             (see [Suppressions](../configuration.md#suppressions)).\n\n\
+             `urdf_validate --explain {code}` prints this entry.\n",
+            code = rule.code,
+            name = rule.name,
+            sev = rule.severity.label(),
+            section = rule.section.as_str(),
+            what = rule.what,
+            why = rule.why,
+            fix = rule.fix,
+        );
+        pages.push((format!("rules/{}.md", rule.page()), page));
+    }
+    pages.insert(0, ("rules/index.md".to_string(), index));
+    pages
 }
 
 #[cfg(test)]
@@ -743,12 +837,13 @@ mod tests {
     }
 
     #[test]
-    fn docs_rules_md_is_up_to_date() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/rules.md");
-        let committed = std::fs::read_to_string(&path).unwrap_or_default();
-        assert!(
-            committed == reference_markdown(),
-            "docs/rules.md is stale: regenerate it with `cargo run -p urdf-validate-cli -- --list-rules-markdown > docs/rules.md`"
-        );
+    fn every_rule_has_a_family_page() {
+        for rule in ALL {
+            let (_, page) = family(rule);
+            assert!(page.ends_with(".md"), "{}", rule.code);
+        }
+        let pages = book_pages();
+        assert_eq!(pages.len(), ALL.len() + 1);
+        assert!(pages[1].1.starts_with("# U001 `not-a-robot`"));
     }
 }

@@ -37,8 +37,8 @@ pub struct FormatOptions {
     /// The directory paths are made relative to (the working directory): SARIF's `%SRCROOT%`, the
     /// `file=` of GitHub annotations. Paths outside it stay absolute.
     pub base_dir: Option<PathBuf>,
-    /// Address of the rules reference (`docs/rules.md` as a web page): SARIF `helpUri`s point at its
-    /// anchors and `informationUri` at the project. `None`: left out.
+    /// Address of the book's rules index, ending in `/` (`rules::index_url()`): SARIF `informationUri`
+    /// points at it and each rule's `helpUri` at its page there (`{rules_url}u205.html`). `None`: left out.
     pub rules_url: Option<String>,
 }
 

@@ -176,7 +176,10 @@ fn rule_descriptor(rule: &Rule, rules_url: Option<&str>) -> Value {
         }),
     );
     if let Some(url) = rules_url {
-        descriptor.insert("helpUri".into(), json!(format!("{url}#{}", rule.anchor())));
+        descriptor.insert(
+            "helpUri".into(),
+            json!(format!("{url}{}.html", rule.page())),
+        );
     }
     descriptor.insert(
         "defaultConfiguration".into(),
@@ -258,7 +261,7 @@ mod tests {
         assert_eq!(level(Severity::Info), "note");
     }
 
-    /// The anchors GitHub gives the headings of docs/rules.md (`## U205 `inertia-not-positive-definite``):
+    /// The anchors GitHub and mdBook give the headings of the one-page reference (`--list-rules-markdown`) (`## U205 `inertia-not-positive-definite``):
     /// lowercase, backticks dropped, spaces as hyphens.
     #[test]
     fn anchors_match_the_rules_reference_headings() {
@@ -267,7 +270,7 @@ mod tests {
             let heading = format!("\n## {} `{}`\n", rule.code, rule.name);
             assert!(
                 markdown.contains(&heading),
-                "{heading} not in docs/rules.md"
+                "{heading} not in the rules reference"
             );
             let slug: String = heading
                 .trim()
