@@ -159,7 +159,8 @@ pub struct Args {
 
     /// Output formats, comma-separated: text (terminal), json (the report, on stdout when listed without
     /// text), sarif, junit, html (files `<name>_validation.sarif|.xml|.html` beside each input or in
-    /// --output-dir), github (annotations; automatic when GITHUB_ACTIONS=true).
+    /// --output-dir; a folder or several inputs with html also get the collection page index.html, with
+    /// index.json and index.md), github (annotations; automatic when GITHUB_ACTIONS=true).
     #[arg(
         long,
         value_enum,

@@ -29,6 +29,7 @@ macro_rules! errln {
 
 mod args;
 mod book;
+mod collection;
 mod diff;
 mod fixes;
 mod formats;
@@ -255,6 +256,9 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         &input_errors,
         &format_options,
     );
+    let indexed = !single_file && plan.file_formats.contains(&Format::Html);
+    let written =
+        written && (!indexed || write_collection(&args, &paths, &outcomes, &input_errors));
     let worst = match &args.write_baseline {
         Some(path) => write_baseline(path, &outcomes),
         None => outcomes.iter().map(Outcome::exit_code).max().unwrap_or(0),
@@ -263,6 +267,36 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
         worst
     } else {
         2
+    }
+}
+
+/// The collection page of a batch written with `--format html` (`index.html`, `.json`, `.md`); false when
+/// it could not be written.
+fn write_collection(
+    args: &Args,
+    paths: &[PathBuf],
+    outcomes: &[Outcome],
+    input_errors: &[String],
+) -> bool {
+    let Some(dir) = collection::index_dir(args.output_dir.as_deref(), paths, outcomes) else {
+        return true;
+    };
+    match collection::write(&dir, outcomes, input_errors) {
+        Ok(written) => {
+            if let Some(page) = written.first() {
+                errln!(
+                    "Collection page: {} (with {} and {} beside it)",
+                    page.display(),
+                    collection::FILES[1],
+                    collection::FILES[2]
+                );
+            }
+            true
+        }
+        Err(error) => {
+            errln!("error: {error}");
+            false
+        }
     }
 }
 

@@ -24,6 +24,8 @@ pub struct Outcome {
     pub also_written: Vec<String>,
     /// Why the JSON report could not be written.
     pub write_error: Option<String>,
+    /// How long the validation took (writing the report files not included).
+    pub elapsed: std::time::Duration,
 }
 
 impl Outcome {
@@ -88,6 +90,7 @@ pub struct Files {
 
 /// Validate one file (within `timeout`) and write its report files (`<base>.json`, `.sarif`, ...).
 pub fn validate_one(file: &Path, base: &Path, session: &Session, files: &Files) -> Outcome {
+    let started = std::time::Instant::now();
     let validation = session.validate(file);
     let mut outcome = Outcome {
         file: file.to_path_buf(),
@@ -95,6 +98,7 @@ pub fn validate_one(file: &Path, base: &Path, session: &Session, files: &Files) 
         written: None,
         also_written: Vec::new(),
         write_error: None,
+        elapsed: started.elapsed(),
     };
     let Ok(validation) = &outcome.validation else {
         return outcome;

@@ -9,9 +9,11 @@
 //! | junit | [`junit`] | CI test reports: JUnit XML, one test case per check |
 //! | github | [`github`] | GitHub Actions: workflow-command annotations and the step summary |
 //! | html | [`html`] | a page to open in a browser |
+//! | collection | [`collection`], [`html::render_collection_html`] | a batch's summary: `index.json`, `index.md`, `index.html` |
 //!
 //! [`diff`] renders what changed between two reports (`urdf_validate diff`) as text or Markdown.
 
+pub mod collection;
 pub mod diff;
 pub mod github;
 pub mod html;
@@ -21,9 +23,10 @@ mod location;
 pub mod sarif;
 pub mod text;
 
+pub use collection::{render_collection_json, render_collection_markdown, Collection};
 pub use diff::{render_diff_markdown, render_diff_text};
 pub use github::{render_github, render_step_summary};
-pub use html::render_html;
+pub use html::{render_collection_html, render_html};
 pub use json::{render_json, render_json_list};
 pub use junit::render_junit;
 pub use sarif::render_sarif;

@@ -15,12 +15,15 @@ use std::fmt::Write;
 use crate::report::{Report, Status};
 use crate::Validation;
 
+mod collection;
 mod deep;
 mod page;
 mod stability;
 mod statics;
 mod svg;
 mod workspace;
+
+pub use collection::render_collection_html;
 
 /// The whole report as one HTML page.
 pub fn render_html(validation: &Validation) -> String {
