@@ -42,7 +42,7 @@ run_validator_target() {
         echo "fuzz-smoke: FAIL: $target found a crash, timeout or OOM (see above)" >&2
         exit 1
     }
-    summary+=("$target: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
+    summary+=("$target: $(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
 }
 
 # The language server's message loop (crates/cli/fuzz): framed byte streams through its reader, main loop
@@ -61,7 +61,7 @@ run_cli_target() {
         echo "fuzz-smoke: FAIL: $target found a crash, timeout or OOM (see above)" >&2
         exit 1
     }
-    summary+=("$target: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
+    summary+=("$target: $(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$' || echo '?') executions")
 }
 
 run_xacro_target() {
@@ -74,7 +74,7 @@ run_xacro_target() {
         echo "fuzz-smoke: FAIL: xacro $target found a crash, timeout or OOM (see above)" >&2
         exit 1
     }
-    summary+=("xacro $target: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/xacro-$target.log" | grep -o '[0-9]*$' || echo '?') executions")
+    summary+=("xacro $target: $(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$work/xacro-$target.log" | grep -o '[0-9]*$' || echo '?') executions")
 }
 
 run_validator_target urdf 40000
