@@ -34,7 +34,7 @@ for crate in "${crates[@]}"; do
     corpus="$(grep -E "$corpus_pattern" <<<"$list" || true)"
     if [[ -n "$corpus" ]]; then
         echo "FAIL: $crate packages test data or corpora:" >&2
-        sed 's/^/    /' <<<"$corpus" >&2
+        while IFS= read -r file; do echo "    $file"; done <<<"$corpus" >&2
         status=1
     fi
     total=0
