@@ -26,10 +26,21 @@ package_field() {
 }
 manifest_of() { package_field "$1" manifest_path; }
 
+# cargo's stderr goes here, shown only when cargo fails (it warns for each test and bench left out, by design).
+cargo_log="$(mktemp)"
+trap 'rm -f -- "$cargo_log"' EXIT
+quiet_cargo() {
+    if ! cargo "$@" 2>"$cargo_log"; then
+        cat "$cargo_log" >&2
+        echo "FAIL: cargo $*" >&2
+        return 1
+    fi
+}
+
 status=0
 for crate in "${crates[@]}"; do
     crate_dir="$(dirname "$(manifest_of "$crate")")"
-    list="$(cargo package --list --offline --allow-dirty -p "$crate" 2>/dev/null)"
+    list="$(quiet_cargo package --list --allow-dirty -p "$crate")"
     count="$(wc -l <<<"$list")"
     corpus="$(grep -E "$corpus_pattern" <<<"$list" || true)"
     if [[ -n "$corpus" ]]; then
@@ -62,7 +73,7 @@ done
 target_dir="${CARGO_TARGET_DIR:-$repo_root/target}"
 package_args=()
 for crate in "${crates[@]}"; do package_args+=(-p "$crate"); done
-cargo package --offline --allow-dirty --no-verify --quiet "${package_args[@]}" 2>/dev/null
+quiet_cargo package --allow-dirty --no-verify --quiet "${package_args[@]}"
 for crate in "${crates[@]}"; do
     archive="$target_dir/package/$crate-$(package_field "$crate" version).crate"
     size="$(stat -c %s "$archive")"
