@@ -182,8 +182,45 @@ step_wine() {
     local exe="$target_dir/x86_64-pc-windows-gnu/release/urdf_validate.exe"
     file "$exe" | sed "s|$target_dir/||"
     # A wine prefix of its own (created on first use, a few seconds), no debug chatter, no desktop.
-    export WINEPREFIX="$work/wine-prefix" WINEDEBUG=-all DISPLAY=
+    # mscoree, mshtml disabled: wine would offer to download Mono and Gecko when it makes the prefix.
+    export WINEPREFIX="$work/wine-prefix" WINEDEBUG=-all DISPLAY='' WINEDLLOVERRIDES="mscoree,mshtml="
+    wine_shim
     run_robot "Windows urdf_validate.exe under wine" wine "$exe"
+}
+
+# Rust's standard library (1.78 and later) draws random bytes with ProcessPrng from bcryptprimitives.dll
+# (Windows 10 and later), which Debian 12's wine 8.0 does not have: every Rust program stops at load with
+# "Library bcryptprimitives.dll not found". Put a stand-in into the prefix, built here with mingw-w64: its
+# ProcessPrng calls advapi32's RtlGenRandom (SystemFunction036). The test harness gets the DLL; the binary
+# under test is unchanged, and on Windows the system's DLL is the one loaded.
+wine_shim() {
+    local system32="$WINEPREFIX/drive_c/windows/system32"
+    if [[ ! -d "$system32" ]]; then
+        wineboot --init >/dev/null 2>&1 || true
+    fi
+    if [[ ! -d "$system32" ]]; then
+        log "wine did not create $system32"
+        return 1
+    fi
+    if [[ -f "$system32/bcryptprimitives.dll" ]]; then
+        return 0
+    fi
+    local source="$work/bcryptprimitives.c"
+    cat >"$source" <<'C'
+#include <windows.h>
+BOOLEAN WINAPI SystemFunction036(PVOID buffer, ULONG length); /* RtlGenRandom */
+__declspec(dllexport) BOOL WINAPI ProcessPrng(PBYTE data, SIZE_T length) {
+    while (length > 0) {
+        ULONG chunk = length > 0x7fffffff ? 0x7fffffff : (ULONG)length;
+        if (!SystemFunction036(data, chunk)) return FALSE;
+        data += chunk;
+        length -= chunk;
+    }
+    return TRUE;
+}
+C
+    x86_64-w64-mingw32-gcc -shared -O2 -o "$system32/bcryptprimitives.dll" "$source" -ladvapi32
+    echo "wine: bcryptprimitives.dll stand-in (ProcessPrng) installed in the prefix"
 }
 
 step_wheel() {
