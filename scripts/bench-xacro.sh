@@ -27,7 +27,7 @@ export AMENT_PREFIX_PATH="$prefix"
 entry="$prefix/share/pr2_description/robots/pr2.urdf.xacro"
 
 target_dir="${CARGO_TARGET_DIR:-$repo_root/target}"
-cargo build --quiet --release -p xacro --example expand
+cargo build --quiet --release -p urdf-validator-xacro --example expand
 native="$target_dir/release/examples/expand"
 
 median_ms() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }

@@ -1,7 +1,7 @@
 //! Print the expansion of a xacro file, for debugging and timing.
 //!
 //! ```text
-//! cargo run --release -p xacro --example expand -- FILE [name:=value ...] [--package-path DIR]... [--banner]
+//! cargo run --release -p urdf-validator-xacro --example expand -- FILE [name:=value ...] [--package-path DIR]... [--banner]
 //!     [--origins] [--repeat N]
 //! ```
 //! `--origins` prints, after the XML, the source location of every start tag; `--repeat N` expands N times
