@@ -113,12 +113,13 @@ fn example_section(repo: &Path, rule: &Rule) -> String {
     let relative = |text: &str| text.replace(&format!("{dir}/"), "").replace(&dir, ".");
     let mut reported = String::new();
     for finding in findings.iter().filter(|finding| finding.rule == rule.code) {
+        let place = match (finding.line, finding.column) {
+            (Some(line), Some(column)) => format!("{}:{line}:{column}", name(&fail)),
+            _ => name(&fail),
+        };
         let _ = writeln!(
             reported,
-            "{}:{}:{}: {} {} {}: {}",
-            name(&fail),
-            finding.line.unwrap_or(0),
-            finding.column.unwrap_or(0),
+            "{place}: {} {} {}: {}",
             finding.severity.label(),
             finding.rule,
             finding.name,
