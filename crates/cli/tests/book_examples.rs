@@ -155,8 +155,10 @@ fn run_block(block: &[Example], scratch: &Path) -> Vec<String> {
     redactions
         .insert("[VERSION]", env!("CARGO_PKG_VERSION"))
         .expect("redaction");
+    // Plain diffs: the failure is read in CI logs more often than on a terminal.
     let assert = snapbox::Assert::new()
         .redact_with(redactions)
+        .palette(snapbox::report::Palette::plain())
         .action(snapbox::assert::Action::Verify);
     let mut failures = Vec::new();
     for example in block {
