@@ -1,4 +1,4 @@
-//! The README's "Three commands" run as written: each `urdf_validate` line of that block, in a scratch copy
+//! The README's "Three commands" run as written: each `$ urdf_validate` line of that block, in a scratch copy
 //! of the repository's example robots (so `robots/` and `examples/robots/...` both exist), exits 0 and
 //! writes what it says it writes.
 
@@ -11,7 +11,8 @@ fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// The commands of the README's fenced block under `## Three commands`, comments dropped.
+/// The commands of the README's console block under `## Three commands` (its `$ ` lines), comments dropped;
+/// `tests/book_examples.rs` also compares their output with the lines after each.
 fn readme_commands() -> Vec<Vec<String>> {
     let readme = std::fs::read_to_string(repo_root().join("README.md")).expect("README.md");
     let section = readme
@@ -19,12 +20,13 @@ fn readme_commands() -> Vec<Vec<String>> {
         .nth(1)
         .expect("a '## Three commands' section");
     let block = section
-        .split("```bash\n")
+        .split("```console\n")
         .nth(1)
         .and_then(|rest| rest.split("```").next())
-        .expect("a bash block in it");
+        .expect("a console block in it");
     block
         .lines()
+        .filter_map(|line| line.strip_prefix("$ "))
         .map(|line| line.split('#').next().unwrap_or_default().trim())
         .filter(|line| !line.is_empty())
         .map(|line| line.split_whitespace().map(str::to_string).collect())

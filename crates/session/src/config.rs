@@ -40,44 +40,87 @@ pub const CONFIG_FILE: &str = "urdf-validate.toml";
 /// Python projects' configuration file (`[tool.urdf-validate]`).
 pub const PYPROJECT: &str = "pyproject.toml";
 
-/// The keys of a configuration table, for suggestions.
-const KEYS: &[&str] = &[
-    "select",
-    "ignore",
-    "per-file-ignores",
-    "severity",
-    "robot-type",
-    "up-axis",
-    "payload-mass",
-    "payload-link",
-    "samples",
-    "seed",
-    "package-path",
-    "contact-links",
-    "baseline",
-];
-
-/// The configuration table as written.
-#[derive(Debug, Default, Deserialize)]
+/// The configuration table as written: the keys of `urdf-validate.toml` (or of `[tool.urdf-validate]` in
+/// `pyproject.toml`). Its doc comments and defaults are the book's configuration reference
+/// (`docs/reference/configuration.md`, from [`json_schema`]).
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, rename_all = "kebab-case")]
+#[schemars(title = "urdf-validate.toml")]
 struct Raw {
+    /// The rules to run: codes (`U201`), names (`missing-inertial`), code prefixes (`U2`) or `ALL`.
+    /// `--select` replaces it.
+    #[schemars(with = "Option<Vec<String>>", extend("default" = ["ALL"]))]
     select: Option<Vec<Spanned<String>>>,
+    /// Rules not to run, as in `select`. `--ignore` adds to it.
+    #[schemars(with = "Option<Vec<String>>", extend("default" = []))]
     ignore: Option<Vec<Spanned<String>>>,
+    /// Rules ignored in some files: a glob, relative to this file's folder (a pattern without `/` also
+    /// matches the file name alone), to the rules it ignores there.
+    #[schemars(
+        with = "Option<BTreeMap<String, Vec<String>>>",
+        extend("default" = {})
+    )]
     per_file_ignores: Option<BTreeMap<Spanned<String>, Vec<Spanned<String>>>>,
+    /// A rule's severity instead of its default: rule code or name to `info`, `warn`, `fail` or
+    /// `critical`. The last entry naming a rule wins.
+    #[schemars(
+        with = "Option<BTreeMap<String, SeverityName>>",
+        extend("default" = {})
+    )]
     severity: Option<BTreeMap<Spanned<String>, Spanned<SeverityName>>>,
+    /// The robot's category (`--robot-type`, whose help lists the values); without it, the category is
+    /// guessed from the links and joints. The guess still runs: a disagreement is an INFO, U730.
+    #[schemars(with = "Option<String>")]
     robot_type: Option<Spanned<String>>,
+    /// The root frame's axis that points up (`--up-axis`: `x`, `y`, `z`, with an optional sign, `-y`), when
+    /// the model is not z-up; without it, z, and U731 reports a model that looks otherwise.
+    #[schemars(with = "Option<String>")]
     up_axis: Option<Spanned<String>>,
+    /// A payload carried at `payload-link`, in kg (`--payload-mass`): torques and verdicts include it.
+    #[schemars(with = "Option<f64>")]
     payload_mass: Option<Spanned<f64>>,
+    /// The link carrying the payload (`--payload-link`); without it, the end of the longest actuated
+    /// chain.
+    #[schemars(with = "Option<String>")]
     payload_link: Option<Spanned<String>>,
+    /// Samples per arm for the workspace (reach, task, orientation, self-collision), and for
+    /// `--pose worst` (`--samples`).
+    #[schemars(with = "Option<usize>", extend("default" = DEFAULT_SAMPLES))]
     samples: Option<Spanned<usize>>,
+    /// The seed of that sampling (`--seed`): the same seed gives the same report.
+    #[schemars(with = "Option<u64>", extend("default" = DEFAULT_SEED))]
     seed: Option<Spanned<u64>>,
+    /// Folders searched for `package://` and `$(find)` packages, relative to this file; searched after
+    /// `--package-path`, which adds to it.
+    #[schemars(with = "Option<Vec<String>>", extend("default" = []))]
     package_path: Option<Vec<Spanned<String>>>,
+    /// The ground-contact links of the support polygon (`--contact-links`); without it, the wheels and
+    /// casters of a wheeled robot, the feet of a legged one, else the lowest geometry.
+    #[schemars(with = "Option<Vec<String>>")]
     contact_links: Option<Spanned<Vec<String>>>,
+    /// A baseline file, relative to this file (`--baseline`): the findings it holds are not reported. See
+    /// "Adopting on an existing robot".
+    #[schemars(with = "Option<String>")]
     baseline: Option<Spanned<String>>,
 }
 
+/// The JSON Schema of the configuration table (`urdf-validate.toml`, `[tool.urdf-validate]`): every key,
+/// with its type, default and description.
+pub fn json_schema() -> serde_json::Value {
+    serde_json::to_value(schemars::schema_for!(Raw)).unwrap_or_default()
+}
+
+/// The keys of a configuration table, from [`json_schema`], for suggestions.
+fn keys() -> Vec<String> {
+    json_schema()
+        .get("properties")
+        .and_then(serde_json::Value::as_object)
+        .map(|properties| properties.keys().cloned().collect())
+        .unwrap_or_default()
+}
+
 /// `[severity]` values.
-#[derive(Clone, Copy, Debug, Deserialize)]
+#[derive(Clone, Copy, Debug, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 enum SeverityName {
     #[serde(alias = "INFO")]
@@ -401,7 +444,7 @@ fn describe_error(path: &Path, text: &str, error: &toml::de::Error) -> String {
     {
         out.push_str(&format!(
             " ({})",
-            did_you_mean(unknown, KEYS.iter().copied())
+            did_you_mean(unknown, keys().iter().map(String::as_str))
         ));
     }
     out

@@ -393,281 +393,94 @@ fn every_rule_in_the_registry_has_a_case() {
 
 rule_case! {
     u001_not_a_robot, "U001",
-    fires: r#"<?xml version="1.0"?>
-<scene name="m">
-  <worldbody/>
-</scene>
-"#,
+    fires: include_str!("data/rule-examples/u001/fail.urdf"),
     at: (2, 1, "<scene"),
-    clean: r#"<?xml version="1.0"?>
-<robot name="m">
-  <link name="base"/>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u001/pass.urdf"),
 }
 
 rule_case! {
     u002_missing_attribute, "U002",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u002/fail.urdf"),
     at: (5, 9, "<box/>"),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u002/pass.urdf"),
 }
 
 rule_case! {
     u003_invalid_number, "U003",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u003/fail.urdf"),
     at: (5, 20, "1 1\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u003/pass.urdf"),
 }
 
 rule_case! {
     u004_non_finite_value, "U004",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="nan"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u004/fail.urdf"),
     at: (4, 20, "nan\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u004/pass.urdf"),
 }
 
 rule_case! {
     u005_unknown_element, "U005",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u005/fail.urdf"),
     at: (3, 5, "<inertia"),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u005/pass.urdf"),
 }
 
 rule_case! {
     u006_unknown_attribute, "U006",
-    fires: r#"<robot name="r">
-  <link name="base" mass="1"/>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u006/fail.urdf"),
     at: (2, 21, "mass=\"1\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u006/pass.urdf"),
 }
 
 rule_case! {
     u007_unknown_joint_type, "U007",
-    fires: r#"<robot name="r">
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="j" type="hinge">
-    <parent link="a"/>
-    <child link="b"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u007/fail.urdf"),
     at: (4, 25, "hinge\""),
-    clean: r#"<robot name="r">
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="j" type="fixed">
-    <parent link="a"/>
-    <child link="b"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u007/pass.urdf"),
 }
 
 rule_case! {
     u008_missing_geometry, "U008",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <visual>
-    </visual>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u008/fail.urdf"),
     at: (3, 5, "<visual>"),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <visual>
-      <geometry><box size="1 1 1"/></geometry>
-    </visual>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u008/pass.urdf"),
 }
 
 rule_case! {
     u009_no_links, "U009",
-    fires: r#"<?xml version="1.0"?>
-<robot name="empty">
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u009/fail.urdf"),
     // A finding about the whole robot points at its name, not at the whole element.
     at: (2, 14, "empty"),
-    clean: r#"<?xml version="1.0"?>
-<robot name="empty">
-  <link name="base"/>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u009/pass.urdf"),
 }
 
 rule_case! {
     u101_duplicate_name, "U101",
-    fires: r#"<robot name="r">
-  <link name="a"/>
-  <link name="a"/>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u101/fail.urdf"),
     at: (3, 15, "a\""),
-    clean: r#"<robot name="r">
-  <link name="a"/>
-  <link name="b"/>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u101/pass.urdf"),
 }
 
 rule_case! {
     u102_undefined_link, "U102",
-    fires: r#"<robot name="r">
-  <link name="base_link"/>
-  <link name="arm_link"/>
-  <joint name="j" type="fixed">
-    <parent link="base_link"/>
-    <child link="arm_lnk"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u102/fail.urdf"),
     at: (6, 18, "arm_lnk\""),
-    clean: r#"<robot name="r">
-  <link name="base_link"/>
-  <link name="arm_link"/>
-  <joint name="j" type="fixed">
-    <parent link="base_link"/>
-    <child link="arm_link"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u102/pass.urdf"),
 }
 
 rule_case! {
     u103_kinematic_loop, "U103",
-    fires: r#"<robot name="r">
-  <link name="a"/>
-  <link name="b"/>
-  <link name="c"/>
-  <joint name="j1" type="fixed">
-    <parent link="a"/>
-    <child link="c"/>
-  </joint>
-  <joint name="j2" type="fixed">
-    <parent link="b"/>
-    <child link="c"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u103/fail.urdf"),
     at: (9, 3, "<joint name=\"j2\""),
-    clean: r#"<robot name="r">
-  <link name="a"/>
-  <link name="b"/>
-  <link name="c"/>
-  <joint name="j1" type="fixed">
-    <parent link="a"/>
-    <child link="c"/>
-  </joint>
-  <joint name="j2" type="fixed">
-    <parent link="a"/>
-    <child link="b"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u103/pass.urdf"),
 }
 
 rule_case! {
     u104_multiple_roots, "U104",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <link name="orphan"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u104/fail.urdf"),
     at: (4, 15, "orphan\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <link name="orphan"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-  <joint name="j2" type="fixed">
-    <parent link="base"/>
-    <child link="orphan"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u104/pass.urdf"),
 }
 
 rule_case! {
@@ -679,788 +492,198 @@ rule_case! {
 
 rule_case! {
     u201_missing_inertial, "U201",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u201/fail.urdf"),
     at: (3, 3, "<link name=\"arm\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u201/pass.urdf"),
 }
 
 rule_case! {
     u202_negative_mass, "U202",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="-1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u202/fail.urdf"),
     at: (4, 20, "-1\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u202/pass.urdf"),
 }
 
 rule_case! {
     u203_zero_mass, "U203",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="0"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u203/fail.urdf"),
     at: (5, 20, "0\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u203/pass.urdf"),
 }
 
 rule_case! {
     u204_zero_inertia, "U204",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u204/fail.urdf"),
     at: (6, 7, "<inertia"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u204/pass.urdf"),
 }
 
 rule_case! {
     u205_inertia_not_positive_definite, "U205",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="0"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u205/fail.urdf"),
     at: (6, 7, "<inertia"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
-}
-
-/// A 0.2 × 0.2 × 0.2 m, 8 kg cube (geometry's moments 0.0533 kg·m²) with the declared tensor `ixx iyy izz`.
-fn cube_link(ixx: &str, iyy: &str, izz: &str) -> String {
-    cube_of_mass("8", ixx, iyy, izz)
-}
-
-/// A 0.2 m cube link (8 dm³) of `mass` kg with the declared tensor `ixx iyy izz`.
-fn cube_of_mass(mass: &str, ixx: &str, iyy: &str, izz: &str) -> String {
-    format!(
-        r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="{mass}"/>
-      <inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>
-    </inertial>
-    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#
-    )
+    clean: include_str!("data/rule-examples/u205/pass.urdf"),
 }
 
 rule_case! {
     // A placeholder 1e-3 on an 8 kg cube: 53× below the geometry's.
     u208_inertia_far_from_geometry, "U208",
-    fires: cube_link("0.001", "0.001", "0.001"),
+    fires: include_str!("data/rule-examples/u208/fail.urdf"),
     at: (6, 7, "<inertia"),
     // 2.5× off: within the factor 3.
-    clean: cube_link("0.13", "0.13", "0.13"),
+    clean: include_str!("data/rule-examples/u208/pass.urdf"),
 }
 
 rule_case! {
     // 1 kg·m² on 8 kg in a 0.2 m box: the second moment along x would be 0.5 kg·m², and no body of 8 kg
     // inside [-0.1, 0.1] centred at 0 has more than 8 × 0.1² = 0.08.
     u209_inertia_outside_geometry, "U209",
-    fires: cube_link("1", "1", "1"),
+    fires: include_str!("data/rule-examples/u209/fail.urdf"),
     at: (6, 7, "<inertia"),
     // 0.15: more than 3× the cube's (U208), still possible inside the box (all mass on the faces).
-    clean: cube_link("0.15", "0.15", "0.15"),
+    clean: include_str!("data/rule-examples/u209/pass.urdf"),
 }
 
 rule_case! {
     // 8,000 kg in 8 dm³: 1,000,000 kg/m³ (grams written as kilograms); 8 kg is 1,000 kg/m³.
     u210_implausible_density, "U210",
-    fires: cube_of_mass("8000", "53.3", "53.3", "53.3"),
+    fires: include_str!("data/rule-examples/u210/fail.urdf"),
     at: (5, 20, "8000\""),
-    clean: cube_link("0.0533", "0.0533", "0.0533"),
+    clean: include_str!("data/rule-examples/u210/pass.urdf"),
 }
 
 rule_case! {
     u206_inertia_triangle_inequality, "U206",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u206/fail.urdf"),
     at: (6, 7, "<inertia"),
     // 1 + 1 = 2: a thin plate, exactly on the boundary.
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="2"/>
-    </inertial>
-  </link>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u206/pass.urdf"),
 }
 
 rule_case! {
     u207_massless_geometry, "U207",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u207/fail.urdf"),
     at: (2, 3, "<link name=\"base\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u207/pass.urdf"),
 }
 
 rule_case! {
     u301_missing_limit, "U301",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u301/fail.urdf"),
     at: (4, 3, "<joint name=\"j\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u301/pass.urdf"),
 }
 
 rule_case! {
     u302_incomplete_limit, "U302",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u302/fail.urdf"),
     at: (8, 5, "<limit"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u302/pass.urdf"),
 }
 
 rule_case! {
     u303_missing_effort_velocity, "U303",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="wheel"/>
-  <joint name="j" type="continuous">
-    <parent link="base"/>
-    <child link="wheel"/>
-    <axis xyz="0 1 0"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u303/fail.urdf"),
     at: (4, 3, "<joint name=\"j\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="wheel"/>
-  <joint name="j" type="continuous">
-    <parent link="base"/>
-    <child link="wheel"/>
-    <axis xyz="0 1 0"/>
-    <limit effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u303/pass.urdf"),
 }
 
 rule_case! {
     u304_inverted_limits, "U304",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="1" upper="-1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u304/fail.urdf"),
     at: (8, 19, "1\" upper"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u304/pass.urdf"),
 }
 
 rule_case! {
     u305_empty_joint_range, "U305",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="prismatic">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="0.5" upper="0.5" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u305/fail.urdf"),
     at: (8, 19, "0.5\" upper"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="prismatic">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-0.5" upper="0.5" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u305/pass.urdf"),
 }
 
 rule_case! {
     u306_non_positive_effort, "U306",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="0" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u306/fail.urdf"),
     at: (8, 41, "0\" velocity"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u306/pass.urdf"),
 }
 
 rule_case! {
     u307_non_positive_velocity, "U307",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="0"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u307/fail.urdf"),
     at: (8, 55, "0\"/>"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u307/pass.urdf"),
 }
 
 rule_case! {
     u308_continuous_joint_limits, "U308",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="wheel"/>
-  <joint name="j" type="continuous">
-    <parent link="base"/>
-    <child link="wheel"/>
-    <axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u308/fail.urdf"),
     at: (8, 19, "-1\" upper"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="wheel"/>
-  <joint name="j" type="continuous">
-    <parent link="base"/>
-    <child link="wheel"/>
-    <axis xyz="0 1 0"/>
-    <limit effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u308/pass.urdf"),
 }
 
 rule_case! {
     u309_zero_axis, "U309",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u309/fail.urdf"),
     at: (7, 16, "0 0 0\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u309/pass.urdf"),
 }
 
 rule_case! {
     u310_non_unit_axis, "U310",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 2"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u310/fail.urdf"),
     at: (7, 16, "0 0 2\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/>
-    <child link="arm"/>
-    <axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u310/pass.urdf"),
 }
 
 rule_case! {
     u311_mimic_undefined_joint, "U311",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="leader" type="revolute">
-    <parent link="base"/>
-    <child link="a"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <joint name="follower" type="revolute">
-    <parent link="a"/>
-    <child link="b"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-    <mimic joint="leadr" multiplier="2"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u311/fail.urdf"),
     at: (14, 19, "leadr\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="leader" type="revolute">
-    <parent link="base"/>
-    <child link="a"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <joint name="follower" type="revolute">
-    <parent link="a"/>
-    <child link="b"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-    <mimic joint="leader" multiplier="2"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u311/pass.urdf"),
 }
 
 rule_case! {
     u312_mimic_cycle, "U312",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="leader" type="revolute">
-    <parent link="base"/>
-    <child link="a"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <joint name="follower" type="revolute">
-    <parent link="a"/>
-    <child link="b"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-    <mimic joint="follower" multiplier="2"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u312/fail.urdf"),
     at: (14, 5, "<mimic"),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="a"/>
-  <link name="b"/>
-  <joint name="leader" type="revolute">
-    <parent link="base"/>
-    <child link="a"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <joint name="follower" type="revolute">
-    <parent link="a"/>
-    <child link="b"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-    <mimic joint="leader" multiplier="2"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u312/pass.urdf"),
 }
 
 rule_case! {
     u313_floating_joint, "U313",
-    fires: r#"<robot name="r">
-  <link name="world"/>
-  <link name="body"/>
-  <joint name="j" type="floating">
-    <parent link="world"/>
-    <child link="body"/>
-  </joint>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u313/fail.urdf"),
     at: (4, 25, "floating\""),
-    clean: r#"<robot name="r">
-  <link name="world"/>
-  <link name="body"/>
-  <joint name="j" type="fixed">
-    <parent link="world"/>
-    <child link="body"/>
-  </joint>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u313/pass.urdf"),
 }
 
 rule_case! {
     u401_transmission_undefined_joint, "U401",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-  <transmission name="t">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="k">
-      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-    </joint>
-    <actuator name="m">
-      <mechanicalReduction>1</mechanicalReduction>
-    </actuator>
-  </transmission>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u401/fail.urdf"),
     at: (10, 18, "k\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-  <transmission name="t">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="j">
-      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-    </joint>
-    <actuator name="m">
-      <mechanicalReduction>1</mechanicalReduction>
-    </actuator>
-  </transmission>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u401/pass.urdf"),
 }
 
 rule_case! {
     u402_gazebo_undefined_reference, "U402",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <gazebo reference="bsae">
-    <material>Gazebo/Grey</material>
-  </gazebo>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u402/fail.urdf"),
     at: (3, 22, "bsae\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <gazebo reference="base">
-    <material>Gazebo/Grey</material>
-  </gazebo>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u402/pass.urdf"),
 }
 
 rule_case! {
     u403_ros2_control_undefined_joint, "U403",
-    fires: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-  <ros2_control name="hw" type="system">
-    <hardware>
-      <plugin>mock_components/GenericSystem</plugin>
-    </hardware>
-    <joint name="k">
-      <command_interface name="position"/>
-    </joint>
-  </ros2_control>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u403/fail.urdf"),
     at: (12, 18, "k\""),
-    clean: r#"<robot name="r">
-  <link name="base"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <parent link="base"/>
-    <child link="arm"/>
-  </joint>
-  <ros2_control name="hw" type="system">
-    <hardware>
-      <plugin>mock_components/GenericSystem</plugin>
-    </hardware>
-    <joint name="j">
-      <command_interface name="position"/>
-    </joint>
-  </ros2_control>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u403/pass.urdf"),
 }
 
 rule_case! {
     u404_undefined_material, "U404",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <visual>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-      <material name="steel"/>
-    </visual>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u404/fail.urdf"),
     at: (7, 7, "<material name=\"steel\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <visual>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-      <material name="steel"/>
-    </visual>
-  </link>
-  <material name="steel">
-    <color rgba="0.5 0.5 0.5 1"/>
-  </material>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u404/pass.urdf"),
 }
 
 /// Written out by hand: the clean document needs a mesh file next to it.
@@ -1512,57 +735,16 @@ mod u501_mesh_not_found {
 
 rule_case! {
     u502_visual_without_collision, "U502",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <visual>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </visual>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u502/fail.urdf"),
     at: (2, 3, "<link name=\"base\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <visual>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </visual>
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u502/pass.urdf"),
 }
 
 rule_case! {
     u503_invalid_geometry_size, "U503",
-    fires: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 0 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u503/fail.urdf"),
     at: (5, 9, "<box size=\"1 0 1\""),
-    clean: r#"<robot name="r">
-  <link name="base">
-    <collision>
-      <geometry>
-        <box size="1 1 1"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u503/pass.urdf"),
 }
 
 /// A unit cube as ASCII STL, `size` units across.
@@ -3313,29 +2495,23 @@ fn a_broken_or_stale_srdf_is_u602_and_the_rest_runs() {
 
 rule_case! {
     u011_unsupported_urdf_version, "U011",
-    fires: r#"<robot name="r" version="2.0">
-  <link name="base"/>
-</robot>
-"#,
+    fires: include_str!("data/rule-examples/u011/fail.urdf"),
     at: (1, 26, "2.0"),
-    clean: r#"<robot name="r" version="1.1">
-  <link name="base"/>
-</robot>
-"#,
+    clean: include_str!("data/rule-examples/u011/pass.urdf"),
 }
 
 rule_case! {
     u012_late_xml_declaration, "U012",
-    fires: "\n\n<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    fires: include_str!("data/rule-examples/u012/fail.urdf"),
     at: (3, 1, "<?xml"),
-    clean: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n",
+    clean: include_str!("data/rule-examples/u012/pass.urdf"),
 }
 
 rule_case! {
     u014_unbound_namespace_prefix, "U014",
-    fires: "<robot name=\"r\">\n  <link name=\"base\"/>\n  <gazebo><sensor:camera name=\"c\"/></gazebo>\n</robot>\n",
+    fires: include_str!("data/rule-examples/u014/fail.urdf"),
     at: (3, 12, "sensor:camera"),
-    clean: "<robot name=\"r\" xmlns:sensor=\"http://playerstage.sourceforge.net/gazebo/xmlschema/#sensor\">\n  <link name=\"base\"/>\n  <gazebo><sensor:camera name=\"c\"/></gazebo>\n</robot>\n",
+    clean: include_str!("data/rule-examples/u014/pass.urdf"),
 }
 
 /// Untrusted mode refuses a mesh outside its roots at the filename that asked, naming the path as written;
@@ -3519,16 +2695,16 @@ fn a_capsule_needs_version_1_1() {
 
 rule_case! {
     u801_unused_suppression, "U801",
-    fires: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+    fires: include_str!("data/rule-examples/u801/fail.urdf"),
     at: (2, 30, "U105"),
-    clean: "<robot name=\"r\">\n  <!-- a plain comment: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+    clean: include_str!("data/rule-examples/u801/pass.urdf"),
 }
 
 rule_case! {
     u802_unknown_rule_code, "U802",
-    fires: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U1O5 -->\n  <link name=\"base\"/>\n</robot>\n",
+    fires: include_str!("data/rule-examples/u802/fail.urdf"),
     at: (2, 30, "U1O5"),
-    clean: "<robot name=\"r\">\n  <!-- urdf-validate: ignore U105 -->\n  <link name=\"base\"/>\n</robot>\n",
+    clean: include_str!("data/rule-examples/u802/pass.urdf"),
 }
 
 /// A finding about the whole robot spans the robot's name, so an editor underlines one word of the

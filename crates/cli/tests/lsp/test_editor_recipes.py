@@ -1,6 +1,6 @@
 """The editor set-ups in editors/ against the server: the file types each one hands to `urdf_validate
 server` are the ones the server analyses, Helix's languages.toml (Helix cannot run here) names the
-server's command, and docs/editors.md shows each recipe file as it is. Neovim's recipes are run in Neovim
+server's command, and docs/integrations/editors.md shows each recipe file as it is. Neovim's recipes are run in Neovim
 itself by test_neovim.py; the VS Code and Zed extensions are built by scripts/build-vscode.sh and
 scripts/build-zed.sh."""
 
@@ -100,8 +100,8 @@ def test_helix_recipe_starts_the_server():
 
 
 def test_docs_show_each_recipe_file_as_it_is():
-    """docs/editors.md: after `<!-- file: PATH -->`, the next fenced block is PATH's text."""
-    docs = (REPO / "docs" / "editors.md").read_text()
+    """docs/integrations/editors.md: after `<!-- file: PATH -->`, the next fenced block is PATH's text."""
+    docs = (REPO / "docs" / "integrations" / "editors.md").read_text()
     shown = re.findall(r"<!-- file: (\S+) -->\s*```\w*\n(.*?)```", docs, flags=re.S)
     paths = [path for path, _ in shown]
     for wanted in [
@@ -110,6 +110,6 @@ def test_docs_show_each_recipe_file_as_it_is():
         "editors/helix/languages.toml",
         "editors/zed/settings.json",
     ]:
-        assert wanted in paths, f"docs/editors.md does not show {wanted}"
+        assert wanted in paths, f"docs/integrations/editors.md does not show {wanted}"
     for path, text in shown:
-        assert text == (REPO / path).read_text(), f"docs/editors.md shows an outdated copy of {path}"
+        assert text == (REPO / path).read_text(), f"docs/integrations/editors.md shows an outdated copy of {path}"

@@ -744,7 +744,10 @@ pub fn family(rule: &Rule) -> (&'static str, &'static str) {
         400..=499 => ("References", "../checks/index.md"),
         500..=599 => ("Geometry and meshes", "../checks/index.md"),
         600..=699 => ("Contacts at the start pose", "../checks/index.md"),
-        700..=739 | 770..=799 => ("Physics verdicts", "../checks/verdicts.md"),
+        700..=709 => ("Statics", "../checks/statics.md"),
+        710..=719 => ("Stability", "../checks/stability.md"),
+        720..=729 => ("Workspace", "../checks/workspace.md"),
+        730..=739 | 770..=799 => ("Physics verdicts", "../checks/verdicts.md"),
         740..=749 => ("Deep (MuJoCo)", "../checks/deep.md"),
         750..=769 => ("Simulator load profiles", "../checks/simulators.md"),
         _ => ("Suppressions and settings", "../configuration.md"),
@@ -752,9 +755,10 @@ pub fn family(rule: &Rule) -> (&'static str, &'static str) {
 }
 
 /// The book's rule pages, generated from [`ALL`]: `(path below docs/, Markdown)`, first the index
-/// (`rules/index.md`), then one page per rule (`rules/u205.md`). Examples of failing and passing input
-/// are not in the registry, so the pages have none.
-pub fn book_pages() -> Vec<(String, String)> {
+/// (`rules/index.md`), then one page per rule (`rules/u205.md`). `example` gives each page's `## Example`
+/// section (a failing and a passing file, which live with the tests, not in the registry), placed after
+/// how to fix it.
+pub fn book_pages(example: impl Fn(&Rule) -> String) -> Vec<(String, String)> {
     const GENERATED: &str = "<!-- Generated from crates/urdf-validator/src/diagnostics/rules.rs by `urdf_validate --write-book-pages docs`; a test fails when this file is stale. -->\n";
     let mut index = format!(
         "# Rules\n\n{GENERATED}\nEvery finding names one of these {} rules. `urdf_validate --explain CODE` prints \
@@ -786,6 +790,7 @@ pub fn book_pages() -> Vec<(String, String)> {
              | Code | Name | Default severity | Report section | Family |\n|---|---|---|---|---|\n\
              | `{code}` | `{name}` | {sev} | `{section}` | [{family}]({family_page}) |\n\n\
              ## What it does\n\n{what}\n\n## Why is this bad?\n\n{why}\n\n## How to fix it\n\n{fix}\n\n\
+             {example}\
              ## Silencing it\n\n\
              - for a run: `urdf_validate --ignore {code} robot.urdf`;\n\
              - in `urdf-validate.toml`: `ignore = [\"{code}\"]`, or `{code} = \"info\"` under `[severity]` to keep it \
@@ -800,6 +805,7 @@ pub fn book_pages() -> Vec<(String, String)> {
             what = rule.what,
             why = rule.why,
             fix = rule.fix,
+            example = example(rule),
         );
         pages.push((format!("rules/{}.md", rule.page()), page));
     }
@@ -842,8 +848,11 @@ mod tests {
             let (_, page) = family(rule);
             assert!(page.ends_with(".md"), "{}", rule.code);
         }
-        let pages = book_pages();
+        let pages = book_pages(|rule| format!("## Example\n\n{} example\n\n", rule.code));
         assert_eq!(pages.len(), ALL.len() + 1);
         assert!(pages[1].1.starts_with("# U001 `not-a-robot`"));
+        assert!(pages[1]
+            .1
+            .contains("\n\n## Example\n\nU001 example\n\n## Silencing it\n"));
     }
 }
