@@ -9,6 +9,7 @@
 //! | junit | [`junit`] | CI test reports: JUnit XML, one test case per check |
 //! | github | [`github`] | GitHub Actions: workflow-command annotations and the step summary |
 //! | html | [`html`] | a page to open in a browser |
+//! | 3-D view | [`view`] | the robot drawn, its pose's statics and stability (`urdf_validate view`, the HTML report) |
 //!
 //! [`diff`] renders what changed between two reports (`urdf_validate diff`) as text or Markdown.
 
@@ -20,6 +21,7 @@ pub mod junit;
 mod location;
 pub mod sarif;
 pub mod text;
+pub mod view;
 
 pub use diff::{render_diff_markdown, render_diff_text};
 pub use github::{render_github, render_step_summary};

@@ -101,6 +101,15 @@ function el(tag, attributes, text) {
   return node;
 }
 
+// True when WebGL is drawn on the CPU (SwiftShader, llvmpipe): multisampling there costs more than it shows.
+function softwareRenderer() {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  const info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+  gl?.getExtension("WEBGL_lose_context")?.loseContext();
+  return /swiftshader|llvmpipe|software/i.test(name);
+}
+
 class View {
   constructor(root, scene, options) {
     this.root = root;
@@ -108,7 +117,7 @@ class View {
     this.stats = { firstFrameMs: null, lastPoseMs: null, poses: 0 };
     window.__urdfView = this;
     this.buildDom();
-    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: !softwareRenderer(), preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
     this.camera.up.set(0, 0, 1);
@@ -367,7 +376,9 @@ class View {
       const stable = pose.stability === "PASS";
       const colour = stable ? COLOURS.polygonStable : COLOURS.polygonUnstable;
       const points = pose.support_polygon.map(([x, y]) => new THREE.Vector3(x, y, ground + 0.002));
-      const outline = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineBasicMaterial({ color: 0x1b5e20 }));
+      // The outline is drawn over the robot: the polygon lies under its base.
+      const outline = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineBasicMaterial({ color: colour, depthTest: false }));
+      outline.renderOrder = 8;
       this.overlays.add(outline);
       if (points.length >= 3) {
         const shape = new THREE.Shape(pose.support_polygon.map(([x, y]) => new THREE.Vector2(x, y)));
