@@ -149,7 +149,10 @@ fn renders(robot: &Path, name: &str, extra: &[&str]) -> Option<serde_json::Value
         counts["polygonStable"].as_u64().unwrap() + counts["polygonUnstable"].as_u64().unwrap();
     assert!(polygon > 50, "{name}: no support polygon drawn: {shot}");
     if let Some(out) = std::env::var_os("URDF_VALIDATOR_VIEW_SCREENSHOTS") {
-        std::fs::copy(&png, Path::new(&out).join(png.file_name().unwrap())).unwrap();
+        let clicked = dir.join(format!("view-{name}-clicked.png"));
+        for shot in [&png, &clicked].into_iter().filter(|p| p.is_file()) {
+            std::fs::copy(shot, Path::new(&out).join(shot.file_name().unwrap())).unwrap();
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
     Some(result)

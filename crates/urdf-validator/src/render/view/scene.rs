@@ -248,21 +248,21 @@ fn concerns(robot: &Robot, element: Option<&str>, message: &str) -> (Option<usiz
     (None, None)
 }
 
-/// Encoded meshes by URI and role (visual meshes and collision meshes are decimated alike).
+/// A mesh drawn: its index in [`Scene::meshes`] and its approximation (empty when none); or why it cannot
+/// be drawn, with its bounds when they are known.
+type MeshLookup = Result<(usize, &'static str), (String, Option<[[f64; 3]; 2]>)>;
+
+/// Encoded meshes by URI (visual meshes and collision meshes are decimated alike).
 #[derive(Default)]
 struct MeshTable {
-    by_uri: HashMap<String, Result<(usize, &'static str), (String, Option<[[f64; 3]; 2]>)>>,
+    by_uri: HashMap<String, MeshLookup>,
     encoded: Vec<EncodedMesh>,
 }
 
 impl MeshTable {
     /// The mesh a URI names, encoded once: its index and approximation, or why it cannot be drawn and
     /// its bounds when they are known.
-    fn get(
-        &mut self,
-        uri: &str,
-        assets: Option<&Assets>,
-    ) -> Result<(usize, &'static str), (String, Option<[[f64; 3]; 2]>)> {
+    fn get(&mut self, uri: &str, assets: Option<&Assets>) -> MeshLookup {
         if let Some(known) = self.by_uri.get(uri) {
             return known.clone();
         }
@@ -271,11 +271,7 @@ impl MeshTable {
         result
     }
 
-    fn load(
-        &mut self,
-        uri: &str,
-        assets: Option<&Assets>,
-    ) -> Result<(usize, &'static str), (String, Option<[[f64; 3]; 2]>)> {
+    fn load(&mut self, uri: &str, assets: Option<&Assets>) -> MeshLookup {
         let assets = assets.ok_or_else(|| ("no assets were loaded".to_string(), None))?;
         let loaded = assets
             .mesh(uri)

@@ -154,12 +154,12 @@ class View {
         for (const shape of shapes) {
           const broken = !!shape.problem;
           const colour = broken ? COLOURS.broken : isVisual ? shape.color : null;
-          const material = new THREE.MeshStandardMaterial({
+          // Lambert (diffuse only): cheaper per pixel than the standard material, which matters when
+          // WebGL runs on the CPU.
+          const material = new THREE.MeshLambertMaterial({
             color: colour ? new THREE.Color(colour[0], colour[1], colour[2]) : isVisual ? COLOURS.visual : COLOURS.collision,
             transparent: !isVisual,
             opacity: isVisual ? 1 : 0.6,
-            roughness: 0.7,
-            metalness: 0.1,
           });
           if (broken) material.color.setHex(COLOURS.broken);
           material.userData.baseColour = material.color.getHex();
@@ -260,7 +260,8 @@ class View {
   applyLayers() {
     for (const link of this.links) {
       link.visual.visible = this.layers.visual;
-      link.collision.visible = this.layers.collision;
+      // A link without visuals shows its collision shapes with the visual layer (as the analyses use them).
+      link.collision.visible = this.layers.collision || (this.layers.visual && link.visual.children.length === 0);
       link.frame.visible = this.layers.frames;
     }
     this.workspace.visible = this.layers.workspace;
