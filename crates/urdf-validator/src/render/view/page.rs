@@ -28,9 +28,17 @@ pub fn embedded_section(json: &str) -> String {
         "<section class=\"view3d\" aria-label=\"3-D view\"><h2>Robot</h2>\n<div id=\"view3d\" class=\"urdf-view\"></div>\n\
          <script type=\"application/json\" id=\"view3d-scene\">{}</script>\n<script>{}</script>\n\
          <script>UrdfView.mount(document.getElementById(\"view3d\"), {{scene: JSON.parse(document.getElementById(\"view3d-scene\").textContent)}});</script>\n</section>\n",
-        script_safe(json),
+        json_in_html(json),
         script_safe(BUNDLE),
     )
+}
+
+/// JSON safe anywhere in HTML: `<`, `>` and `&` as JSON escapes (the same string to a JSON parser), so
+/// no name from the robot file appears as markup, even inside the script element that holds it.
+fn json_in_html(json: &str) -> String {
+    json.replace('<', "\\u003c")
+        .replace('>', "\\u003e")
+        .replace('&', "\\u0026")
 }
 
 /// `text` safe inside a `<script>` element: no `</` can end it early (`<\/` means the same in JSON and in
@@ -42,6 +50,14 @@ fn script_safe(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_in_the_embedded_scene_are_not_markup() {
+        let section = embedded_section("{\"robot\":\"</script><img src=x onerror=alert(1)>&\"}");
+        assert!(section
+            .contains("\\u003c/script\\u003e\\u003cimg src=x onerror=alert(1)\\u003e\\u0026"));
+        assert!(!section.contains("<img"));
+    }
 
     #[test]
     fn a_closing_tag_in_a_name_cannot_end_the_script() {
