@@ -21,6 +21,7 @@ use urdf_validator::analysis::profiles::Simulator;
     after_help = "AI agents: `urdf_validate mcp` serves the validator over the Model Context Protocol (stdio; \
                   see https://urdf-validator.github.io/urdf-validator/integrations/mcp.html and `urdf_validate mcp --help`). A file named mcp is given as ./mcp. \
                   `urdf_validate diff OLD NEW` compares two descriptions or reports (`urdf_validate diff --help`). \
+                  `urdf_validate view ROBOT` draws the robot in 3-D in a browser (`urdf_validate view --help`). \
                   Editors: `urdf_validate server` is the language server (LSP over stdio; `urdf_validate server --help`)."
 )]
 pub struct Args {

@@ -276,7 +276,7 @@ pub fn cli_reference() -> String {
     let _ = writeln!(out, "{}\n", escape_html(&about));
     let _ = writeln!(
         out,
-        "```text\nurdf_validate [FLAGS] URDF_OR_DIR...\nurdf_validate diff OLD NEW [FLAGS]\nurdf_validate server\nurdf_validate mcp [POLICY FLAGS]\n```\n"
+        "```text\nurdf_validate [FLAGS] URDF_OR_DIR...\nurdf_validate diff OLD NEW [FLAGS]\nurdf_validate view ROBOT [--port N] [--open] [FLAGS]\nurdf_validate server\nurdf_validate mcp [POLICY FLAGS]\n```\n"
     );
     let _ = writeln!(
         out,
@@ -304,6 +304,7 @@ pub fn cli_reference() -> String {
     }
     for (name, help) in [
         ("urdf_validate diff", crate::diff::HELP),
+        ("urdf_validate view", crate::view::HELP),
         ("urdf_validate server", crate::server::HELP),
         ("urdf_validate mcp", crate::mcp::HELP),
     ] {

@@ -38,6 +38,7 @@ mod outputs;
 mod progress;
 mod request;
 mod server;
+mod view;
 
 /// The language server's message loop on bytes in memory, for its fuzz target (crates/cli/fuzz).
 #[doc(hidden)]
@@ -78,6 +79,9 @@ where
     }
     if argv.get(1).is_some_and(|word| word == "diff") {
         return diff::main(&argv[2..]);
+    }
+    if argv.get(1).is_some_and(|word| word == "view") {
+        return view::main(&argv[2..]);
     }
     let matches = Args::command().get_matches_from(argv);
     let args = match Args::from_arg_matches(&matches) {
@@ -191,16 +195,25 @@ fn run(args: Args, matches: &clap::ArgMatches) -> u8 {
             &sandbox,
         );
     }
-    // One session per configuration file (the nearest to each input, unless named or turned off).
-    let sessions = match Batch::new(&request, &files, &mesh_cache(request.no_cache)) {
-        Ok(sessions) => sessions,
+    let plan = match Plan::new(&args, &GithubEnv::from_env()) {
+        Ok(plan) => plan,
         Err(message) => {
             errln!("error: {message}");
             return 2;
         }
     };
-    let plan = match Plan::new(&args, &GithubEnv::from_env()) {
-        Ok(plan) => plan,
+    // An HTML report draws the robot in 3-D: the validation builds its scene.
+    let request = urdf_validate_session::Request {
+        view: plan
+            .output
+            .as_ref()
+            .is_some_and(|(f, _)| *f == Format::Html)
+            || plan.file_formats.contains(&Format::Html),
+        ..request
+    };
+    // One session per configuration file (the nearest to each input, unless named or turned off).
+    let sessions = match Batch::new(&request, &files, &mesh_cache(request.no_cache)) {
+        Ok(sessions) => sessions,
         Err(message) => {
             errln!("error: {message}");
             return 2;

@@ -42,6 +42,8 @@ pub(crate) fn request_of(
         model: args.model.clone(),
         package_path: args.package_path.clone(),
         untrusted: args.untrusted,
+        // Set by the caller when an HTML report is among the outputs.
+        view: false,
         root: args.root.clone(),
         allow_env: args.allow_env.clone(),
         pose: Some(args.pose.clone()),

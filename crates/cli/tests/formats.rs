@@ -275,7 +275,8 @@ fn check(name: &str, dir: &Path, file: &str, flags: &[&str]) {
     }
 }
 
-/// The text of an HTML page, one text node a line: tags, `<style>` blocks and blank lines left out.
+/// The text of an HTML page, one text node a line: tags, `<style>` and `<script>` blocks and blank lines
+/// left out.
 fn html_text(html: &str) -> String {
     let mut lines = Vec::new();
     let mut rest = html;
@@ -287,6 +288,9 @@ fn html_text(html: &str) -> String {
         let tag = &rest[start..];
         let skip_to = if tag.starts_with("<style") {
             tag.find("</style>").map(|i| i + "</style>".len())
+        } else if tag.starts_with("<script") {
+            // The 3-D view's bundle and scene: code and data, not text of the page.
+            tag.find("</script>").map(|i| i + "</script>".len())
         } else {
             tag.find('>').map(|i| i + 1)
         };

@@ -85,6 +85,7 @@ pub(crate) fn options_for(
         sdf_model: request.model.clone(),
         value_overrides: value_overrides(request)?,
         structure_only: false,
+        view: request.view,
     })
 }
 

@@ -30,6 +30,8 @@ pub struct Request {
     pub package_path: Vec<PathBuf>,
     /// `--untrusted`: read only below the roots, no environment variable unless allowed.
     pub untrusted: bool,
+    /// Build the 3-D view's scene for the HTML report (`--format html`; not a flag of its own).
+    pub view: bool,
     /// `--root`: more folders an untrusted run may read.
     pub root: Vec<PathBuf>,
     /// `--allow-env`: variables an untrusted run may read.

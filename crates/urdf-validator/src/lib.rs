@@ -93,6 +93,8 @@ pub struct Options {
     /// Stop after the structural checks (parse, tree, meshes, schema rules): no statics, stability,
     /// workspace or deep section. The language server's first, fast pass after an edit.
     pub structure_only: bool,
+    /// Build the 3-D view's scene into [`Validation::view`] (the HTML report draws it).
+    pub view: bool,
 }
 
 /// Why a file gave no report (exit code 2, one line naming the file).
@@ -138,6 +140,8 @@ pub struct Validation {
     pub report: Report,
     /// The source texts findings point into.
     pub sources: Vec<SourceText>,
+    /// The 3-D view's scene as JSON ([`render::view::Scene`]), when [`Options::view`] asked for it.
+    pub view: Option<String>,
 }
 
 impl Validation {
@@ -150,8 +154,26 @@ impl Validation {
     }
 }
 
+/// A validation with what it was computed from, for views that draw the robot ([`render::view`]).
+#[derive(Debug)]
+pub struct Inspection {
+    /// The validation.
+    pub validation: Validation,
+    /// The parsed robot (after `--override`).
+    pub robot: urdf::Robot,
+    /// Its kinematic tree.
+    pub model: Model,
+    /// Its meshes, supports and SRDF; `None` when the file is not a robot (no assets were loaded).
+    pub assets: Option<Assets>,
+}
+
 /// Validate the URDF (or xacro: expanded first, findings located in the xacro sources) at `path`.
 pub fn validate(path: &Path, options: &Options) -> Result<Validation, Error> {
+    inspect(path, options).map(|inspection| inspection.validation)
+}
+
+/// [`validate`], keeping the robot, its model and its assets.
+pub fn inspect(path: &Path, options: &Options) -> Result<Inspection, Error> {
     let mut clock = Stopwatch::reporting_to(options.progress.clone());
     let sandbox = options.sandbox.for_input(path);
     sandbox
@@ -178,6 +200,7 @@ pub fn validate_text(text: String, path: &Path, options: &Options) -> Result<Val
         &resolver,
         clock,
     )
+    .map(|inspection| inspection.validation)
 }
 
 /// Validate `text`, the unsaved content of the file at `path` (an editor's buffer): expanded first when
@@ -189,7 +212,7 @@ pub fn validate_unsaved(text: String, path: &Path, options: &Options) -> Result<
         .resolver
         .with_sandbox(options.sandbox.for_input(path));
     let loaded = Loaded::from_unsaved(text, path, &options.xacro_args, &resolver)?;
-    run(loaded, options, &resolver, clock)
+    run(loaded, options, &resolver, clock).map(|inspection| inspection.validation)
 }
 
 /// The MJCF file's absolute path for `--deep` to hand MuJoCo (`Err`: why MuJoCo cannot be given it);
@@ -229,7 +252,7 @@ fn run(
     options: &Options,
     resolver: &PackageResolver,
     mut clock: Stopwatch,
-) -> Result<Validation, Error> {
+) -> Result<Inspection, Error> {
     // A URDF's XML document is read once: the parse reads the robot from it, the report element paths.
     let urdf_text =
         (loaded.format() == input::Format::Urdf).then(|| urdf::parse::UrdfText::new(loaded.text()));
@@ -254,16 +277,17 @@ fn run(
     let is_robot = !findings
         .iter()
         .any(|f| f.rule == &diagnostics::rules::NOT_A_ROBOT);
-    let analyses = if is_robot {
+    let (analyses, assets) = if is_robot {
         let robot_run = RobotRun {
             loaded: &loaded,
             robot: &robot,
             model: &model,
             options,
         };
-        robot_run.analyse(resolver, &mut findings, &mut clock)?
+        let (analyses, assets) = robot_run.analyse(resolver, &mut findings, &mut clock)?;
+        (analyses, Some(assets))
     } else {
-        None
+        (None, None)
     };
     let report = report::build(Outcome {
         loaded: &loaded,
@@ -282,7 +306,30 @@ fn run(
         ..report
     };
     let sources = loaded.into_sources();
-    Ok(Validation { report, sources })
+    let inspection = Inspection {
+        validation: Validation {
+            report,
+            sources,
+            view: None,
+        },
+        robot,
+        model,
+        assets,
+    };
+    Ok(if options.view {
+        with_view(inspection, options)
+    } else {
+        inspection
+    })
+}
+
+/// The inspection with its 3-D scene in the validation, for the HTML report.
+fn with_view(inspection: Inspection, options: &Options) -> Inspection {
+    let poser = render::view::Poser::new(inspection, options);
+    let scene = serde_json::to_string(&render::view::scene::build(&poser)).ok();
+    let mut inspection = poser.into_inspection();
+    inspection.validation.view = scene;
+    inspection
 }
 
 /// The options with `--override payload.mass=V` as the payload, when given.
@@ -313,13 +360,13 @@ struct RobotRun<'a> {
 
 impl RobotRun<'_> {
     /// Assets, checks, then (unless `structure_only`) the physics and the MuJoCo pass; their findings
-    /// added to `findings`.
+    /// added to `findings`. The assets are handed back with the physics.
     fn analyse(
         &self,
         resolver: &PackageResolver,
         findings: &mut Vec<diagnostics::Finding>,
         clock: &mut Stopwatch,
-    ) -> Result<Option<analysis::Physics>, Error> {
+    ) -> Result<(Option<analysis::Physics>, Assets), Error> {
         let (loaded, robot, model, options) = (self.loaded, self.robot, self.model, self.options);
         give_up_if_cancelled(options, &loaded.path)?;
         let assets = Assets::load(robot, &asset_source(&loaded.path, options, resolver));
@@ -329,7 +376,7 @@ impl RobotRun<'_> {
         findings.extend(analysis::profiles::check(robot, model, &options.simulators));
         clock.lap("checks");
         if options.structure_only {
-            return Ok(None);
+            return Ok((None, assets));
         }
         give_up_if_cancelled(options, &loaded.path)?;
         // The workspace sampler stops early when a watchdog cancels the run.
@@ -351,7 +398,7 @@ impl RobotRun<'_> {
             findings.extend(deep_findings);
             clock.lap("deep");
         }
-        Ok(Some(physics))
+        Ok((Some(physics), assets))
     }
 
     /// The MuJoCo pass, when it runs (`--deep`, or by itself on a robot that tips over).

@@ -15,7 +15,9 @@ use std::sync::{Arc, OnceLock};
 
 use rayon::prelude::*;
 
-use crate::input::mesh::{summary_of, MeshCache, MeshData, MeshError, MeshSummary};
+use crate::input::mesh::{
+    load_surface, summary_of, MeshCache, MeshData, MeshError, MeshSummary, Surface,
+};
 use crate::input::resolve::{PackageResolver, Resolution};
 use crate::input::sandbox::Refusal;
 use crate::input::srdf::{self, Srdf};
@@ -161,6 +163,14 @@ impl Assets {
     fn mesh_cell(&self, uri: &str) -> Option<(&PathBuf, &OnceLock<LoadedMesh>)> {
         self.meshes
             .get_key_value(self.resolutions.get(uri)?.found()?)
+    }
+
+    /// The triangles of the mesh a URI names as its file writes them (STL and OBJ; COLLADA's are not read,
+    /// an error says so), read now and not kept: for views that draw the mesh. `None` when the URI does
+    /// not resolve to a file the sandbox lets be read.
+    pub fn surface(&self, uri: &str) -> Option<Result<Surface, MeshError>> {
+        let (path, _) = self.mesh_cell(uri)?;
+        Some(load_surface(path))
     }
 
     /// Points of a mesh for contact geometry, in the mesh frame before scale: its convex hull (with the

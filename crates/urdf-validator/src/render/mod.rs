@@ -10,6 +10,7 @@
 //! | github | [`github`] | GitHub Actions: workflow-command annotations and the step summary |
 //! | html | [`html`] | a page to open in a browser |
 //! | collection | [`collection`], [`html::render_collection_html`] | a batch's summary: `index.json`, `index.md`, `index.html` |
+//! | 3-D view | [`view`] | the robot drawn, its pose's statics and stability (`urdf_validate view`, the HTML report) |
 //!
 //! [`diff`] renders what changed between two reports (`urdf_validate diff`) as text or Markdown.
 
@@ -22,6 +23,7 @@ pub mod junit;
 mod location;
 pub mod sarif;
 pub mod text;
+pub mod view;
 
 pub use collection::{render_collection_json, render_collection_markdown, Collection};
 pub use diff::{render_diff_markdown, render_diff_text};
