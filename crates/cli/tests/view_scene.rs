@@ -174,3 +174,44 @@ fn a_mesh_that_cannot_be_read_is_drawn_as_a_box_with_why() {
     assert_eq!(visuals[2].size, Some([0.1, 0.2, 0.3]));
     assert!(visuals[2].problem.is_none());
 }
+
+#[test]
+fn an_untrusted_view_draws_a_mesh_outside_the_roots_as_a_box_and_says_it_was_refused() {
+    let dir = std::env::temp_dir().join(format!("urdf-view-untrusted-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("robot")).unwrap();
+    let stl = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+    std::fs::write(dir.join("outside.stl"), stl).unwrap();
+    std::fs::write(dir.join("robot/inside.stl"), stl).unwrap();
+    let urdf = dir.join("robot/r.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="r"><link name="a">
+  <visual><geometry><mesh filename="../outside.stl"/></geometry></visual>
+  <visual><geometry><mesh filename="inside.stl"/></geometry></visual>
+</link></robot>"#,
+    )
+    .unwrap();
+    let options = Options {
+        sandbox: urdf_validator::input::sandbox::Sandbox::untrusted(Vec::new(), Vec::new()),
+        ..options()
+    };
+    let scene = scene::build(&Poser::new(inspect(&urdf, &options).unwrap(), &options));
+    let _ = std::fs::remove_dir_all(&dir);
+    let [outside, inside] = &scene.links[0].visuals[..] else {
+        panic!("two visuals: {:?}", scene.links[0].visuals)
+    };
+    assert_eq!(outside.kind, "box");
+    assert!(
+        outside
+            .problem
+            .as_deref()
+            .is_some_and(|p| p.contains("refused")),
+        "{outside:?}"
+    );
+    assert_eq!((inside.kind, inside.mesh), ("mesh", Some(0)), "{inside:?}");
+    assert_eq!(
+        scene.meshes.len(),
+        1,
+        "only the mesh inside the roots was read"
+    );
+}

@@ -10,6 +10,7 @@ use serde::Serialize;
 use super::mesh::{self, EncodedMesh};
 use super::pose::{PoseView, Poser};
 use crate::assets::Assets;
+use crate::input::resolve::Resolution;
 use crate::model::Model;
 use crate::urdf::robot::{pose_isometry, Geometry, JointKind, Robot, Shape};
 use crate::Inspection;
@@ -273,9 +274,14 @@ impl MeshTable {
 
     fn load(&mut self, uri: &str, assets: Option<&Assets>) -> MeshLookup {
         let assets = assets.ok_or_else(|| ("no assets were loaded".to_string(), None))?;
-        let loaded = assets
-            .mesh(uri)
-            .ok_or_else(|| (format!("mesh '{uri}' was not found"), None))?;
+        let loaded = assets.mesh(uri).ok_or_else(|| {
+            let why = match assets.resolution(uri) {
+                Some(Resolution::Refused(refusal)) => format!("refused to read it: {refusal}"),
+                Some(Resolution::Unsupported(why)) => why.clone(),
+                _ => "not found".to_string(),
+            };
+            (format!("mesh '{uri}': {why}"), None)
+        })?;
         let data = match loaded.as_ref() {
             Ok(data) => data,
             Err(e) => return Err((e.message.clone(), None)),
