@@ -102,6 +102,12 @@ fn a_folder_with_format_html_gets_a_collection_page() {
         );
         let target = dir.join("robots").join(link.replace("%20", " "));
         assert!(target.is_file(), "{} missing", target.display());
+        assert!(
+            html.contains(&format!("href=\"{link}#view3d\"")),
+            "{link}'s view not linked"
+        );
+        let report = std::fs::read_to_string(&target).unwrap();
+        assert!(report.contains("id=\"view3d\""), "{link} has no 3-D view");
     }
     assert!(html.contains("id=\"chart-rules\""), "the rules bar chart");
     let markdown = std::fs::read_to_string(dir.join("robots/index.md")).unwrap();

@@ -1,7 +1,8 @@
 //! The collection page (`index.html` of a batch written with `--format html`): the verdict counts and the
 //! findings by severity and by rule as bar charts, then one row per robot with sortable columns (click a
 //! header; a second click reverses) and a link to each robot's report. Self-contained like the reports:
-//! inline CSS, SVG and a few lines of script for the sorting; it opens from `file://`.
+//! inline CSS, SVG and a few lines of script for the sorting; it opens from `file://`. Each robot links
+//! its report and the report's 3-D view (`#view3d`).
 
 use std::fmt::Write;
 
@@ -166,11 +167,13 @@ fn robots_table(out: &mut String, robots: &[CollectionRobot]) {
             escape(&robot.robot_name)
         };
         let file = match &robot.report {
-            Some(link) => format!(
-                "<a href=\"{}\">{}</a>",
-                escape(&link_href(link)),
-                escape(&robot.file)
-            ),
+            Some(link) => {
+                let href = escape(&link_href(link));
+                format!(
+                    "<a href=\"{href}\">{}</a> <a class=\"view-link\" href=\"{href}#view3d\" title=\"the robot in 3-D, with its centre of mass and support polygon\">3-D</a>",
+                    escape(&robot.file)
+                )
+            }
             None => escape(&robot.file),
         };
         let verdict_rank = STATUSES
@@ -252,6 +255,7 @@ svg.plot.bars{width:auto;max-width:100%}
 .table-wrap.tall{max-height:none}
 .robots th{cursor:pointer;user-select:none;white-space:nowrap}
 .robots td.path{overflow-wrap:anywhere;min-width:220px}
+.robots .view-link{margin-left:6px;font-family:system-ui,sans-serif;font-size:11px;font-weight:700;padding:0 6px;border:1px solid var(--border);border-radius:999px}
 .robots th[aria-sort=ascending]::after{content:" ▲"}.robots th[aria-sort=descending]::after{content:" ▼"}
 .robots td:nth-child(n+4){text-align:right;font-variant-numeric:tabular-nums}
 footer{max-width:1180px;margin:0 auto;padding:0 20px 28px;color:var(--muted);font-size:12px}
