@@ -73,10 +73,13 @@ pub struct Hull {
 
 /// Up to this many vertices, a hull's support queries scan every vertex four at a time (AVX2) instead of
 /// climbing: a climb's steps wait on each other and on memory, a scan does not.
+#[cfg(target_arch = "x86_64")]
 const SCAN_UP_TO: usize = 96;
 
-/// A hull's vertices as coordinate arrays padded to a multiple of 4 with copies of the last vertex.
+/// A hull's vertices as coordinate arrays padded to a multiple of 4 with copies of the last vertex (never
+/// made off x86_64, where no scan exists).
 #[derive(Clone, Debug)]
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 struct VertexLanes {
     x: Vec<f64>,
     y: Vec<f64>,
