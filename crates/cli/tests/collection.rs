@@ -214,3 +214,84 @@ fn rows_agree_with_each_report() {
         .sum();
     assert_eq!(totals, findings);
 }
+
+/// In headless Chromium, clicking a header sorts the robots table by it (numbers numerically with missing
+/// values last, text by name), and a second click reverses it (`view_browser/sort_table.mjs`).
+#[test]
+fn clicking_a_header_sorts_the_table() {
+    let Some((chromium, node)) = common::browser_tools() else {
+        return;
+    };
+    let dir = scratch("sort");
+    three_robots(&dir.join("robots"));
+    let light = std::fs::read_to_string(dir.join("robots/good.urdf"))
+        .unwrap()
+        .replacen("<mass value=\"45.0\"/>", "<mass value=\"4.5\"/>", 1);
+    std::fs::write(dir.join("robots/light.urdf"), light).unwrap();
+    run(&dir, &["robots", "--format", "html", "--quiet"]);
+    let page = dir.join("robots/index.html");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/view_browser/sort_table.mjs");
+    let out = Command::new(node)
+        .arg(script)
+        .arg(chromium)
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let result: Value = serde_json::from_str(text.trim()).unwrap_or_else(|e| {
+        panic!(
+            "driver output {text:?} ({e}); stderr {}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    assert!(result.get("error").is_none(), "{result:#}");
+    assert_eq!(result["console"], serde_json::json!([]), "{result:#}");
+    let column = |title: &str| {
+        result["columns"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["title"] == title)
+            .unwrap_or_else(|| panic!("no column {title}: {result:#}"))
+            .clone()
+    };
+    let keys = |click: &Value| -> Vec<String> {
+        click["keys"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|k| k.as_str().unwrap().to_string())
+            .collect()
+    };
+    // Mass: light (≈21 kg), good (61.7 kg), weak (61.7 kg), then the unreadable file's missing value.
+    let mass = column("Mass (kg)");
+    assert_eq!(mass["first"]["sort"], "ascending");
+    let ascending = keys(&mass["first"]);
+    let numbers: Vec<f64> = ascending
+        .iter()
+        .filter(|k| !k.is_empty())
+        .map(|k| k.parse().unwrap())
+        .collect();
+    assert_eq!(numbers.len(), 3, "{ascending:?}");
+    assert!(numbers.windows(2).all(|w| w[0] <= w[1]), "{ascending:?}");
+    assert_eq!(
+        ascending.last().map(String::as_str),
+        Some(""),
+        "missing values last: {ascending:?}"
+    );
+    assert_eq!(mass["second"]["sort"], "descending");
+    let descending = keys(&mass["second"]);
+    assert_eq!(descending[0], ascending[2], "{descending:?}");
+    assert_eq!(
+        descending.last().map(String::as_str),
+        Some(""),
+        "{descending:?}"
+    );
+    // Text: file names in order, then reversed.
+    let file = column("File");
+    let mut sorted = keys(&file["first"]);
+    sorted.sort();
+    assert_eq!(keys(&file["first"]), sorted);
+    sorted.reverse();
+    assert_eq!(keys(&file["second"]), sorted);
+}

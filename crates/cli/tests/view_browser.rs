@@ -18,34 +18,6 @@ use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
-fn on_path(names: &[&str], var: &str) -> Option<PathBuf> {
-    let found = std::env::var_os(var).map(PathBuf::from).or_else(|| {
-        let path = std::env::var_os("PATH")?;
-        std::env::split_paths(&path)
-            .flat_map(|dir| names.iter().map(move |n| dir.join(n)))
-            .find(|p| p.is_file())
-    });
-    match found {
-        Some(p) => Some(p),
-        None if std::env::var_os("CI").is_some() => {
-            panic!("{} is absent under CI (install it, or set {var})", names[0])
-        }
-        None => {
-            eprintln!("skipping: no {} on PATH (or set {var})", names[0]);
-            None
-        }
-    }
-}
-
-fn tools() -> Option<(PathBuf, PathBuf)> {
-    let chromium = on_path(
-        &["chromium", "chromium-browser", "google-chrome"],
-        "URDF_VALIDATOR_CHROMIUM",
-    )?;
-    let node = on_path(&["node"], "URDF_VALIDATOR_NODE")?;
-    Some((chromium, node))
-}
-
 /// A running `urdf_validate view`, stopped on drop.
 struct Server {
     child: Child,
@@ -122,7 +94,7 @@ fn scratch(name: &str) -> PathBuf {
 
 /// Renders `robot` live and checks the screenshot; returns the driver's result.
 fn renders(robot: &Path, name: &str, extra: &[&str]) -> Option<serde_json::Value> {
-    let (chromium, node) = tools()?;
+    let (chromium, node) = common::browser_tools()?;
     let server = Server::start(robot);
     let dir = scratch(name);
     let png = dir.join(format!("view-{name}.png"));
@@ -268,7 +240,7 @@ fn the_pr2_html_report_carries_the_view_under_3_mb_and_draws_it_from_file() {
     let Some(robots) = common::shared_robots() else {
         return;
     };
-    let Some((chromium, node)) = tools() else {
+    let Some((chromium, node)) = common::browser_tools() else {
         return;
     };
     let dir = scratch("report");

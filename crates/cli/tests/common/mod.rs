@@ -60,3 +60,34 @@ pub fn corpus() -> Option<PathBuf> {
         }
     }
 }
+
+/// The first of `names` on PATH (or `$var`); `None` (with a message) when absent outside CI, a panic
+/// under CI.
+pub fn on_path(names: &[&str], var: &str) -> Option<PathBuf> {
+    let found = std::env::var_os(var).map(PathBuf::from).or_else(|| {
+        let path = std::env::var_os("PATH")?;
+        std::env::split_paths(&path)
+            .flat_map(|dir| names.iter().map(move |n| dir.join(n)))
+            .find(|p| p.is_file())
+    });
+    match found {
+        Some(p) => Some(p),
+        None if std::env::var_os("CI").is_some() => {
+            panic!("{} is absent under CI (install it, or set {var})", names[0])
+        }
+        None => {
+            eprintln!("skipping: no {} on PATH (or set {var})", names[0]);
+            None
+        }
+    }
+}
+
+/// Chromium and Node for the browser tests (`view_browser/cdp.mjs` drives Chromium from Node).
+pub fn browser_tools() -> Option<(PathBuf, PathBuf)> {
+    let chromium = on_path(
+        &["chromium", "chromium-browser", "google-chrome"],
+        "URDF_VALIDATOR_CHROMIUM",
+    )?;
+    let node = on_path(&["node"], "URDF_VALIDATOR_NODE")?;
+    Some((chromium, node))
+}

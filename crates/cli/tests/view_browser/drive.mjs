@@ -1,5 +1,5 @@
-// Drives headless Chromium over the DevTools protocol (its --remote-debugging-pipe: no WebSocket, no npm
-// package) for crates/cli/tests/view_browser.rs and scripts/bench-view.sh. Node 20, nothing installed.
+// Drives headless Chromium over the DevTools protocol (cdp.mjs) for crates/cli/tests/view_browser.rs and
+// scripts/bench-view.sh. Node 18 or later, nothing installed.
 //
 // node drive.mjs CHROMIUM URL OUT_PNG [--click] [--poses N]
 //
@@ -10,10 +10,8 @@
 // pixels before and after. --poses N moves a joint slider N times and reports each round trip (POST /pose
 // and the frame drawn). Prints one JSON object; console messages and exceptions are listed in it.
 
-import { spawn } from "node:child_process";
-import { mkdtempSync, writeFileSync, rmSync } from "node:fs";
-import { tmpdir } from "node:os";
-import { join } from "node:path";
+import { writeFileSync } from "node:fs";
+import { openTab } from "./cdp.mjs";
 
 const [chromium, url, outPng, ...rest] = process.argv.slice(2);
 const click = rest.includes("--click");
@@ -22,90 +20,9 @@ const poses = posesAt >= 0 ? Number(rest[posesAt + 1]) : 0;
 const WIDTH = 1280;
 const HEIGHT = 800;
 
-const profile = mkdtempSync(join(tmpdir(), "urdf-view-chromium-"));
-const started = Date.now();
-const browser = spawn(
-  chromium,
-  [
-    "--headless",
-    "--no-sandbox",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-    "--enable-unsafe-swiftshader",
-    "--hide-scrollbars",
-    "--force-device-scale-factor=1",
-    `--window-size=${WIDTH},${HEIGHT}`,
-    `--user-data-dir=${profile}`,
-    "--remote-debugging-pipe",
-    "about:blank",
-  ],
-  { stdio: ["ignore", "ignore", "ignore", "pipe", "pipe"] },
-);
-const toBrowser = browser.stdio[3];
-const fromBrowser = browser.stdio[4];
-
-let nextId = 1;
-const waiting = new Map();
-const listeners = [];
-let buffer = Buffer.alloc(0);
-fromBrowser.on("data", (chunk) => {
-  buffer = Buffer.concat([buffer, chunk]);
-  let end;
-  while ((end = buffer.indexOf(0)) >= 0) {
-    const message = JSON.parse(buffer.subarray(0, end).toString("utf8"));
-    buffer = buffer.subarray(end + 1);
-    if (message.id && waiting.has(message.id)) {
-      const { resolve, reject } = waiting.get(message.id);
-      waiting.delete(message.id);
-      if (message.error) reject(new Error(JSON.stringify(message.error)));
-      else resolve(message.result);
-    } else {
-      for (const listener of listeners) listener(message);
-    }
-  }
-});
-
-function send(method, params = {}, sessionId) {
-  const id = nextId++;
-  toBrowser.write(JSON.stringify({ id, method, params, sessionId }) + "\0");
-  return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
-}
-
-const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
-
-function finish(result, code) {
-  process.stdout.write(JSON.stringify(result) + "\n");
-  browser.kill();
-  try {
-    rmSync(profile, { recursive: true, force: true });
-  } catch (_) {}
-  process.exit(code);
-}
-
-const timer = setTimeout(() => finish({ error: "timed out after 120 s" }, 1), 120_000);
+const { page, evaluate, shot, console, started, sleep, finish } = await openTab(chromium, { width: WIDTH, height: HEIGHT });
 
 try {
-  const console = [];
-  const { targetId } = await send("Target.createTarget", { url: "about:blank" });
-  const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
-  const page = (method, params) => send(method, params, sessionId);
-  listeners.push((m) => {
-    if (m.sessionId !== sessionId) return;
-    if (m.method === "Runtime.consoleAPICalled") console.push(`${m.params.type}: ${m.params.args.map((a) => a.value ?? a.description).join(" ")}`);
-    if (m.method === "Runtime.exceptionThrown") console.push(`exception: ${m.params.exceptionDetails.exception?.description ?? m.params.exceptionDetails.text}`);
-  });
-  await page("Runtime.enable");
-  await page("Page.enable");
-  await page("Emulation.setDeviceMetricsOverride", { width: WIDTH, height: HEIGHT, deviceScaleFactor: 1, mobile: false });
-  const evaluate = async (expression) => {
-    const { result, exceptionDetails } = await page("Runtime.evaluate", { expression, awaitPromise: true, returnByValue: true });
-    if (exceptionDetails) throw new Error(`${expression}: ${exceptionDetails.exception?.description ?? exceptionDetails.text}`);
-    return result.value;
-  };
   const navigated = Date.now();
   await page("Page.navigate", { url });
   let ready = false;
@@ -148,7 +65,6 @@ try {
       for (let i = 0; i < data.length; i += 4 * 97) distinct.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | (data[i + 2] >> 3));
       return { width: w, height: h, middleFraction: middle / middleTotal, robotFraction: robot / (w * h), distinctColours: distinct.size, counts };
     })()`);
-  const shot = async () => (await page("Page.captureScreenshot", { format: "png" })).data;
   const first = await shot();
   writeFileSync(outPng, Buffer.from(first, "base64"));
   const result = { readyMs, stats, screenshot: await measure(first), console, startedMs: navigated - started };
@@ -213,7 +129,6 @@ try {
     }
     result.poseMs = times;
   }
-  clearTimeout(timer);
   finish(result, 0);
 } catch (error) {
   finish({ error: String(error && error.stack ? error.stack : error) }, 1);
