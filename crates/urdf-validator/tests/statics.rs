@@ -538,3 +538,40 @@ fn a_joint_quat_xyzw_turning_the_axis_vertical_leaves_no_gravity_torque() {
         assert!((torque(&ignored, "shoulder") + 2.0 * G * 0.5).abs() < 1e-12);
     }
 }
+
+/// The effort the help tells to declare is the one the fix writes, rounded up: the elbow needs
+/// 1.5 × 2.20725 = 3.310875 N·m, so "≥ 3.32" (to the nearest hundredth, 3.31 would leave it short).
+#[test]
+fn the_help_the_text_row_and_the_fix_name_the_same_effort_rounded_up() {
+    let validation = validate_text(
+        two_link_arm(10.0, 2.0),
+        Path::new("t.urdf"),
+        &Options::default(),
+    )
+    .expect("loads");
+    let needed = 1.5 * G * 1.5 * 0.15;
+    assert!((needed - 3.310875).abs() < 1e-3, "{needed}");
+    let finding = validation
+        .report
+        .findings
+        .iter()
+        .find(|f| f.rule == "U701" && f.message.contains("'elbow'"))
+        .expect("U701 on the elbow");
+    let help = finding.help.as_deref().unwrap_or_default();
+    assert!(help.contains("declare effort ≥ 3.32 N·m"), "{help}");
+    let fix = finding.fix.as_ref().expect("a fix");
+    assert!(
+        fix.description.contains("set effort to 3.32 N·m"),
+        "{}",
+        fix.description
+    );
+    let text = urdf_validator::render::text::render_text(
+        &validation,
+        &urdf_validator::render::text::TextOptions::default(),
+    );
+    let row = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("elbow"))
+        .expect("a row for the failing elbow");
+    assert!(row.contains("→ declare effort ≥ 3.32"), "{row}");
+}

@@ -595,7 +595,12 @@ fn joint_row(out: &mut String, joint: &JointStatics) {
     let needed = joint
         .effort_needed
         .filter(|_| matches!(joint.status, Status::Fail | Status::Warn))
-        .map_or(String::new(), |e| format!(" → declare effort ≥ {e:.2}"));
+        .map_or(String::new(), |e| {
+            format!(
+                " → declare effort ≥ {:.2}",
+                crate::analysis::statics::gravity::round_up_to_hundredth(e)
+            )
+        });
     let _ = writeln!(
         out,
         "  {:<30}req {:<12}declared {:<14}{:>10}  {}  — {}{needed}",

@@ -31,6 +31,12 @@ pub fn effort_needed(torque: f64) -> f64 {
     PASS_MARGIN * torque.abs()
 }
 
+/// `value` rounded up to the hundredth: how an effort to declare is written (rounded to the nearest, it
+/// could fall just short of the margin it is meant to give).
+pub fn round_up_to_hundredth(value: f64) -> f64 {
+    (value * 100.0).ceil() / 100.0
+}
+
 /// Mass carried by each link's subtree, at one configuration.
 #[derive(Clone, Debug)]
 pub struct SubtreeSums {

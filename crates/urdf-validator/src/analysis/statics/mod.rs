@@ -311,7 +311,7 @@ struct VerdictContext<'a> {
 /// written: unsafe, as it changes what the robot claims its motors can do.
 fn effort_fix(limit: Option<&Limit>, torque: f64, unit: &str) -> Option<Fix> {
     let effort = limit?.effort.as_ref()?;
-    let needed = (gravity::effort_needed(torque) * 100.0).ceil() / 100.0;
+    let needed = gravity::round_up_to_hundredth(gravity::effort_needed(torque));
     let value = fix::number(needed);
     Some(Fix::unsafe_(
         format!("set effort to {value} {unit} (1.5 × the gravity torque): this changes what the robot claims its motors can do"),
@@ -351,7 +351,7 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             )
             .with_help(format!(
                 "declare effort ≥ {:.2} {unit} (1.5 × the gravity torque), or lighten the links below '{name}'",
-                gravity::effort_needed(torque)
+                gravity::round_up_to_hundredth(gravity::effort_needed(torque))
             ))
             .with_fix_option(effort_fix(limit, torque, unit)),
         ),
@@ -368,7 +368,7 @@ fn joint_finding(at: &VerdictContext, graded: &Grade, any_mass: bool) -> Option<
             )
             .with_help(format!(
                 "effort ≥ {:.2} {unit} gives the 1.5× margin",
-                gravity::effort_needed(torque)
+                gravity::round_up_to_hundredth(gravity::effort_needed(torque))
             ))
             .with_fix_option(effort_fix(limit, torque, unit)),
         ),
