@@ -1,4 +1,4 @@
-//! The pages that draw a [`Scene`]: the live page `urdf_validate view` serves (scene and poses fetched
+//! The pages that draw a [`Scene`](super::Scene): the live page `urdf_validate view` serves (scene and poses fetched
 //! from the server) and the section the HTML report embeds (scene inline, the report's pose).
 
 /// three.js, OrbitControls and `viewer.js`, bundled by `scripts/vendor-three.sh`.
