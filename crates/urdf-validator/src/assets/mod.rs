@@ -16,7 +16,7 @@ use std::sync::{Arc, OnceLock};
 use rayon::prelude::*;
 
 use crate::input::mesh::{
-    load_surface, summary_of, MeshCache, MeshData, MeshError, MeshSummary, Surface,
+    load_view_surface, summary_of, MeshCache, MeshData, MeshError, MeshSummary, Surface,
 };
 use crate::input::resolve::{PackageResolver, Resolution};
 use crate::input::sandbox::Refusal;
@@ -165,12 +165,13 @@ impl Assets {
             .get_key_value(self.resolutions.get(uri)?.found()?)
     }
 
-    /// The triangles of the mesh a URI names as its file writes them (STL and OBJ; COLLADA's are not read,
-    /// an error says so), read now and not kept: for views that draw the mesh. `None` when the URI does
-    /// not resolve to a file the sandbox lets be read.
+    /// The triangles of the mesh a URI names as its file writes them (STL and OBJ; COLLADA's as its visual
+    /// scene instantiates them, see [`load_view_surface`]), read now and not kept: for views that draw the
+    /// mesh, never for what the validator computes. `None` when the URI does not resolve to a file the
+    /// sandbox lets be read.
     pub fn surface(&self, uri: &str) -> Option<Result<Surface, MeshError>> {
         let (path, _) = self.mesh_cell(uri)?;
-        Some(load_surface(path))
+        Some(load_view_surface(path, &self.cache.options()))
     }
 
     /// Points of a mesh for contact geometry, in the mesh frame before scale: its convex hull (with the

@@ -48,6 +48,11 @@ impl MeshCache {
         }
     }
 
+    /// The options meshes are loaded with.
+    pub fn options(&self) -> MeshOptions {
+        self.options
+    }
+
     /// This cache, also reading and keeping meshes in `disk` (across runs).
     pub fn with_disk_cache(self, disk: DiskCache) -> Self {
         Self {

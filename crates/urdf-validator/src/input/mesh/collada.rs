@@ -7,7 +7,7 @@ use nalgebra::{Matrix4, Rotation3, Unit, Vector3};
 use roxmltree::{Document, Node};
 
 use super::{
-    number, shown, ColladaUpAxis, MeshOptions, RawMesh, UpAxisPolicy, VertexSink,
+    number, shown, ColladaUpAxis, MeshOptions, RawMesh, Surface, UpAxisPolicy, VertexSink,
     MAX_INSTANCED_PER_BYTE, MAX_NODE_DEPTH, MAX_NODE_INSTANCES, MAX_VERTICES,
     MIN_INSTANCED_VERTICES,
 };
@@ -38,10 +38,12 @@ impl ColladaUpAxis {
     }
 }
 
-/// A geometry's positions in file units, and its triangle count.
+/// A geometry's positions in file units, its triangle count, and (only when they are read, for the
+/// view) its triangles as indices into `positions`.
 struct Geometry {
     positions: Vec<[f64; 3]>,
     triangles: usize,
+    faces: Vec<[u32; 3]>,
 }
 
 struct Collada<'a, 'input> {
@@ -51,9 +53,33 @@ struct Collada<'a, 'input> {
     sink: VertexSink,
     triangles: usize,
     instances: usize,
+    /// Whether the primitives' index lists are read ([`triangles`]); [`parse_dae`] does not.
+    read_faces: bool,
+    /// The instantiated triangles, indices into the sink's vertices (when `read_faces`).
+    faces: Vec<[u32; 3]>,
 }
 
 pub(super) fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, String> {
+    read(bytes, options, false).map(|(raw, _)| raw)
+}
+
+/// The triangles the visual scene instantiates, for drawing: the vertices [`parse_dae`] reads and the
+/// triangles of every `<triangles>`, `<polylist>`, `<polygons>`, `<trifans>` and `<tristrips>` (polygons
+/// fanned) as indices into them, with the same limits; at most as many triangles as vertices may be
+/// instantiated (an error past that). What the validator computes never reads these.
+pub(super) fn triangles(bytes: &[u8], options: &MeshOptions) -> Result<Surface, String> {
+    read(bytes, options, true).map(|(raw, triangles)| Surface {
+        vertices: raw.vertices,
+        triangles,
+    })
+}
+
+/// Walk the visual scene: the positions (and, when `read_faces`, the triangles) it instantiates.
+fn read(
+    bytes: &[u8],
+    options: &MeshOptions,
+    read_faces: bool,
+) -> Result<(RawMesh, Vec<[u32; 3]>), String> {
     if bytes.is_empty() {
         return Err("empty file (expected COLLADA XML)".to_string());
     }
@@ -93,6 +119,8 @@ pub(super) fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, 
         },
         triangles: 0,
         instances: 0,
+        read_faces,
+        faces: Vec::new(),
     };
     for node in root.descendants().filter(|n| n.is_element()) {
         if let Some(id) = node.attribute("id") {
@@ -124,7 +152,7 @@ pub(super) fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, 
         }
     }
     let triangles = c.triangles;
-    Ok(RawMesh {
+    let raw = RawMesh {
         vertices: c
             .sink
             .finish("COLLADA <mesh> positions instantiated by the visual scene")?,
@@ -132,7 +160,8 @@ pub(super) fn parse_dae(bytes: &[u8], options: &MeshOptions) -> Result<RawMesh, 
         declared_up_axis,
         binary_stl: false,
         faces: None,
-    })
+    };
+    Ok((raw, c.faces))
 }
 
 fn tag<'a>(node: Node<'a, '_>) -> &'a str {
@@ -410,16 +439,53 @@ impl<'a, 'input> Collada<'a, 'input> {
         // The affine part (COLLADA transforms are affine), in plain arithmetic for unoptimised builds.
         let row = |r: usize| [m[(r, 0)], m[(r, 1)], m[(r, 2)], m[(r, 3)]];
         let rows = [row(0), row(1), row(2)];
+        let mut map = Vec::with_capacity(if self.read_faces {
+            data.positions.len()
+        } else {
+            0
+        });
         for p in &data.positions {
             let q = rows.map(|r| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3]);
-            self.sink.push(q).map_err(|e| {
+            let index = self.sink.push(q).map_err(|e| {
                 format!(
                     "line {}: geometry instantiated by the visual scene: {e}",
                     line_of(self.doc, geometry)
                 )
             })?;
+            if self.read_faces {
+                map.push(index);
+            }
         }
         self.triangles = self.triangles.saturating_add(data.triangles);
+        if self.read_faces {
+            self.place_faces(geometry, &data.faces, &map)?;
+        }
+        Ok(())
+    }
+
+    /// Add a geometry instance's triangles, `map` taking its position indices to the sink's vertices.
+    fn place_faces(
+        &mut self,
+        geometry: Node<'a, 'input>,
+        faces: &[[u32; 3]],
+        map: &[u32],
+    ) -> Result<(), String> {
+        if self.faces.len().saturating_add(faces.len()) > self.sink.limit {
+            return Err(format!(
+                "line {}: more than {} triangles instantiated (limit: as many as vertices)",
+                line_of(self.doc, geometry),
+                self.sink.limit
+            ));
+        }
+        for face in faces {
+            let corners = face.map(|i| map.get(i as usize).copied());
+            if let [Some(a), Some(b), Some(c)] = corners {
+                // Corners that deduplicate to one vertex make no triangle.
+                if a != b && b != c && a != c {
+                    self.faces.push([a, b, c]);
+                }
+            }
+        }
         Ok(())
     }
 
@@ -434,9 +500,16 @@ impl<'a, 'input> Collada<'a, 'input> {
         let Some(mesh) = child(geometry, "mesh") else {
             return Ok(None);
         };
+        let positions = self.positions(mesh)?;
+        let faces = if self.read_faces {
+            self.mesh_faces(mesh, positions.len())?
+        } else {
+            Vec::new()
+        };
         let data = Arc::new(Geometry {
-            positions: self.positions(mesh)?,
+            positions,
             triangles: self.mesh_triangles(mesh)?,
+            faces,
         });
         if !key.is_empty() {
             self.geometries.insert(key, Arc::clone(&data));
@@ -591,6 +664,151 @@ impl<'a, 'input> Collada<'a, 'input> {
         Ok(total)
     }
 
+    /// The triangles of a `<mesh>`'s primitives as indices into its `count` positions: `<triangles>`,
+    /// `<polylist>` (polygons of `<vcount>` corners), `<polygons>` (each `<p>`, or a `<ph>`'s outer
+    /// `<p>`, one polygon), `<trifans>` and `<tristrips>` (each `<p>` one fan or strip); polygons are
+    /// fanned from their first corner. Other primitives (lines) have none.
+    fn mesh_faces(&self, mesh: Node<'a, 'input>, count: usize) -> Result<Vec<[u32; 3]>, String> {
+        let mut faces = Vec::new();
+        for prim in elements(mesh) {
+            let kind = tag(prim);
+            if !matches!(
+                kind,
+                "triangles" | "polylist" | "polygons" | "trifans" | "tristrips"
+            ) {
+                continue;
+            }
+            let corners = |p: Node<'a, 'input>| self.corners(prim, p, count, self.sink.limit);
+            match kind {
+                "triangles" | "polylist" => {
+                    let Some(p) = child(prim, "p") else {
+                        continue;
+                    };
+                    let v = corners(p)?;
+                    if kind == "triangles" {
+                        if v.len() % 3 != 0 {
+                            return Err(format!(
+                                "line {}: <triangles> <p> holds {} vertices, not a multiple of 3",
+                                line_of(self.doc, p),
+                                v.len()
+                            ));
+                        }
+                        faces.extend(v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
+                    } else {
+                        let sizes = self.vcount(prim)?;
+                        let mut at = 0usize;
+                        for k in sizes {
+                            let polygon = at
+                                .checked_add(k)
+                                .and_then(|end| v.get(at..end))
+                                .ok_or_else(|| {
+                                    format!(
+                                        "line {}: <polylist> <vcount> adds up to more than the {}                                          vertices of its <p>",
+                                        line_of(self.doc, prim),
+                                        v.len()
+                                    )
+                                })?;
+                            fan(polygon, &mut faces);
+                            at += k;
+                        }
+                    }
+                }
+                _ => {
+                    let ps = elements(prim).filter_map(|c| match tag(c) {
+                        "p" => Some(c),
+                        // polygons with holes: the outer boundary.
+                        "ph" => child(c, "p"),
+                        _ => None,
+                    });
+                    for p in ps {
+                        let v = corners(p)?;
+                        if kind == "tristrips" {
+                            strip(&v, &mut faces);
+                        } else {
+                            fan(&v, &mut faces);
+                        }
+                    }
+                }
+            }
+            if faces.len() > self.sink.limit {
+                return Err(format!(
+                    "line {}: more than {} triangles (limit: as many as vertices)",
+                    line_of(self.doc, prim),
+                    self.sink.limit
+                ));
+            }
+        }
+        Ok(faces)
+    }
+
+    /// A primitive's `<vcount>`: the corner count of each polygon.
+    fn vcount(&self, prim: Node<'a, 'input>) -> Result<Vec<usize>, String> {
+        let Some(vcount) = child(prim, "vcount") else {
+            return Ok(Vec::new());
+        };
+        vcount
+            .text()
+            .unwrap_or("")
+            .split_ascii_whitespace()
+            .map(|token| {
+                token.parse::<usize>().map_err(|_| {
+                    format!(
+                        "line {}: expected a vertex count in <vcount>, found '{}'",
+                        line_of(self.doc, vcount),
+                        shown(token.as_bytes())
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// The position index of each vertex in a `<p>` of primitive `prim` (its VERTEX input's index among
+    /// the `stride` indices per vertex), each below `count`; at most `limit` of them.
+    fn corners(
+        &self,
+        prim: Node<'a, 'input>,
+        p: Node<'a, 'input>,
+        count: usize,
+        limit: usize,
+    ) -> Result<Vec<u32>, String> {
+        let stride = self.input_stride(prim)?;
+        let input = elements(prim)
+            .find(|i| {
+                tag(*i) == "input" && matches!(i.attribute("semantic"), Some("VERTEX" | "POSITION"))
+            })
+            .ok_or_else(|| {
+                format!(
+                    "line {}: <{}> has no <input semantic=\"VERTEX\"> (expected vertex indices)",
+                    line_of(self.doc, prim),
+                    tag(prim)
+                )
+            })?;
+        let offset = usize_attr(self.doc, input, "offset", 0)?;
+        let mut out = Vec::new();
+        let tokens = p.text().unwrap_or("").split_ascii_whitespace();
+        for token in tokens.skip(offset).step_by(stride) {
+            if out.len() >= limit {
+                return Err(format!(
+                    "line {}: <p> holds more than {limit} vertices (limit)",
+                    line_of(self.doc, p)
+                ));
+            }
+            let index = token
+                .parse::<u32>()
+                .ok()
+                .filter(|&i| (i as usize) < count)
+                .ok_or_else(|| {
+                    format!(
+                        "line {}: expected a vertex index below {count} in <p>, found '{}'",
+                        line_of(self.doc, p),
+                        shown(token.as_bytes())
+                    )
+                })?;
+            out.push(index);
+        }
+        Ok(out)
+    }
+
     /// Indices per vertex in a primitive's `<p>`: largest input offset + 1.
     fn input_stride(&self, prim: Node<'a, 'input>) -> Result<usize, String> {
         let mut stride = 1;
@@ -599,6 +817,24 @@ impl<'a, 'input> Collada<'a, 'input> {
             stride = stride.max(offset.saturating_add(1));
         }
         Ok(stride)
+    }
+}
+
+/// A polygon's triangles, fanned from its first corner (none for fewer than 3 corners).
+fn fan(polygon: &[u32], faces: &mut Vec<[u32; 3]>) {
+    if let Some((&first, rest)) = polygon.split_first() {
+        faces.extend(rest.windows(2).map(|w| [first, w[0], w[1]]));
+    }
+}
+
+/// A triangle strip's triangles, every other one reversed so that all wind alike.
+fn strip(corners: &[u32], faces: &mut Vec<[u32; 3]>) {
+    for (i, w) in corners.windows(3).enumerate() {
+        faces.push(if i % 2 == 0 {
+            [w[0], w[1], w[2]]
+        } else {
+            [w[1], w[0], w[2]]
+        });
     }
 }
 
@@ -628,6 +864,126 @@ fn look_at(v: &[f64]) -> Matrix4<f64> {
 mod tests {
     use super::*;
     use nalgebra::Point3;
+
+    /// A square (two triangles, z = 0) and a quad polylist (z = 1) with a triangle, instanced once
+    /// untransformed and once translated by (10, 0, 0); unit 0.5 m.
+    const SMALL: &str = r##"<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="0.5"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="g">
+      <mesh>
+        <source id="pos">
+          <float_array id="pos-a" count="21">0 0 0  1 0 0  1 1 0  0 1 0  0 0 1  1 0 1  1 1 1</float_array>
+          <technique_common>
+            <accessor source="#pos-a" count="7" stride="3">
+              <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+            </accessor>
+          </technique_common>
+        </source>
+        <vertices id="v"><input semantic="POSITION" source="#pos"/></vertices>
+        <triangles count="2">
+          <input semantic="VERTEX" source="#v" offset="0"/>
+          <input semantic="NORMAL" source="#n" offset="1"/>
+          <p>0 9 1 9 2 9  0 9 2 9 3 9</p>
+        </triangles>
+        <polylist count="2">
+          <input semantic="NORMAL" source="#n" offset="0"/>
+          <input semantic="VERTEX" source="#v" offset="1"/>
+          <vcount>4 3</vcount>
+          <p>9 4 9 5 9 6 9 0  9 1 9 2 9 3</p>
+        </polylist>
+      </mesh>
+    </geometry>
+  </library_geometries>
+  <library_visual_scenes>
+    <visual_scene id="s">
+      <node><instance_geometry url="#g"/></node>
+      <node><translate>10 0 0</translate><instance_geometry url="#g"/></node>
+    </visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>"##;
+
+    /// The triangles as corner positions.
+    fn drawn(bytes: &[u8]) -> Vec<[[f64; 3]; 3]> {
+        let Surface {
+            vertices: v,
+            triangles: t,
+        } = triangles(bytes, &MeshOptions::default()).unwrap();
+        t.iter().map(|f| f.map(|i| v[i as usize])).collect()
+    }
+
+    #[test]
+    fn triangles_polylists_and_node_transforms_give_the_triangles() {
+        let t = drawn(SMALL.as_bytes());
+        let h = 0.5;
+        let local = [
+            [[0.0, 0.0, 0.0], [h, 0.0, 0.0], [h, h, 0.0]],
+            [[0.0, 0.0, 0.0], [h, h, 0.0], [0.0, h, 0.0]],
+            // The quad 4 5 6 0, fanned from 4.
+            [[0.0, 0.0, h], [h, 0.0, h], [h, h, h]],
+            [[0.0, 0.0, h], [h, h, h], [0.0, 0.0, 0.0]],
+            [[h, 0.0, 0.0], [h, h, 0.0], [0.0, h, 0.0]],
+        ];
+        let moved = local.map(|f| f.map(|p| [p[0] + 5.0, p[1], p[2]]));
+        let expected: Vec<_> = local.iter().chain(moved.iter()).copied().collect();
+        assert_eq!(t, expected);
+        // The vertices and counts are those the physics reads, which reads no triangles.
+        let raw = parse_dae(SMALL.as_bytes(), &MeshOptions::default()).unwrap();
+        let surface = triangles(SMALL.as_bytes(), &MeshOptions::default()).unwrap();
+        assert_eq!(raw.vertices, surface.vertices);
+        assert_eq!(raw.triangles, 10);
+        assert!(raw.faces.is_none());
+    }
+
+    #[test]
+    fn fans_strips_polygons_and_bad_index_lists() {
+        let doc = |prims: &str| {
+            format!(
+                r##"<COLLADA><library_geometries><geometry id="g"><mesh>
+<source id="pos"><float_array id="a">0 0 0 1 0 0 1 1 0 0 1 0 2 2 0</float_array></source>
+<vertices id="v"><input semantic="POSITION" source="#pos"/></vertices>{prims}
+</mesh></geometry></library_geometries></COLLADA>"##
+            )
+        };
+        let input = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
+        let count = |prims: &str| {
+            triangles(doc(prims).as_bytes(), &MeshOptions::default()).map(|s| s.triangles)
+        };
+        assert_eq!(
+            count(&format!("<trifans>{input}<p>0 1 2 3</p></trifans>")),
+            Ok(vec![[0, 1, 2], [0, 2, 3]])
+        );
+        assert_eq!(
+            count(&format!("<tristrips>{input}<p>0 1 2 3</p></tristrips>")),
+            Ok(vec![[0, 1, 2], [2, 1, 3]])
+        );
+        assert_eq!(
+            count(&format!(
+                "<polygons>{input}<p>0 1 2 3</p><ph><p>1 4 2</p><h>0</h></ph></polygons>"
+            )),
+            Ok(vec![[0, 1, 2], [0, 2, 3], [1, 4, 2]])
+        );
+        for bad in [
+            format!("<triangles>{input}<p>0 1 5</p></triangles>"),
+            format!("<triangles>{input}<p>0 1 -1</p></triangles>"),
+            format!("<triangles>{input}<p>0 1 2 3</p></triangles>"),
+            format!("<polylist>{input}<vcount>3 3</vcount><p>0 1 2 3</p></polylist>"),
+            format!("<polylist>{input}<vcount>3 x</vcount><p>0 1 2</p></polylist>"),
+            "<triangles><p>0 1 2</p></triangles>".to_string(),
+        ] {
+            let e = count(&bad).unwrap_err();
+            assert!(e.starts_with("line "), "{bad}: {e}");
+        }
+        // Polygons of fewer than 3 corners make none.
+        assert_eq!(
+            count(&format!(
+                "<polylist>{input}<vcount>2 0 3</vcount><p>0 1 2 3 4</p></polylist>"
+            )),
+            Ok(vec![[2, 3, 4]])
+        );
+    }
 
     #[test]
     fn up_axes_are_proper_rotations_taking_up_to_z() {

@@ -272,12 +272,38 @@ pub fn load_surface(path: &Path) -> Result<Surface, MeshError> {
     }
 }
 
+/// The surface of a mesh file for drawing it: an STL or OBJ file's as [`load_surface`] reads it, a
+/// COLLADA file's instantiated triangles (node transforms, unit and up axis applied as for its vertices,
+/// polygons fanned), with the loader's limits. Only the view reads it: what the validator computes from
+/// meshes never does. `options` apply to COLLADA only (OBJ faces are read as [`load_surface`] reads them).
+pub fn load_view_surface(path: &Path, options: &MeshOptions) -> Result<Surface, MeshError> {
+    if !matches!(format_of(path), Ok(Format::Dae)) {
+        return load_surface(path);
+    }
+    let error = |message: String| MeshError {
+        path: path.to_path_buf(),
+        message,
+    };
+    let bytes = read_bytes(path).map_err(error)?;
+    collada::triangles(&bytes, options).map_err(error)
+}
+
 fn load(path: &Path, options: &MeshOptions) -> Result<MeshData, String> {
     read_raw(path, options).map(finish)
 }
 
 fn read_raw(path: &Path, options: &MeshOptions) -> Result<RawMesh, String> {
     let format = format_of(path)?;
+    let bytes = read_bytes(path)?;
+    match format {
+        Format::Stl => stl::parse_stl(&bytes),
+        Format::Obj => obj::parse(&bytes, options.obj_reading),
+        Format::Dae => collada::parse_dae(&bytes, options),
+    }
+}
+
+/// A mesh file's bytes, within [`MAX_FILE_BYTES`].
+fn read_bytes(path: &Path) -> Result<Vec<u8>, String> {
     let size = std::fs::metadata(path)
         .map_err(|e| format!("cannot read file: {e}"))?
         .len();
@@ -293,11 +319,7 @@ fn read_raw(path: &Path, options: &MeshOptions) -> Result<RawMesh, String> {
             bytes.len()
         ));
     }
-    match format {
-        Format::Stl => stl::parse_stl(&bytes),
-        Format::Obj => obj::parse(&bytes, options.obj_reading),
-        Format::Dae => collada::parse_dae(&bytes, options),
-    }
+    Ok(bytes)
 }
 
 fn format_of(path: &Path) -> Result<Format, String> {

@@ -76,8 +76,9 @@ pub struct SceneGeometry {
     /// `<material>` colour, RGBA.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub color: Option<[f64; 4]>,
-    /// How the drawing differs from the file: `decimated`, `convex_hull` (COLLADA, whose triangles the
-    /// loader does not read), `bounding_box` or `placeholder` (a mesh that cannot be read).
+    /// How the drawing differs from the file: `decimated`, `convex_hull` (a mesh whose triangles could
+    /// not be read, e.g. past the loader's limits, though its vertices could), `bounding_box` or
+    /// `placeholder` (a mesh that cannot be read).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub approximation: Option<&'static str>,
     /// Why a mesh is drawn as a box.
