@@ -10,6 +10,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
 
 use std::io::Read as _;
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -107,22 +109,6 @@ fn split_words(command: &str) -> Vec<String> {
     words
 }
 
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).expect("create dir");
-    for entry in std::fs::read_dir(from).expect("read dir").flatten() {
-        let target = to.join(entry.file_name());
-        if entry.path().is_dir() {
-            copy_dir(&entry.path(), &target);
-        } else if !entry
-            .file_name()
-            .to_string_lossy()
-            .ends_with("_validation.json")
-        {
-            std::fs::copy(entry.path(), &target).expect("copy");
-        }
-    }
-}
-
 /// Every Markdown file of the book, and the README.
 fn book_files() -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -145,8 +131,8 @@ fn book_files() -> Vec<PathBuf> {
 fn run_block(block: &[Example], scratch: &Path) -> Vec<String> {
     let _ = std::fs::remove_dir_all(scratch);
     let examples = repo_root().join("examples/robots");
-    copy_dir(&examples, &scratch.join("examples/robots"));
-    copy_dir(&examples, &scratch.join("robots"));
+    common::copy_dir(&examples, &scratch.join("examples/robots"));
+    common::copy_dir(&examples, &scratch.join("robots"));
     let scratch = scratch.canonicalize().expect("scratch");
     let mut redactions = snapbox::Redactions::new();
     redactions

@@ -4,6 +4,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a test (or bench) may panic on what it did not expect
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -33,22 +35,6 @@ fn readme_commands() -> Vec<Vec<String>> {
         .collect()
 }
 
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).expect("create dir");
-    for entry in std::fs::read_dir(from).expect("read dir").flatten() {
-        let target = to.join(entry.file_name());
-        if entry.path().is_dir() {
-            copy_dir(&entry.path(), &target);
-        } else if !entry
-            .file_name()
-            .to_string_lossy()
-            .ends_with("_validation.json")
-        {
-            std::fs::copy(entry.path(), &target).expect("copy");
-        }
-    }
-}
-
 #[test]
 fn the_readme_three_commands_run_as_written() {
     let commands = readme_commands();
@@ -57,8 +43,8 @@ fn the_readme_three_commands_run_as_written() {
         std::env::temp_dir().join(format!("urdf-validator-readme-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&scratch);
     let examples = repo_root().join("examples/robots");
-    copy_dir(&examples, &scratch.join("examples/robots"));
-    copy_dir(&examples, &scratch.join("robots"));
+    common::copy_dir(&examples, &scratch.join("examples/robots"));
+    common::copy_dir(&examples, &scratch.join("robots"));
     for command in &commands {
         assert_eq!(command[0], "urdf_validate", "{command:?}");
         let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))

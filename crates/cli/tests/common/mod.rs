@@ -91,3 +91,20 @@ pub fn browser_tools() -> Option<(PathBuf, PathBuf)> {
     let node = on_path(&["node"], "URDF_VALIDATOR_NODE")?;
     Some((chromium, node))
 }
+
+/// Copy the folder `from` to `to`, leaving out reports (`*_validation.json`) a run may have left there.
+pub fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).expect("create dir");
+    for entry in std::fs::read_dir(from).expect("read dir").flatten() {
+        let target = to.join(entry.file_name());
+        if entry.path().is_dir() {
+            copy_dir(&entry.path(), &target);
+        } else if !entry
+            .file_name()
+            .to_string_lossy()
+            .ends_with("_validation.json")
+        {
+            std::fs::copy(entry.path(), &target).expect("copy");
+        }
+    }
+}

@@ -6,8 +6,8 @@
 
 use std::fmt::Write;
 
+use super::page::severity_class;
 use super::{escape, CSS};
-use crate::diagnostics::Severity;
 use crate::render::collection::{link_href, number, Collection, CollectionRobot, STATUSES};
 
 /// Most rules drawn in the "findings by rule" chart (the table of the JSON and Markdown has them all).
@@ -235,15 +235,6 @@ fn status_class(status: &str) -> &'static str {
         "FAIL" | "ERROR" => "fail",
         "UNKNOWN" => "unknown",
         _ => "na",
-    }
-}
-
-fn severity_class(severity: Severity) -> &'static str {
-    match severity {
-        Severity::Critical => "critical",
-        Severity::Fail => "fail",
-        Severity::Warn => "warn",
-        Severity::Info => "info",
     }
 }
 

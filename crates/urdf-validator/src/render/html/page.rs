@@ -17,7 +17,8 @@ const SNIPPET_CONTEXT: u32 = 2;
 /// Characters of one source line shown in a snippet.
 const SNIPPET_WIDTH: usize = 240;
 
-fn severity_class(severity: Severity) -> &'static str {
+/// The CSS class of a severity (`critical`, `fail`, `warn`, `info`).
+pub(super) fn severity_class(severity: Severity) -> &'static str {
     match severity {
         Severity::Critical => "critical",
         Severity::Fail => "fail",

@@ -12,7 +12,7 @@ use super::pose::{PoseView, Poser};
 use crate::assets::Assets;
 use crate::input::resolve::Resolution;
 use crate::model::Model;
-use crate::urdf::robot::{pose_isometry, Geometry, JointKind, Robot, Shape};
+use crate::urdf::robot::{pose_isometry, Geometry, Robot, Shape};
 use crate::Inspection;
 
 /// Most triangles one mesh keeps (larger ones are decimated to it).
@@ -197,7 +197,7 @@ fn joints(robot: &Robot, model: &Model) -> Vec<SceneJoint> {
             let links = model.joint_links[j];
             SceneJoint {
                 name: joint.name.value.clone(),
-                kind: kind_name(data.kind),
+                kind: data.kind.as_str(),
                 parent: links.map(|(p, _)| p.0),
                 child: links.map(|(_, c)| c.0),
                 axis: data.axis.into(),
@@ -208,18 +208,6 @@ fn joints(robot: &Robot, model: &Model) -> Vec<SceneJoint> {
             }
         })
         .collect()
-}
-
-/// The URDF name of a joint type.
-pub fn kind_name(kind: JointKind) -> &'static str {
-    match kind {
-        JointKind::Revolute => "revolute",
-        JointKind::Continuous => "continuous",
-        JointKind::Prismatic => "prismatic",
-        JointKind::Fixed => "fixed",
-        JointKind::Floating => "floating",
-        JointKind::Planar => "planar",
-    }
 }
 
 /// The link and joint a finding concerns: from its element path (`.../link[@name='x']/...`), else the
