@@ -15,7 +15,7 @@ use urdf_validator::render::{render_diff_markdown, render_diff_text};
 use urdf_validator::report::diff::compare;
 
 use crate::args::Args;
-use crate::request::{first_line, request_of};
+use crate::request::{first_line, option_value, request_of};
 
 pub(crate) const HELP: &str = "\
 Compare two robot descriptions: verdicts, findings, masses, centre of mass, gravity torques and margins,
@@ -59,16 +59,7 @@ fn run(argv: &[OsString]) -> Result<u8, String> {
             out!("{HELP}");
             return Ok(0);
         }
-        let value = if text == "--format" {
-            Some(
-                words
-                    .next()
-                    .map(|v| v.to_string_lossy().into_owned())
-                    .unwrap_or_default(),
-            )
-        } else {
-            text.strip_prefix("--format=").map(str::to_string)
-        };
+        let value = option_value(&text, "--format", &mut words);
         match value.as_deref() {
             None => rest.push(word.clone()),
             Some("text") => format = DiffFormat::Text,

@@ -122,6 +122,26 @@ pub(crate) fn first_line(message: &str) -> String {
     }
 }
 
+/// For a subcommand's own option `name` (`--port`, `--format`): its value when `word` is `NAME VALUE`
+/// (the value taken from `words`; empty when nothing follows) or `NAME=VALUE`, else `None`.
+pub fn option_value<'a>(
+    word: &str,
+    name: &str,
+    words: &mut impl Iterator<Item = &'a std::ffi::OsString>,
+) -> Option<String> {
+    if word == name {
+        return Some(
+            words
+                .next()
+                .map(|v| v.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        );
+    }
+    word.strip_prefix(name)?
+        .strip_prefix('=')
+        .map(str::to_string)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

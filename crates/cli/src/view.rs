@@ -21,7 +21,7 @@ use urdf_validate_session::Session;
 use urdf_validator::render::view::{page, scene, Poser};
 
 use crate::args::Args;
-use crate::request::{first_line, request_of};
+use crate::request::{first_line, option_value, request_of};
 use http::{read_request, write_response, Request, Response};
 
 pub(crate) const HELP: &str = "\
@@ -67,16 +67,7 @@ fn parse(argv: &[OsString]) -> Result<Option<ViewArgs>, String> {
         if text == "-h" || text == "--help" {
             return Ok(None);
         }
-        let port = if text == "--port" {
-            Some(
-                words
-                    .next()
-                    .map(|v| v.to_string_lossy().into_owned())
-                    .unwrap_or_default(),
-            )
-        } else {
-            text.strip_prefix("--port=").map(str::to_string)
-        };
+        let port = option_value(&text, "--port", &mut words);
         match port {
             Some(value) => {
                 parsed.port = value
