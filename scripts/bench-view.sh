@@ -3,7 +3,10 @@
 # (the command started → its URL printed, then the page opened → its first frame drawn, in headless
 # Chromium with SwiftShader WebGL, driven by crates/cli/tests/view_browser/drive.mjs), and slider moves
 # (a joint slider moved → POST /pose answered → the next frame drawn). Prints the medians of RUNS starts
-# (default 5) and of POSES slider moves per start (default 20).
+# (default 5) and of POSES slider moves per start (default 20). Both end when the GPU has finished the frame
+# (a pixel read back). The first frame is timed twice: in a browser just started ("cold": its first WebGL
+# context starts Chromium's GPU side, about 0.3 s here) and in one that has drawn WebGL before ("warm", as
+# the browser a user already has open).
 #
 # URDF_VALIDATE=path/to/urdf_validate (default: target/release/urdf_validate, built when missing);
 # CHROMIUM (default chromium); needs node.
@@ -22,28 +25,36 @@ work="$(mktemp -d)"
 server=""
 cleanup() { if [ -n "$server" ]; then kill "$server" 2>/dev/null || true; fi; rm -rf "$work"; }
 trap cleanup EXIT
-for run in $(seq "$runs"); do
-  start=$(date +%s%N)
-  "$bin" view --port 0 "$robot" >"$work/out" 2>/dev/null &
-  server=$!
-  until grep -q "http://" "$work/out" 2>/dev/null; do sleep 0.005; done
-  listening=$(( ($(date +%s%N) - start) / 1000000 ))
-  url=$(grep -o "http://127.0.0.1:[0-9]*/" "$work/out")
-  node "$here/crates/cli/tests/view_browser/drive.mjs" "$chromium" "$url" "$work/shot.png" --poses "$poses" >"$work/run$run.json"
-  kill "$server"; wait "$server" 2>/dev/null || true; server=""
-  echo "$listening" >"$work/listening$run"
+for mode in cold warm; do
+  for run in $(seq "$runs"); do
+    rm -f "$work/out"
+    start=$(date +%s%N)
+    "$bin" view --port 0 "$robot" >"$work/out" 2>/dev/null &
+    server=$!
+    until grep -q "http://127.0.0.1:[0-9]*/" "$work/out" 2>/dev/null; do sleep 0.005; done
+    listening=$(( ($(date +%s%N) - start) / 1000000 ))
+    url=$(grep -o "http://127.0.0.1:[0-9]*/" "$work/out")
+    flags=(--poses "$poses")
+    if [ "$mode" = warm ]; then flags+=(--warm); fi
+    node "$here/crates/cli/tests/view_browser/drive.mjs" "$chromium" "$url" "$work/shot.png" "${flags[@]}" >"$work/$mode$run.json"
+    kill "$server"; wait "$server" 2>/dev/null || true; server=""
+    echo "$listening" >"$work/listening-$mode$run"
+  done
 done
 node - "$work" "$runs" <<'JS'
 const fs = require("fs");
 const [work, runs] = process.argv.slice(2);
 const median = (xs) => { const s = [...xs].sort((a, b) => a - b); const m = s.length >> 1; return s.length % 2 ? s[m] : (s[m - 1] + s[m]) / 2; };
-const listening = [], page = [], total = [], pose = [];
-for (let i = 1; i <= Number(runs); i++) {
-  const r = JSON.parse(fs.readFileSync(`${work}/run${i}.json`, "utf8"));
-  if (r.error) throw new Error(r.error);
-  const l = Number(fs.readFileSync(`${work}/listening${i}`, "utf8"));
-  listening.push(l); page.push(r.readyMs); total.push(l + r.readyMs); pose.push(...r.poseMs);
+const pose = [];
+for (const mode of ["cold", "warm"]) {
+  const listening = [], page = [], total = [];
+  for (let i = 1; i <= Number(runs); i++) {
+    const r = JSON.parse(fs.readFileSync(`${work}/${mode}${i}.json`, "utf8"));
+    if (r.error) throw new Error(r.error);
+    const l = Number(fs.readFileSync(`${work}/listening-${mode}${i}`, "utf8"));
+    listening.push(l); page.push(r.readyMs); total.push(l + r.readyMs); pose.push(...r.poseMs);
+  }
+  console.log(`${mode} browser, runs ${runs}: command start → URL ${median(listening)} ms, page open → first frame drawn ${median(page)} ms, first frame from start ${median(total)} ms (median)`);
 }
-console.log(`runs ${runs}: command start → URL ${median(listening)} ms, page open → first frame ${median(page)} ms, first frame from start ${median(total)} ms (median)`);
-console.log(`slider moves ${pose.length}: POST /pose + frame ${median(pose).toFixed(1)} ms median, ${Math.max(...pose).toFixed(1)} ms max`);
+console.log(`slider moves ${pose.length}: input → POST /pose → frame drawn ${median(pose).toFixed(1)} ms median, ${Math.max(...pose).toFixed(1)} ms max`);
 JS

@@ -13,7 +13,7 @@ use std::ffi::OsString;
 use std::io::Write;
 use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, RwLock};
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant, SystemTime};
 
 use clap::{CommandFactory, FromArgMatches};
@@ -99,125 +99,172 @@ fn run(argv: &[OsString]) -> Result<(), String> {
         ));
     };
     let session = Session::new(&request, Some(path))?;
+    if !path.is_file() {
+        return Err(format!("{}: no such file", path.display()));
+    }
     let listener = TcpListener::bind(("127.0.0.1", parsed.port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", parsed.port))?;
     let address = listener
         .local_addr()
         .map_err(|e| format!("cannot read the listening address: {e}"))?;
-    let shown = Shown::load(path, &session, 1)?;
-    let state = Arc::new(RwLock::new(shown));
+    // Served at once, validated meanwhile: the browser reads the page (and starts WebGL) while the
+    // robot is validated; its scene request waits for the validation.
     let url = format!("http://{address}/");
-    outln!(
-        "serving {} at {url} (validated in {} ms; Ctrl-C stops)",
-        path.display(),
-        started.elapsed().as_millis()
-    );
+    outln!("serving {} at {url} (Ctrl-C stops)", path.display());
     if parsed.open {
         open_browser(&url);
     }
+    let state = Arc::new(State::default());
     {
         let (state, path) = (Arc::clone(&state), path.clone());
-        std::thread::spawn(move || watch(&path, &session, &state));
+        std::thread::spawn(move || watch(&path, &session, &state, started));
     }
     let port = address.port();
+    let title = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let title: Arc<str> = title.into();
     for stream in listener.incoming().flatten() {
-        let state = Arc::clone(&state);
+        let (state, title) = (Arc::clone(&state), Arc::clone(&title));
         // A thread per connection: a slow client does not hold up the page's other requests.
-        std::thread::spawn(move || serve(&stream, &state, port));
+        std::thread::spawn(move || serve(&stream, &state, &title, port));
     }
     Ok(())
 }
 
-/// What is shown: the robot's poser, its scene (serialised once), the files it was read from with their
-/// modification times, and a version the page polls.
+/// What the page is shown, shared by the connections and the watcher: nothing until the first validation
+/// has finished.
+#[derive(Default)]
+struct State {
+    shown: Mutex<Option<Arc<Shown>>>,
+    settled: Condvar,
+}
+
+impl State {
+    /// What is shown, once the first validation has finished (`None`: the state is unusable).
+    fn current(&self) -> Option<Arc<Shown>> {
+        let guard = self.shown.lock().ok()?;
+        let guard = self.settled.wait_while(guard, |s| s.is_none()).ok()?;
+        guard.clone()
+    }
+
+    fn show(&self, shown: Shown) {
+        if let Ok(mut slot) = self.shown.lock() {
+            *slot = Some(Arc::new(shown));
+            self.settled.notify_all();
+        }
+    }
+}
+
+/// One version of what is shown: the robot, or why the file could not be validated.
 struct Shown {
-    poser: Poser,
-    scene: String,
-    title: String,
-    files: Vec<(PathBuf, Option<SystemTime>)>,
+    robot: Result<Robot, String>,
     version: u64,
 }
 
-impl Shown {
-    fn load(path: &Path, session: &Session, version: u64) -> Result<Shown, String> {
+/// A validated robot: its poser and its scene (serialised once).
+struct Robot {
+    poser: Poser,
+    scene: String,
+}
+
+/// The files a robot was read from, with their modification times when read.
+type Files = Vec<(PathBuf, Option<SystemTime>)>;
+
+impl Robot {
+    fn load(path: &Path, session: &Session) -> Result<(Robot, Files), String> {
         let inspection =
             urdf_validator::inspect(path, session.options()).map_err(|e| e.to_string())?;
-        let files = inspection
-            .validation
-            .sources
-            .iter()
-            .map(|s| s.path().to_path_buf())
-            .chain(std::iter::once(path.to_path_buf()))
-            .map(|p| {
-                let time = modified(&p);
-                (p, time)
-            })
-            .collect();
-        let title = inspection.validation.report.robot_name.clone();
+        let files = stamped(
+            inspection
+                .validation
+                .sources
+                .iter()
+                .map(|s| s.path().to_path_buf())
+                .chain(std::iter::once(path.to_path_buf())),
+        );
         let poser = Poser::new(inspection, session.options());
         let scene = serde_json::to_string(&scene::build(&poser))
             .map_err(|e| format!("{}: cannot serialise the scene: {e}", path.display()))?;
-        Ok(Shown {
-            poser,
-            scene,
-            title,
-            files,
-            version,
-        })
+        Ok((Robot { poser, scene }, files))
     }
+}
 
-    fn changed(&self) -> bool {
-        self.files.iter().any(|(p, time)| modified(p) != *time)
-    }
+fn stamped(paths: impl Iterator<Item = PathBuf>) -> Files {
+    paths
+        .map(|p| {
+            let time = modified(&p);
+            (p, time)
+        })
+        .collect()
 }
 
 fn modified(path: &Path) -> Option<SystemTime> {
     std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
 
-/// Poll the files every half second; validate again when one changed (a file that does not validate
-/// keeps the last scene, and says why on stderr).
-fn watch(path: &Path, session: &Session, state: &RwLock<Shown>) {
+/// Validate the robot, then poll its files every half second and validate again when one changed. A
+/// file that does not validate keeps the last robot shown (and says why on stderr); before any robot was
+/// shown, the page says why.
+fn watch(path: &Path, session: &Session, state: &State, started: Instant) {
+    let mut files = stamped(std::iter::once(path.to_path_buf()));
+    let mut version = 0;
+    let mut shown_robot = false;
     loop {
-        std::thread::sleep(Duration::from_millis(500));
-        let (changed, version) = match state.read() {
-            Ok(shown) => (shown.changed(), shown.version),
-            Err(_) => return,
-        };
-        if !changed {
-            continue;
-        }
-        match Shown::load(path, session, version + 1) {
-            Ok(shown) => {
-                if let Ok(mut slot) = state.write() {
-                    *slot = shown;
+        match Robot::load(path, session) {
+            Ok((robot, read)) => {
+                files = read;
+                version += 1;
+                state.show(Shown {
+                    robot: Ok(robot),
+                    version,
+                });
+                if shown_robot {
+                    errln!("{}: changed, reloaded", path.display());
+                } else {
+                    outln!(
+                        "{}: validated in {} ms",
+                        path.display(),
+                        started.elapsed().as_millis()
+                    );
                 }
-                errln!("{}: changed, reloaded", path.display());
+                shown_robot = true;
+            }
+            Err(message) if shown_robot => {
+                errln!("{message} (the page keeps the last version)");
             }
             Err(message) => {
-                errln!("{message} (the page keeps the last version)");
-                // Do not try again until the files change again.
-                if let Ok(mut slot) = state.write() {
-                    for (p, time) in &mut slot.files {
-                        *time = modified(p);
-                    }
-                }
+                errln!("{message} (the page shows it, and loads the file when it changes)");
+                version += 1;
+                state.show(Shown {
+                    robot: Err(message),
+                    version,
+                });
             }
+        }
+        // Do not try again until the files change again.
+        for (p, time) in &mut files {
+            *time = modified(p);
+        }
+        while !files.iter().any(|(p, time)| modified(p) != *time) {
+            std::thread::sleep(Duration::from_millis(500));
         }
     }
 }
 
-fn serve(stream: &TcpStream, state: &RwLock<Shown>, port: u16) {
+fn serve(stream: &TcpStream, state: &State, title: &str, port: u16) {
     let response = match read_request(stream) {
-        Ok(request) => respond(&request, state, port),
+        Ok(request) => respond(&request, state, title, port),
         Err(response) => response,
     };
     write_response(stream, &response);
 }
 
 /// Only requests addressed to this server by name (a page elsewhere cannot make a browser talk to it
-/// through DNS rebinding), and only its four routes.
-fn respond(request: &Request, state: &RwLock<Shown>, port: u16) -> Response {
+/// through DNS rebinding), and only its four routes. The page is served at once; the others wait for the
+/// first validation.
+fn respond(request: &Request, state: &State, title: &str, port: u16) -> Response {
     let allowed = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
     if !request
         .host
@@ -226,31 +273,41 @@ fn respond(request: &Request, state: &RwLock<Shown>, port: u16) -> Response {
     {
         return Response::error(403, "this server answers requests to 127.0.0.1 only");
     }
-    let Ok(shown) = state.read() else {
+    let route = (request.method.as_str(), request.path.as_str());
+    match route {
+        ("GET", "/") => {
+            return Response::new(200, "text/html; charset=utf-8", page::live_page(title))
+        }
+        ("GET", "/scene.json" | "/version") | ("POST", "/pose") => {}
+        (_, "/" | "/scene.json" | "/version" | "/pose") => {
+            return Response::error(405, "method not allowed")
+        }
+        _ => return Response::error(404, "not found"),
+    }
+    let Some(shown) = state.current() else {
         return Response::error(500, "the server's state is unusable");
     };
-    match (request.method.as_str(), request.path.as_str()) {
-        ("GET", "/") => Response::new(
-            200,
-            "text/html; charset=utf-8",
-            page::live_page(&shown.title),
-        ),
-        ("GET", "/scene.json") => Response::new(200, "application/json", shown.scene.clone()),
-        ("GET", "/version") => Response::new(200, "text/plain", shown.version.to_string()),
-        ("POST", "/pose") => match serde_json::from_slice::<BTreeMap<String, f64>>(&request.body) {
-            Ok(values) => match serde_json::to_vec(&shown.poser.evaluate(&values)) {
-                Ok(body) => Response::new(200, "application/json", body),
-                Err(e) => Response::error(500, &format!("cannot serialise the pose: {e}")),
-            },
-            Err(e) => Response::error(
-                400,
-                &format!("expected a JSON object of joint names to numbers: {e}"),
-            ),
-        },
-        (_, "/" | "/scene.json" | "/version" | "/pose") => {
-            Response::error(405, "method not allowed")
+    let robot = match (&shown.robot, route) {
+        (_, (_, "/version")) => return Response::new(200, "text/plain", shown.version.to_string()),
+        (Err(message), (_, "/scene.json")) => {
+            return Response::error(422, message).with_header("X-Scene-Version", shown.version)
         }
-        _ => Response::error(404, "not found"),
+        (Err(message), _) => return Response::error(409, message),
+        (Ok(robot), _) => robot,
+    };
+    if route.1 == "/scene.json" {
+        return Response::new(200, "application/json", robot.scene.clone())
+            .with_header("X-Scene-Version", shown.version);
+    }
+    match serde_json::from_slice::<BTreeMap<String, f64>>(&request.body) {
+        Ok(values) => match serde_json::to_vec(&robot.poser.evaluate(&values)) {
+            Ok(body) => Response::new(200, "application/json", body),
+            Err(e) => Response::error(500, &format!("cannot serialise the pose: {e}")),
+        },
+        Err(e) => Response::error(
+            400,
+            &format!("expected a JSON object of joint names to numbers: {e}"),
+        ),
     }
 }
 

@@ -236,6 +236,68 @@ fn the_server_answers_its_routes_only_to_127_0_0_1_and_serves_no_file() {
 }
 
 #[test]
+fn a_file_that_does_not_validate_is_served_with_why_and_loads_once_fixed() {
+    let dir = scratch("broken");
+    let urdf = dir.join("r.urdf");
+    std::fs::write(&urdf, "<robot name=\"r\"><link name=\"a\">").unwrap();
+    let server = Server::start(&urdf);
+    let port = server.port();
+    let host = format!("Host: 127.0.0.1:{port}");
+    let (status, page) = request(port, &format!("GET / HTTP/1.1\r\n{host}\r\n\r\n"));
+    assert!(
+        status.contains("200") && page.contains("UrdfView.mount"),
+        "{status}"
+    );
+    let (status, body) = request(port, &format!("GET /scene.json HTTP/1.1\r\n{host}\r\n\r\n"));
+    assert!(status.contains("422"), "{status}");
+    assert!(
+        body.contains("r.urdf"),
+        "the message names the file: {body}"
+    );
+    let (status, _) = request(
+        port,
+        &format!("POST /pose HTTP/1.1\r\n{host}\r\nContent-Length: 2\r\n\r\n{{}}"),
+    );
+    assert!(status.contains("409"), "{status}");
+
+    // Fixed: the version moves on and the scene is the robot's.
+    std::fs::write(&urdf, "<robot name=\"fixed\"><link name=\"a\"/></robot>").unwrap();
+    let mut version = String::new();
+    for _ in 0..50 {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        version = request(port, &format!("GET /version HTTP/1.1\r\n{host}\r\n\r\n")).1;
+        if version != "1" {
+            break;
+        }
+    }
+    assert_eq!(version, "2", "the fix was seen");
+    let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    stream
+        .write_all(format!("GET /scene.json HTTP/1.1\r\n{host}\r\n\r\n").as_bytes())
+        .unwrap();
+    let mut answer = String::new();
+    stream.read_to_string(&mut answer).unwrap();
+    assert!(answer.contains("X-Scene-Version: 2\r\n"), "{answer:.300}");
+    assert!(answer.contains("\"robot\":\"fixed\""), "{answer:.300}");
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_missing_file_is_refused_before_serving() {
+    let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["view", "--port", "0", "no/such/robot.urdf"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("no/such/robot.urdf: no such file"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn the_pr2_html_report_carries_the_view_under_3_mb_and_draws_it_from_file() {
     let Some(robots) = common::shared_robots() else {
         return;

@@ -31,6 +31,8 @@ pub(crate) struct Response {
     pub content_type: &'static str,
     /// The body.
     pub body: Vec<u8>,
+    /// Other headers.
+    pub headers: Vec<(&'static str, String)>,
 }
 
 impl Response {
@@ -40,7 +42,14 @@ impl Response {
             status,
             content_type,
             body: body.into(),
+            headers: Vec::new(),
         }
+    }
+
+    /// The response with one more header.
+    pub fn with_header(mut self, name: &'static str, value: impl std::fmt::Display) -> Response {
+        self.headers.push((name, value.to_string()));
+        self
     }
 
     /// A plain-text error.
@@ -116,16 +125,22 @@ pub(crate) fn write_response(mut stream: &TcpStream, response: &Response) {
         403 => "Forbidden",
         404 => "Not Found",
         405 => "Method Not Allowed",
+        409 => "Conflict",
         413 => "Payload Too Large",
+        422 => "Unprocessable Content",
         _ => "Error",
     };
-    let head = format!(
+    let mut head = format!(
         "HTTP/1.1 {} {reason}\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-store\r\n\
-         X-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
+         X-Content-Type-Options: nosniff\r\nConnection: close\r\n",
         response.status,
         response.content_type,
         response.body.len()
     );
+    for (name, value) in &response.headers {
+        head.push_str(&format!("{name}: {value}\r\n"));
+    }
+    head.push_str("\r\n");
     let _ = stream.write_all(head.as_bytes());
     let _ = stream.write_all(&response.body);
     let _ = stream.flush();

@@ -7,14 +7,15 @@ pub const BUNDLE: &str = include_str!("viewer.min.js");
 /// The view's style, shared by the live page and the report.
 pub const CSS: &str = include_str!("viewer.css");
 
-/// The page `urdf_validate view` serves: it fetches `/scene.json`, posts poses to `/pose` and polls
-/// `/version` to reload when the file changes.
+/// The page `urdf_validate view` serves: it fetches `/scene.json` (asked for before the bundle is read, so
+/// the two overlap), posts poses to `/pose` and polls `/version` to reload when the file changes.
 pub fn live_page(title: &str) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{} — urdf_validate view</title>\n\
+         <script>const urdfViewPending = fetch(\"/scene.json\");</script>\n\
          <style>html,body{{margin:0;height:100%;font:14px system-ui,sans-serif}}.urdf-view{{height:100vh}}{CSS}</style>\n</head>\n<body>\n\
          <div id=\"view\" class=\"urdf-view\"></div>\n<script>{}</script>\n\
-         <script>UrdfView.mount(document.getElementById(\"view\"), {{sceneUrl: \"/scene.json\", poseUrl: \"/pose\", versionUrl: \"/version\"}});</script>\n\
+         <script>UrdfView.mount(document.getElementById(\"view\"), {{sceneUrl: \"/scene.json\", poseUrl: \"/pose\", versionUrl: \"/version\", pending: urdfViewPending}});</script>\n\
          </body>\n</html>\n",
         crate::render::html::escape(title),
         script_safe(BUNDLE),

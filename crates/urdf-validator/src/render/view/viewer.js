@@ -28,6 +28,9 @@ const COLOURS = {
   other: 0x9e9e9e,
 };
 
+// The joint markers' colours: a joint's gravity-torque status, else "other".
+const MARKER_STATUSES = ["PASS", "WARN", "FAIL", "other"];
+
 // Where each tip direction points in the ground plane (x forward, y left).
 const DIRECTIONS = {
   front: [1, 0],
@@ -77,11 +80,11 @@ function primitive(shape, meshes) {
     case "capsule":
       return new THREE.CapsuleGeometry(shape.radius, shape.length, 8, 16).rotateX(Math.PI / 2);
     case "mesh": {
-      const geometry = meshes[shape.mesh].clone();
+      // Shared by every shape that draws the mesh unscaled; scaled, a copy (scale() turns the normals too).
       const [sx, sy, sz] = shape.size || [1, 1, 1];
-      geometry.scale(sx, sy, sz);
+      if (sx === 1 && sy === 1 && sz === 1) return meshes[shape.mesh];
+      const geometry = meshes[shape.mesh].clone().scale(sx, sy, sz);
       if (sx * sy * sz < 0) geometry.index.array.reverse();
-      geometry.computeVertexNormals();
       return geometry;
     }
     default:
@@ -110,21 +113,135 @@ function softwareRenderer() {
   return /swiftshader|llvmpipe|software/i.test(name);
 }
 
+// The physics drawn with the robot: the ground grid, the support polygon with its tip arrow, the centre of
+// mass with its drop line, and a marker per joint coloured by its gravity-torque margin. Built once per scene
+// and moved for each pose (a slider move creates no material). `under` (the grid and the polygon) is drawn
+// with the robot, which hides it; `over` is drawn after it on a cleared depth buffer, so it shows through.
+// Few GPU states, since on software WebGL each new one costs tens of milliseconds on the first frame: the
+// flat overlays are the robot's own material (Lambert, black, lit by their emissive colour only), the
+// lines one line material.
+class Overlays {
+  constructor(joints) {
+    const flat = (color) => new THREE.MeshLambertMaterial({ color: 0x000000, emissive: color });
+    const line = (color) => new THREE.LineBasicMaterial({ color });
+    this.under = new THREE.Group();
+    this.over = new THREE.Group();
+    const add = (group, object) => {
+      group.add(object);
+      return object;
+    };
+    this.gridMinor = add(this.under, new THREE.LineSegments(gridLines(2, 20, false), line(0xdde0e5)));
+    this.gridMajor = add(this.under, new THREE.LineSegments(gridLines(2, 20, true), line(0xc0c4cc)));
+    this.fill = add(this.under, new THREE.Mesh(new THREE.BufferGeometry(), flat(COLOURS.polygonStable)));
+    this.outline = add(this.over, new THREE.LineLoop(new THREE.BufferGeometry(), line(COLOURS.polygonStable)));
+    this.com = add(this.over, new THREE.Mesh(new THREE.SphereGeometry(0.03, 20, 14), flat(COLOURS.com)));
+    this.drop = add(this.over, new THREE.Line(new THREE.BufferGeometry(), line(COLOURS.com)));
+    this.arrow = add(this.over, new THREE.Group());
+    const head = new THREE.Mesh(new THREE.ConeGeometry(0.025, 0.08, 12), flat(COLOURS.tip));
+    head.position.y = 0.21;
+    this.arrow.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3(0, 0.17, 0)]), line(COLOURS.tip)), head);
+    // The joint markers: one mesh per colour (a draw call each, not one per joint).
+    this.marker = new THREE.SphereGeometry(0.018, 10, 6);
+    this.markers = {};
+    for (const status of MARKER_STATUSES) this.markers[status] = add(this.over, new THREE.Mesh(new THREE.BufferGeometry(), flat(COLOURS[status])));
+    this.childOf = new Map(joints.filter((j) => j.child !== null).map((j) => [j.name, j.child]));
+  }
+
+  update(pose) {
+    const ground = pose.ground ?? 0;
+    for (const grid of [this.gridMinor, this.gridMajor]) grid.position.z = ground;
+    this.com.visible = this.drop.visible = !!pose.com;
+    if (pose.com) {
+      this.com.position.set(...pose.com);
+      setPoints(this.drop, [new THREE.Vector3(...pose.com), new THREE.Vector3(pose.com[0], pose.com[1], ground)]);
+    }
+    const polygon = pose.support_polygon;
+    const colour = pose.stability === "PASS" ? COLOURS.polygonStable : COLOURS.polygonUnstable;
+    this.outline.visible = polygon.length >= 2;
+    this.fill.visible = polygon.length >= 3;
+    this.outline.material.color.setHex(colour);
+    this.fill.material.emissive.setHex(colour);
+    setPoints(this.outline, polygon.map(([x, y]) => new THREE.Vector3(x, y, ground + 0.002)));
+    this.fill.geometry.dispose();
+    this.fill.geometry = polygon.length >= 3 ? new THREE.ShapeGeometry(new THREE.Shape(polygon.map(([x, y]) => new THREE.Vector2(x, y)))) : new THREE.BufferGeometry();
+    this.fill.position.z = ground + 0.001;
+    const tip = pose.com && pose.tip_direction && DIRECTIONS[pose.tip_direction];
+    this.arrow.visible = !!tip;
+    if (tip) {
+      this.arrow.position.set(pose.com[0], pose.com[1], ground + 0.004);
+      this.arrow.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), new THREE.Vector3(tip[0], tip[1], 0).normalize());
+    }
+    const at = Object.fromEntries(MARKER_STATUSES.map((status) => [status, []]));
+    for (const load of pose.joints) {
+      const child = this.childOf.get(load.name);
+      if (child !== undefined) at[MARKER_STATUSES.includes(load.status) ? load.status : "other"].push(pose.links[child]);
+    }
+    for (const status of MARKER_STATUSES) {
+      const mesh = this.markers[status];
+      mesh.geometry.dispose();
+      mesh.geometry = copies(this.marker, at[status]);
+    }
+  }
+}
+
+// The ground grid's lines in the plane z = 0, `half` metres each side in `divisions` steps: the two centre
+// lines (`major`), or all the others.
+function gridLines(half, divisions, major) {
+  const points = [];
+  for (let i = 0; i <= divisions; i++) {
+    const at = -half + (2 * half * i) / divisions;
+    if ((i === divisions / 2) !== major) continue;
+    points.push(new THREE.Vector3(at, -half, 0), new THREE.Vector3(at, half, 0), new THREE.Vector3(-half, at, 0), new THREE.Vector3(half, at, 0));
+  }
+  return new THREE.BufferGeometry().setFromPoints(points);
+}
+
+// One geometry holding a copy of `shape` at each of `places` ([x, y, z, ...]).
+function copies(shape, places) {
+  const position = shape.attributes.position.array;
+  const index = shape.index.array;
+  const positions = new Float32Array(position.length * places.length);
+  const indices = new Uint32Array(index.length * places.length);
+  places.forEach(([x, y, z], k) => {
+    const base = k * position.length;
+    for (let i = 0; i < position.length; i += 3) {
+      positions[base + i] = position[i] + x;
+      positions[base + i + 1] = position[i + 1] + y;
+      positions[base + i + 2] = position[i + 2] + z;
+    }
+    for (let i = 0; i < index.length; i++) indices[k * index.length + i] = index[i] + (k * position.length) / 3;
+  });
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+  return geometry;
+}
+
+// Replaces a line's points.
+function setPoints(object, points) {
+  object.geometry.dispose();
+  object.geometry = new THREE.BufferGeometry().setFromPoints(points);
+}
+
 class View {
-  constructor(root, scene, options) {
+  // The page's part that needs no scene (the canvas, its WebGL context, the camera), so that the live page
+  // makes it while the scene is still on its way: a browser's first WebGL context can take 0.2 s.
+  constructor(root, options) {
     this.root = root;
     this.options = options || {};
-    this.stats = { firstFrameMs: null, lastPoseMs: null, poses: 0 };
+    this.stats = { firstFrameMs: null, lastPoseMs: null, poses: 0, frames: 0 };
     window.__urdfView = this;
     this.buildDom();
     this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: !softwareRenderer(), preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    // Cleared by render(), which draws two scenes.
+    this.renderer.autoClear = false;
+    this.renderer.setClearColor(0xf4f5f7, 1);
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.addEventListener("change", () => this.draw());
     new ResizeObserver(() => this.resize()).observe(this.stage);
-    this.load(scene);
   }
 
   buildDom() {
@@ -136,14 +253,21 @@ class View {
     this.root.replaceChildren(this.stage, this.panel);
   }
 
+  // Draw `scene` (a new one replaces the last). The first frame is drawn at once, not on the next animation
+  // frame.
   load(scene) {
+    this.loading = true;
+    this.showError(null);
+    document.title = `${scene.robot} — urdf_validate view`;
     this.scene = scene;
     this.world = new THREE.Scene();
-    this.world.background = new THREE.Color(0xf4f5f7);
     this.world.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.2));
     const sun = new THREE.DirectionalLight(0xffffff, 1.6);
     sun.position.set(2, -3, 5);
     this.world.add(sun);
+    // What is drawn over the robot, lit as the robot is (the same lights: the same shader).
+    this.front = new THREE.Scene();
+    this.front.add(...this.world.children.map((light) => light.clone()));
     const meshes = scene.meshes.map(meshGeometry);
     this.links = scene.links.map((link, index) => {
       const group = new THREE.Group();
@@ -177,8 +301,9 @@ class View {
       this.world.add(group);
       return { group, visual, collision, frame };
     });
-    this.overlays = new THREE.Group();
-    this.world.add(this.overlays);
+    this.overlays = new Overlays(scene.joints);
+    this.world.add(this.overlays.under);
+    this.front.add(this.overlays.over);
     this.workspace = this.pointCloud(scene.workspace_points);
     this.world.add(this.workspace);
     this.buildPanel();
@@ -186,6 +311,19 @@ class View {
     this.applyPose(scene.reference);
     this.fitCamera();
     this.resize();
+    this.loading = false;
+    this.render();
+  }
+
+  // Say why there is no (new) scene: over the last one drawn, if any. `null` clears it.
+  showError(message) {
+    this.banner?.remove();
+    this.banner = null;
+    delete this.root.dataset.error;
+    if (message === null) return;
+    this.root.dataset.error = message;
+    this.banner = el("pre", { class: "uv-error", role: "alert" }, message);
+    this.stage.append(this.banner);
   }
 
   pointCloud(points) {
@@ -356,59 +494,10 @@ class View {
       if (document.activeElement !== slider.input) slider.input.value = value;
       slider.value.textContent = value.toFixed(3);
     }
-    this.drawOverlays(pose);
+    this.overlays.update(pose);
     const margin = pose.margin_mm === null ? "—" : `${pose.margin_mm.toFixed(1)} mm`;
     this.verdict.textContent = `statics ${pose.statics} · stability ${pose.stability} (margin ${margin}${pose.tip_direction ? `, tips ${pose.tip_direction}` : ""})`;
     this.draw();
-  }
-
-  drawOverlays(pose) {
-    this.overlays.clear();
-    const ground = pose.ground ?? 0;
-    if (pose.com) {
-      const com = new THREE.Mesh(new THREE.SphereGeometry(0.03, 20, 14), new THREE.MeshBasicMaterial({ color: COLOURS.com, depthTest: false }));
-      com.renderOrder = 10;
-      com.position.set(...pose.com);
-      this.overlays.add(com);
-      const drop = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(...pose.com), new THREE.Vector3(pose.com[0], pose.com[1], ground)]);
-      this.overlays.add(new THREE.Line(drop, new THREE.LineBasicMaterial({ color: COLOURS.com })));
-    }
-    if (pose.support_polygon.length >= 2) {
-      const stable = pose.stability === "PASS";
-      const colour = stable ? COLOURS.polygonStable : COLOURS.polygonUnstable;
-      const points = pose.support_polygon.map(([x, y]) => new THREE.Vector3(x, y, ground + 0.002));
-      // The outline is drawn over the robot: the polygon lies under its base.
-      const outline = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineBasicMaterial({ color: colour, depthTest: false }));
-      outline.renderOrder = 8;
-      this.overlays.add(outline);
-      if (points.length >= 3) {
-        const shape = new THREE.Shape(pose.support_polygon.map(([x, y]) => new THREE.Vector2(x, y)));
-        const fill = new THREE.Mesh(new THREE.ShapeGeometry(shape), new THREE.MeshBasicMaterial({ color: colour, side: THREE.DoubleSide }));
-        fill.position.z = ground + 0.001;
-        this.overlays.add(fill);
-      }
-    }
-    if (pose.com && pose.tip_direction && DIRECTIONS[pose.tip_direction]) {
-      const [dx, dy] = DIRECTIONS[pose.tip_direction];
-      const direction = new THREE.Vector3(dx, dy, 0).normalize();
-      const from = new THREE.Vector3(pose.com[0], pose.com[1], ground + 0.004);
-      this.overlays.add(new THREE.ArrowHelper(direction, from, 0.25, COLOURS.tip, 0.08, 0.05));
-    }
-    const byName = new Map(this.scene.joints.map((j, i) => [j.name, i]));
-    for (const load of pose.joints) {
-      const joint = this.scene.joints[byName.get(load.name)];
-      if (!joint || joint.child === null) continue;
-      const colour = COLOURS[load.status] ?? COLOURS.other;
-      const marker = new THREE.Mesh(new THREE.SphereGeometry(0.018, 12, 8), new THREE.MeshBasicMaterial({ color: colour, depthTest: false }));
-      marker.renderOrder = 9;
-      marker.position.set(...pose.links[joint.child].slice(0, 3));
-      marker.userData = load;
-      this.overlays.add(marker);
-    }
-    const ring = new THREE.GridHelper(4, 20, 0xc0c4cc, 0xdde0e5);
-    ring.rotateX(Math.PI / 2);
-    ring.position.z = ground;
-    this.overlays.add(ring);
   }
 
   fitCamera() {
@@ -434,32 +523,71 @@ class View {
     this.draw();
   }
 
+  // Draw on the next animation frame (once, however many changes ask for it).
   draw() {
-    if (this.frameRequested) return;
+    if (this.loading || !this.world || this.frameRequested) return;
     this.frameRequested = true;
     requestAnimationFrame(() => {
       this.frameRequested = false;
-      this.renderer.render(this.world, this.camera);
-      this.stats.frames = (this.stats.frames || 0) + 1;
-      if (this.stats.firstFrameMs === null) {
-        // Milliseconds since the page's navigation started.
-        this.stats.firstFrameMs = performance.now();
-        document.body.dataset.viewReady = "true";
-      }
+      this.render();
     });
+  }
+
+  render() {
+    this.renderer.clear();
+    this.renderer.render(this.world, this.camera);
+    this.renderer.clearDepth();
+    this.renderer.render(this.front, this.camera);
+    this.stats.frames += 1;
+    if (this.stats.frames === 1) this.whenDrawn(() => {
+      // Milliseconds from the page's navigation to the first frame drawn (the GPU done with it).
+      this.stats.firstFrameMs = performance.now();
+      document.body.dataset.viewReady = "true";
+    });
+  }
+
+  // Call `then` when the GPU has finished the work queued so far (a WebGL 2 fence, polled without
+  // blocking; at once without WebGL 2).
+  whenDrawn(then) {
+    const gl = this.renderer.getContext();
+    const fence = gl.fenceSync ? gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0) : null;
+    if (!fence) return then();
+    gl.flush();
+    const poll = () => {
+      if (gl.isContextLost() || gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED) {
+        gl.deleteSync(fence);
+        then();
+      } else {
+        setTimeout(poll, 1);
+      }
+    };
+    poll();
   }
 }
 
-// Live: poll the server's version of the file and reload the scene when it changes.
-async function watch(view, options) {
-  let version = options.version;
+// The live page's scene from a response of `/scene.json`: { version, scene }, or { version, error } when the
+// server could not validate the file.
+async function readScene(response) {
+  const version = response.headers.get("x-scene-version");
+  if (!response.ok) return { version, error: (await response.text()).trim() };
+  return { version, scene: await response.json() };
+}
+
+function show(view, shown) {
+  if (shown.error) view.showError(shown.error);
+  else view.load(shown.scene);
+}
+
+// Live: poll the server's version of the file and show the new scene when it changes (or why there is none).
+async function watch(view, options, version) {
   for (;;) {
     await new Promise((resolve) => setTimeout(resolve, 1000));
     try {
       const now = await (await fetch(options.versionUrl)).text();
       if (now !== version) {
-        version = now;
-        view.load(await (await fetch(options.sceneUrl)).json());
+        const shown = await readScene(await fetch(options.sceneUrl));
+        version = shown.version;
+        show(view, shown);
         document.body.dataset.reloads = String(Number(document.body.dataset.reloads || 0) + 1);
       }
     } catch (_) {
@@ -468,13 +596,18 @@ async function watch(view, options) {
   }
 }
 
-// Mount the view in `root`. `options`: { scene } (embedded), or { sceneUrl, poseUrl, versionUrl } (live).
+// Mount the view in `root`. `options`: { scene } (embedded), or { sceneUrl, poseUrl, versionUrl } (live),
+// with `pending`, the scene's response when the page has asked for it already.
 async function mount(root, options) {
   try {
-    if (options.scene) return new View(root, options.scene, options);
-    const version = await (await fetch(options.versionUrl)).text();
-    const view = new View(root, await (await fetch(options.sceneUrl)).json(), options);
-    watch(view, { ...options, version });
+    const view = new View(root, options);
+    if (options.scene) {
+      view.load(options.scene);
+      return view;
+    }
+    const shown = await readScene(await (options.pending ?? fetch(options.sceneUrl)));
+    show(view, shown);
+    watch(view, options, shown.version);
     return view;
   } catch (error) {
     root.textContent = `The 3-D view could not start: ${error}`;
