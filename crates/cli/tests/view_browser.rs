@@ -283,6 +283,57 @@ fn a_file_that_does_not_validate_is_served_with_why_and_loads_once_fixed() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--open` hands the printed URL to the system's opener (`xdg-open` here; a stand-in on PATH records it).
+#[cfg(target_os = "linux")]
+#[test]
+fn open_hands_the_url_to_the_system_browser() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("open");
+    let urdf = dir.join("r.urdf");
+    std::fs::write(&urdf, "<robot name=\"r\"><link name=\"a\"/></robot>").unwrap();
+    let opened = dir.join("opened");
+    let opener = dir.join("xdg-open");
+    std::fs::write(
+        &opener,
+        format!("#!/bin/sh\necho \"$1\" > '{}'\n", opened.display()),
+    )
+    .unwrap();
+    std::fs::set_permissions(&opener, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!(
+        "{}:{}",
+        dir.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))
+        .args(["view", "--port", "0", "--open"])
+        .arg(&urdf)
+        .env("PATH", path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let mut got = String::new();
+    for _ in 0..50 {
+        got = std::fs::read_to_string(&opened).unwrap_or_default();
+        if !got.is_empty() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    let url = line
+        .split_whitespace()
+        .find(|w| w.starts_with("http://127.0.0.1:"))
+        .unwrap_or_else(|| panic!("no URL in {line:?}"));
+    assert_eq!(got.trim(), url, "the opener got the URL printed");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_missing_file_is_refused_before_serving() {
     let output = Command::new(env!("CARGO_BIN_EXE_urdf_validate"))

@@ -703,7 +703,7 @@ impl<'a, 'input> Collada<'a, 'input> {
                                 .and_then(|end| v.get(at..end))
                                 .ok_or_else(|| {
                                     format!(
-                                        "line {}: <polylist> <vcount> adds up to more than the {}                                          vertices of its <p>",
+                                        "line {}: <polylist> <vcount> adds up to more than the {} vertices of its <p>",
                                         line_of(self.doc, prim),
                                         v.len()
                                     )
@@ -976,6 +976,14 @@ mod tests {
             let e = count(&bad).unwrap_err();
             assert!(e.starts_with("line "), "{bad}: {e}");
         }
+        assert_eq!(
+            count(&format!(
+                "<polylist>{input}<vcount>3 3</vcount><p>0 1 2 3</p></polylist>"
+            )),
+            Err(
+                "line 3: <polylist> <vcount> adds up to more than the 4 vertices of its <p>".into()
+            )
+        );
         // Polygons of fewer than 3 corners make none.
         assert_eq!(
             count(&format!(

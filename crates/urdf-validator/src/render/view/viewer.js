@@ -196,11 +196,14 @@ function gridLines(half, divisions, major) {
   return new THREE.BufferGeometry().setFromPoints(points);
 }
 
-// One geometry holding a copy of `shape` at each of `places` ([x, y, z, ...]).
+// One geometry holding a copy of `shape` at each of `places` ([x, y, z, ...]), with its normals (a
+// geometry without them would compile a shader of its own).
 function copies(shape, places) {
   const position = shape.attributes.position.array;
+  const normal = shape.attributes.normal.array;
   const index = shape.index.array;
   const positions = new Float32Array(position.length * places.length);
+  const normals = new Float32Array(position.length * places.length);
   const indices = new Uint32Array(index.length * places.length);
   places.forEach(([x, y, z], k) => {
     const base = k * position.length;
@@ -209,10 +212,12 @@ function copies(shape, places) {
       positions[base + i + 1] = position[i + 1] + y;
       positions[base + i + 2] = position[i + 2] + z;
     }
+    normals.set(normal, base);
     for (let i = 0; i < index.length; i++) indices[k * index.length + i] = index[i] + (k * position.length) / 3;
   });
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  geometry.setAttribute("normal", new THREE.BufferAttribute(normals, 3));
   geometry.setIndex(new THREE.BufferAttribute(indices, 1));
   return geometry;
 }
@@ -232,7 +237,9 @@ class View {
     this.stats = { firstFrameMs: null, lastPoseMs: null, poses: 0, frames: 0 };
     window.__urdfView = this;
     this.buildDom();
-    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: !softwareRenderer(), preserveDrawingBuffer: true });
+    this.software = softwareRenderer();
+    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: !this.software, preserveDrawingBuffer: true });
+    this.scale = 1;
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     // Cleared by render(), which draws two scenes.
     this.renderer.autoClear = false;
@@ -240,7 +247,7 @@ class View {
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.canvas);
-    this.controls.addEventListener("change", () => this.draw());
+    this.controls.addEventListener("change", () => this.draw({ moving: true }));
     new ResizeObserver(() => this.resize()).observe(this.stage);
   }
 
@@ -475,7 +482,9 @@ class View {
       const response = await fetch(this.options.poseUrl, { method: "POST", body: JSON.stringify(values) });
       if (response.ok) {
         this.applyPose(await response.json());
-        await new Promise((resolve) => requestAnimationFrame(resolve));
+        // Drawn now rather than on the next animation frame: the frame is ready for the next composite
+        // (one request is in flight at a time, so this draws at most once per answer).
+        this.render({ moving: true });
         this.stats.lastPoseMs = performance.now() - start;
         this.stats.poses += 1;
       }
@@ -485,6 +494,7 @@ class View {
     if (this.pending) this.sendPose();
   }
 
+  // Place the links and move the overlays to `pose` (a server answer); the caller draws.
   applyPose(pose) {
     this.pose = pose;
     pose.links.forEach((p, i) => this.links[i] && place(this.links[i].group, p));
@@ -497,7 +507,6 @@ class View {
     this.overlays.update(pose);
     const margin = pose.margin_mm === null ? "—" : `${pose.margin_mm.toFixed(1)} mm`;
     this.verdict.textContent = `statics ${pose.statics} · stability ${pose.stability} (margin ${margin}${pose.tip_direction ? `, tips ${pose.tip_direction}` : ""})`;
-    this.draw();
   }
 
   fitCamera() {
@@ -524,16 +533,30 @@ class View {
   }
 
   // Draw on the next animation frame (once, however many changes ask for it).
-  draw() {
-    if (this.loading || !this.world || this.frameRequested) return;
+  draw({ moving = false } = {}) {
+    if (this.loading || !this.world) return;
+    this.moving ||= moving;
+    if (this.frameRequested) return;
     this.frameRequested = true;
     requestAnimationFrame(() => {
       this.frameRequested = false;
-      this.render();
+      const moving = this.moving;
+      this.moving = false;
+      this.render({ moving });
     });
   }
 
-  render() {
+  // Draw now. A frame `moving` (a slider's pose, the camera turning) is drawn at half resolution on
+  // software WebGL, where filling the pixels is a third of a frame's 30 ms; the view is drawn sharp again
+  // once it has been still for 0.25 s.
+  render({ moving = false } = {}) {
+    clearTimeout(this.sharpen);
+    const scale = moving && this.software ? 0.5 : 1;
+    if (scale !== this.scale) {
+      this.scale = scale;
+      this.renderer.setPixelRatio((window.devicePixelRatio || 1) * scale);
+    }
+    if (scale !== 1) this.sharpen = setTimeout(() => this.render(), 250);
     this.renderer.clear();
     this.renderer.render(this.world, this.camera);
     this.renderer.clearDepth();
