@@ -1,8 +1,10 @@
 //! `urdf_validate view ROBOT [--port N] [--open] [FLAGS...]`: the robot in 3-D in a browser, served from
 //! 127.0.0.1 only. The page (the library's viewer, bundled in the binary), the scene JSON and a pose
 //! endpoint: `POST /pose` with joint positions answers the link placements and the statics and stability
-//! overlays at that pose, computed by the validator's own analyses. The file and what it includes are
-//! polled; when one changes the robot is validated again and the page reloads its scene. The server reads
+//! overlays at that pose, computed by the validator's own analyses. The page is served at once and the
+//! robot validated meanwhile (the other routes wait for it); a file that does not validate is served with
+//! its error. The file and what it includes are polled; when one changes the robot is validated again and
+//! the page reloads its scene. The server reads
 //! nothing but the robot (through the same options and sandbox as the command, `--untrusted` included)
 //! and serves nothing but its four routes.
 

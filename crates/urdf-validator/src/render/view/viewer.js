@@ -306,7 +306,9 @@ class View {
       frame.visible = false;
       group.add(visual, collision, frame);
       this.world.add(group);
-      return { group, visual, collision, frame };
+      // Shown with the visual layer when the link has no visual that could be drawn as itself.
+      const collisionStandsIn = link.visuals.every((v) => v.problem);
+      return { group, visual, collision, frame, collisionStandsIn };
     });
     this.overlays = new Overlays(scene.joints);
     this.world.add(this.overlays.under);
@@ -405,8 +407,9 @@ class View {
   applyLayers() {
     for (const link of this.links) {
       link.visual.visible = this.layers.visual;
-      // A link without visuals shows its collision shapes with the visual layer (as the analyses use them).
-      link.collision.visible = this.layers.collision || (this.layers.visual && link.visual.children.length === 0);
+      // A link without visuals, or whose visuals cannot be read, shows its collision shapes with the visual
+      // layer (as the analyses use them).
+      link.collision.visible = this.layers.collision || (this.layers.visual && link.collisionStandsIn);
       link.frame.visible = this.layers.frames;
     }
     this.workspace.visible = this.layers.workspace;
