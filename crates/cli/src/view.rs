@@ -214,7 +214,16 @@ fn watch(path: &Path, session: &Session, state: &State, started: Instant) {
     let mut version = 0;
     let mut shown_robot = false;
     loop {
-        match Robot::load(path, session) {
+        // A bug in the validator must not leave the page's requests waiting for ever.
+        let loaded =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| Robot::load(path, session)))
+                .unwrap_or_else(|_| {
+                    Err(format!(
+                        "{}: the validator stopped on an internal error (a bug: please report it)",
+                        path.display()
+                    ))
+                });
+        match loaded {
             Ok((robot, read)) => {
                 files = read;
                 version += 1;
