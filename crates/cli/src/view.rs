@@ -223,6 +223,7 @@ fn watch(path: &Path, session: &Session, state: &State, started: Instant) {
                         path.display()
                     ))
                 });
+        let failed = loaded.is_err();
         match loaded {
             Ok((robot, read)) => {
                 files = read;
@@ -254,9 +255,11 @@ fn watch(path: &Path, session: &Session, state: &State, started: Instant) {
                 });
             }
         }
-        // Do not try again until the files change again.
-        for (p, time) in &mut files {
-            *time = modified(p);
+        if failed {
+            // Do not try again until the files change again.
+            for (p, time) in &mut files {
+                *time = modified(p);
+            }
         }
         while !files.iter().any(|(p, time)| modified(p) != *time) {
             std::thread::sleep(Duration::from_millis(500));

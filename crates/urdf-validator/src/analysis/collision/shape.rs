@@ -18,6 +18,7 @@ use super::enclose::{enclose, Enclosure};
 use super::inside::Inside;
 use crate::analysis::memo::Fingerprint;
 use crate::assets::supports::Support;
+use crate::input::mesh::hull;
 use crate::input::mesh::surface::{self, SurfaceEdges};
 
 /// Two shapes closer than this (metres) are in contact: touching counts as colliding.
@@ -393,8 +394,7 @@ impl Hull {
 /// A closed convex triangulation of the hull of `points` by parry's quickhull (its vertices and
 /// triangles), when it contains every point to within a nanometre (quickhull can fail on coplanar points).
 fn hull_surface(points: &[Vector]) -> Option<(Vec<Vector>, Vec<[u32; 3]>)> {
-    let result = std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points));
-    let (vertices, triangles) = result.ok()?.ok()?;
+    let (vertices, triangles) = hull::run_hull(points)?;
     surface::is_closed_convex(points, &vertices, &triangles).then_some((vertices, triangles))
 }
 

@@ -279,7 +279,8 @@ fn to_parry(p: [f64; 3]) -> parry3d_f64::math::Vector {
     parry3d_f64::math::Vector::new(p[0], p[1], p[2])
 }
 
-type HullResult = (Vec<parry3d_f64::math::Vector>, Vec<[u32; 3]>);
+/// A hull's vertices and triangles, as parry's quickhull gives them.
+pub(crate) type HullResult = (Vec<parry3d_f64::math::Vector>, Vec<[u32; 3]>);
 
 /// The triangles of the hull of `hull` (its vertices), by index into `hull`; empty when quickhull fails,
 /// returns a point it was not given, or gives a surface that is not closed and convex around every
@@ -318,8 +319,9 @@ pub(super) fn triangulate(hull: &[[f64; 3]]) -> Vec<[u32; 3]> {
 }
 
 /// parry's quickhull, with its known panics on degenerate input (dimforge/parry#49) turned into `None`
-/// as a last resort (the inputs here are whitened and non-flat, so this is not expected to trigger).
-fn run_hull(points: &[parry3d_f64::math::Vector]) -> Option<HullResult> {
+/// as a last resort (this module's inputs are whitened and non-flat, so it is not expected to trigger
+/// here; the collision shapes use it too).
+pub(crate) fn run_hull(points: &[parry3d_f64::math::Vector]) -> Option<HullResult> {
     std::panic::catch_unwind(|| parry3d_f64::transformation::try_convex_hull(points))
         .ok()?
         .ok()

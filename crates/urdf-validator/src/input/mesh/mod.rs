@@ -25,7 +25,7 @@
 mod cache;
 mod collada;
 mod disk_cache;
-mod hull;
+pub(crate) mod hull;
 mod obj;
 pub mod solid;
 mod stl;
