@@ -18,6 +18,14 @@ use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
+/// The URL in the command's first line.
+fn url_in(line: &str) -> String {
+    line.split_whitespace()
+        .find(|w| w.starts_with("http://127.0.0.1:"))
+        .unwrap_or_else(|| panic!("no URL in {line:?}"))
+        .to_string()
+}
+
 /// A running `urdf_validate view`, stopped on drop.
 struct Server {
     child: Child,
@@ -37,12 +45,10 @@ impl Server {
         BufReader::new(child.stdout.take().unwrap())
             .read_line(&mut line)
             .unwrap();
-        let url = line
-            .split_whitespace()
-            .find(|w| w.starts_with("http://127.0.0.1:"))
-            .unwrap_or_else(|| panic!("no URL in {line:?}"))
-            .to_string();
-        Server { child, url }
+        Server {
+            child,
+            url: url_in(&line),
+        }
     }
 
     fn port(&self) -> u16 {
@@ -61,6 +67,28 @@ impl Drop for Server {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// The server's whole answer (head and body) to `raw`.
+fn answer(port: u16, raw: &str) -> String {
+    let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    stream.write_all(raw.as_bytes()).unwrap();
+    let mut answer = String::new();
+    stream.read_to_string(&mut answer).unwrap();
+    answer
+}
+
+/// `/version` once it is no longer `from` (polled for up to 5 s).
+fn version_after(port: u16, host: &str, from: &str) -> String {
+    let mut version = String::new();
+    for _ in 0..50 {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        version = request(port, &format!("GET /version HTTP/1.1\r\n{host}\r\n\r\n")).1;
+        if version != from {
+            break;
+        }
+    }
+    version
 }
 
 /// The driver's JSON for `url`.
@@ -175,10 +203,7 @@ fn a_menagerie_model_is_drawn() {
 
 /// One raw request to the server: the status line and the body.
 fn request(port: u16, raw: &str) -> (String, String) {
-    let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    stream.write_all(raw.as_bytes()).unwrap();
-    let mut answer = String::new();
-    stream.read_to_string(&mut answer).unwrap();
+    let answer = answer(port, raw);
     let status = answer.lines().next().unwrap_or_default().to_string();
     let body = answer
         .split("\r\n\r\n")
@@ -221,14 +246,7 @@ fn the_server_answers_its_routes_only_to_127_0_0_1_and_serves_no_file() {
 
     // The file changes: the version moves on and the scene is the new robot's.
     std::fs::write(&urdf, "<robot name=\"r2\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint></robot>").unwrap();
-    let mut version = String::new();
-    for _ in 0..50 {
-        std::thread::sleep(std::time::Duration::from_millis(100));
-        version = request(port, &format!("GET /version HTTP/1.1\r\n{host}\r\n\r\n")).1;
-        if version != "1" {
-            break;
-        }
-    }
+    let version = version_after(port, &host, "1");
     assert_eq!(version, "2", "the change was seen");
     let (_, scene) = request(port, &format!("GET /scene.json HTTP/1.1\r\n{host}\r\n\r\n"));
     assert!(scene.contains("\"robot\":\"r2\""), "{scene}");
@@ -262,21 +280,9 @@ fn a_file_that_does_not_validate_is_served_with_why_and_loads_once_fixed() {
 
     // Fixed: the version moves on and the scene is the robot's.
     std::fs::write(&urdf, "<robot name=\"fixed\"><link name=\"a\"/></robot>").unwrap();
-    let mut version = String::new();
-    for _ in 0..50 {
-        std::thread::sleep(std::time::Duration::from_millis(100));
-        version = request(port, &format!("GET /version HTTP/1.1\r\n{host}\r\n\r\n")).1;
-        if version != "1" {
-            break;
-        }
-    }
+    let version = version_after(port, &host, "1");
     assert_eq!(version, "2", "the fix was seen");
-    let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    stream
-        .write_all(format!("GET /scene.json HTTP/1.1\r\n{host}\r\n\r\n").as_bytes())
-        .unwrap();
-    let mut answer = String::new();
-    stream.read_to_string(&mut answer).unwrap();
+    let answer = answer(port, &format!("GET /scene.json HTTP/1.1\r\n{host}\r\n\r\n"));
     assert!(answer.contains("X-Scene-Version: 2\r\n"), "{answer:.300}");
     assert!(answer.contains("\"robot\":\"fixed\""), "{answer:.300}");
     drop(server);
@@ -326,11 +332,7 @@ fn open_hands_the_url_to_the_system_browser() {
     }
     let _ = child.kill();
     let _ = child.wait();
-    let url = line
-        .split_whitespace()
-        .find(|w| w.starts_with("http://127.0.0.1:"))
-        .unwrap_or_else(|| panic!("no URL in {line:?}"));
-    assert_eq!(got.trim(), url, "the opener got the URL printed");
+    assert_eq!(got.trim(), url_in(&line), "the opener got the URL printed");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
